@@ -1,0 +1,135 @@
+// The sets that warps map onto, and the measure their densities refer to.
+// Spherical domains are parameterised by (phi, z = cos theta): on the unit
+// sphere dA = dphi dz, so a cell's area in those coordinates is its solid angle.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace warpcheck::chi2 {
+
+enum class DomainKind {
+    Interval,      ///< [a, b], length measure
+    HalfLine,      ///< [a, inf), length measure
+    Box,           ///< [x0, x1] x [y0, y1], area measure
+    Disk,          ///< unit disk, area measure
+    SphericalCap,  ///< directions with z >= z_min, solid angle (sphere: z_min = -1, hemisphere: 0)
+};
+
+/// A point of a domain: x for 1D domains, (x, y) for planar ones, (x, y, z) for spherical ones.
+using DomainPoint = std::array<double, 3>;
+
+struct Domain {
+    DomainKind kind = DomainKind::Interval;
+    double a = 0.0, b = 1.0;    ///< Interval [a, b]; HalfLine [a, inf)
+    double x0 = 0.0, x1 = 1.0;  ///< Box
+    double y0 = 0.0, y1 = 1.0;  ///< Box
+    double z_min = -1.0;        ///< SphericalCap
+
+    static Domain interval(double lo, double hi) {
+        if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi))
+            throw std::invalid_argument("interval domain needs finite a < b");
+        Domain d;
+        d.kind = DomainKind::Interval;
+        d.a = lo;
+        d.b = hi;
+        return d;
+    }
+    static Domain half_line(double lo) {
+        if (!std::isfinite(lo)) throw std::invalid_argument("half-line domain needs a finite start");
+        Domain d;
+        d.kind = DomainKind::HalfLine;
+        d.a = lo;
+        d.b = std::numeric_limits<double>::infinity();
+        return d;
+    }
+    static Domain box(double bx0, double bx1, double by0, double by1) {
+        if (!(bx0 < bx1) || !(by0 < by1)) throw std::invalid_argument("box domain needs x0 < x1 and y0 < y1");
+        Domain d;
+        d.kind = DomainKind::Box;
+        d.x0 = bx0;
+        d.x1 = bx1;
+        d.y0 = by0;
+        d.y1 = by1;
+        return d;
+    }
+    static Domain unit_square() { return box(0.0, 1.0, 0.0, 1.0); }
+    static Domain unit_disk() {
+        Domain d;
+        d.kind = DomainKind::Disk;
+        return d;
+    }
+    static Domain spherical_cap(double zmin) {
+        if (!(zmin >= -1.0 && zmin < 1.0)) throw std::invalid_argument("spherical cap needs -1 <= z_min < 1");
+        Domain d;
+        d.kind = DomainKind::SphericalCap;
+        d.z_min = zmin;
+        return d;
+    }
+    static Domain sphere() { return spherical_cap(-1.0); }
+    static Domain hemisphere() { return spherical_cap(0.0); }
+
+    /// Number of coordinates of a point (1, 2 or 3); the parametric dimension is
+    /// 1 for intervals and 2 for everything else.
+    int point_dimension() const {
+        switch (kind) {
+            case DomainKind::Interval:
+            case DomainKind::HalfLine: return 1;
+            case DomainKind::Box:
+            case DomainKind::Disk: return 2;
+            case DomainKind::SphericalCap: return 3;
+        }
+        return 0;
+    }
+
+    /// Total measure: length, area or solid angle (infinite for a half-line).
+    double measure() const {
+        switch (kind) {
+            case DomainKind::Interval: return b - a;
+            case DomainKind::HalfLine: return std::numeric_limits<double>::infinity();
+            case DomainKind::Box: return (x1 - x0) * (y1 - y0);
+            case DomainKind::Disk: return std::numbers::pi;
+            case DomainKind::SphericalCap: return 2.0 * std::numbers::pi * (1.0 - z_min);
+        }
+        return 0.0;
+    }
+
+    /// Whether p lies in the domain, allowing `tol` of slack (absolute, in the
+    /// domain's coordinates; for spherical domains also on the unit length).
+    /// NaN coordinates are never contained.
+    bool contains(const DomainPoint& p, double tol) const {
+        switch (kind) {
+            case DomainKind::Interval: return p[0] >= a - tol && p[0] <= b + tol;
+            case DomainKind::HalfLine: return p[0] >= a - tol && p[0] < std::numeric_limits<double>::infinity();
+            case DomainKind::Box: return p[0] >= x0 - tol && p[0] <= x1 + tol && p[1] >= y0 - tol && p[1] <= y1 + tol;
+            case DomainKind::Disk: return std::hypot(p[0], p[1]) <= 1.0 + tol;
+            case DomainKind::SphericalCap: {
+                const double len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+                return std::abs(len - 1.0) <= tol && p[2] >= z_min - tol;
+            }
+        }
+        return false;
+    }
+
+    std::string describe() const;
+};
+
+inline std::string Domain::describe() const {
+    switch (kind) {
+        case DomainKind::Interval: return "interval [" + std::to_string(a) + ", " + std::to_string(b) + "]";
+        case DomainKind::HalfLine: return "half-line [" + std::to_string(a) + ", inf)";
+        case DomainKind::Box: return "box";
+        case DomainKind::Disk: return "unit disk";
+        case DomainKind::SphericalCap:
+            if (z_min == -1.0) return "sphere";
+            if (z_min == 0.0) return "hemisphere";
+            return "spherical cap z >= " + std::to_string(z_min);
+    }
+    return "?";
+}
+
+}  // namespace warpcheck::chi2

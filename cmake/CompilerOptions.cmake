@@ -1,0 +1,11 @@
+# Warnings and sanitizers for every warpcheck target, through one interface target.
+add_library(warpcheck_options INTERFACE)
+target_compile_options(warpcheck_options INTERFACE -Wall -Wextra -Wpedantic -Wshadow)
+if(WARPCHECK_WERROR)
+  target_compile_options(warpcheck_options INTERFACE -Werror)
+endif()
+if(WARPCHECK_SANITIZE)
+  target_compile_options(warpcheck_options INTERFACE
+    -fsanitize=${WARPCHECK_SANITIZE} -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(warpcheck_options INTERFACE -fsanitize=${WARPCHECK_SANITIZE})
+endif()

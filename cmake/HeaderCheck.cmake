@@ -1,0 +1,17 @@
+# Headers must compile on their own: for each header of a folder, compile a
+# translation unit that includes only that header.
+function(warpcheck_check_headers folder)
+  file(GLOB_RECURSE headers CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/${folder}/*.h")
+  set(sources "")
+  foreach(header IN LISTS headers)
+    file(RELATIVE_PATH rel "${PROJECT_SOURCE_DIR}" "${header}")
+    string(MAKE_C_IDENTIFIER "${rel}" stem)
+    set(tu "${CMAKE_CURRENT_BINARY_DIR}/header_check/${stem}.cpp")
+    file(CONFIGURE OUTPUT "${tu}" CONTENT "#include \"${rel}\"\n")
+    list(APPEND sources "${tu}")
+  endforeach()
+  if(sources)
+    add_library(header_check_${folder} OBJECT ${sources})
+    target_link_libraries(header_check_${folder} PRIVATE ${ARGN} warpcheck_options)
+  endif()
+endfunction()

@@ -1,0 +1,21 @@
+// The pass/fail table that `validate` prints: one row per (case, check).
+#pragma once
+
+#include <iosfwd>
+
+#include "validate/result.h"
+
+namespace warpcheck {
+
+struct TableStyle {
+    bool color = false;         ///< ANSI colours for verdicts (only on a terminal)
+    bool failures_only = false; ///< print only rows that did not pass
+};
+
+/// Prints the table, then the summary line and the rerun command of each failure.
+void print_table(const RunResult& run, std::ostream& out, const TableStyle& style = {});
+
+/// The one-line summary: "42 checks: 41 passed, 1 failed, 0 errors in 3.2 s (seed 1, ...)".
+void print_summary(const RunResult& run, std::ostream& out);
+
+}  // namespace warpcheck

@@ -1,0 +1,84 @@
+// A check: one kind of evidence (round trip, chi-square, ...) that runs on one
+// warp case and returns a result. Checks never print.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <span>
+#include <string>
+
+#include "sampling/hash.h"
+#include "sampling/pcg32.h"
+#include "validate/result.h"
+#include "validate/thread_pool.h"
+#include "validate/warp_case.h"
+
+namespace warpcheck {
+
+/// Settings of a run that checks may read.
+struct RunOptions {
+    uint64_t seed = 1;
+    uint64_t samples = 1'000'000;  ///< samples per statistical check
+    unsigned threads = 0;          ///< 0: all hardware threads
+    double alpha = 0.01;           ///< family-wise significance level (Šidák-corrected per test)
+    bool exhaustive = false;       ///< run the heavy optional sweeps too
+    double check_time_budget = 60.0;  ///< seconds one check may take before it is reported as an error
+};
+
+/// What a check gets to run with.
+class CheckContext {
+public:
+    CheckContext(const RunOptions& options, ThreadPool& pool, StreamId stream)
+        : options_(options), pool_(pool), stream_(stream) {}
+
+    const RunOptions& options() const { return options_; }
+    StreamId stream() const { return stream_; }
+
+    /// The (case, check) stream itself.
+    Pcg32 rng() const { return Pcg32(stream_.sequence, stream_.seed); }
+    /// An independent stream for chunk `chunk` of this check's work: the same
+    /// chunk gets the same numbers whichever thread runs it.
+    Pcg32 chunk_rng(uint64_t chunk) const { return Pcg32(hash_combine(stream_.sequence, chunk), stream_.seed); }
+
+    /// body(i) for i in [0, n) across the pool; see thread_pool.h for the rule
+    /// that keeps the result independent of the thread count.
+    void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body) const {
+        pool_.parallel_for(n, body);
+    }
+
+private:
+    const RunOptions& options_;
+    ThreadPool& pool_;
+    StreamId stream_;
+};
+
+/// Fills `out` with fresh inputs of the given kind from `rng`: uniform floats on
+/// the 2^-24 grid, or raw bits.
+void draw_inputs(Pcg32& rng, InputKind kind, std::span<WarpInput> out);
+
+/// The coordinates of a warp output as a domain point (float -> double).
+inline chi2::DomainPoint to_domain_point(const WarpOutput& o) {
+    return {static_cast<double>(o[0]), static_cast<double>(o[1]), static_cast<double>(o[2])};
+}
+
+class Check {
+public:
+    virtual ~Check() = default;
+    /// Short stable name, used in the table and in --check: "roundtrip".
+    virtual std::string name() const = 0;
+    /// One line for --list.
+    virtual std::string description() const = 0;
+    virtual bool applies_to(const WarpCase& warp) const = 0;
+    /// Whether the check runs by default; heavy sweeps run only with --exhaustive.
+    virtual bool runs_by_default(const RunOptions& options) const {
+        (void)options;
+        return true;
+    }
+    /// Runs the check. The runner fills in the names, stream, timing and rerun
+    /// command, and turns an exception into an Error verdict.
+    virtual CheckResult run(const WarpCase& warp, const CheckContext& ctx) const = 0;
+};
+
+}  // namespace warpcheck

@@ -1,0 +1,50 @@
+// A small thread pool whose parallel_for may be nested: the calling thread works
+// on its own loop too, so a check running on a pool thread can split its work
+// across the pool without deadlock.
+//
+// Determinism rule for every user: split work into chunks whose boundaries do
+// not depend on the thread count, give each chunk its own random stream, and
+// combine chunk results in chunk order afterwards. Then any --threads value
+// gives the same numbers, bit for bit.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace warpcheck {
+
+class ThreadPool {
+public:
+    /// `threads` counts the caller: 1 runs everything on the calling thread.
+    explicit ThreadPool(unsigned threads);
+    ~ThreadPool();
+    ThreadPool(const ThreadPool&) = delete;
+    ThreadPool& operator=(const ThreadPool&) = delete;
+
+    unsigned threads() const { return static_cast<unsigned>(workers_.size()) + 1; }
+
+    /// Calls body(i) for every i in [0, n), on any threads, and returns when all
+    /// calls have finished. The first exception thrown by a body is rethrown here
+    /// (the remaining indices are skipped).
+    void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body);
+
+private:
+    struct Loop;
+    void worker_main();
+    static bool run_one(Loop& loop);
+
+    std::vector<std::thread> workers_;
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    std::deque<std::shared_ptr<Loop>> loops_;
+    bool stopping_ = false;
+};
+
+}  // namespace warpcheck

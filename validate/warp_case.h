@@ -1,0 +1,162 @@
+// A warp case: one warp with concrete parameter values and a stable name. The
+// checks see every warp through this one type-erased interface, which works on
+// batches so that the virtual call is paid once per batch, not once per sample.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "chi2/domain.h"
+#include "sampling/vector.h"
+
+namespace warpcheck {
+
+/// What a warp consumes.
+enum class InputKind {
+    Uniform1D,  ///< one float in [0,1)
+    Uniform2D,  ///< a point of [0,1)^2
+    Bits32,     ///< 32 raw random bits
+    Bits64,     ///< 64 raw random bits
+};
+
+constexpr int input_dimension(InputKind k) { return k == InputKind::Uniform2D ? 2 : 1; }
+constexpr bool takes_bits(InputKind k) { return k == InputKind::Bits32 || k == InputKind::Bits64; }
+
+/// One input of a warp: u[0..1] for uniform inputs, `bits` for raw-bit inputs.
+struct WarpInput {
+    std::array<float, 2> u{};
+    uint64_t bits = 0;
+};
+
+/// One output point, laid out as chi2::DomainPoint (unused coordinates are 0).
+using WarpOutput = std::array<float, 3>;
+
+struct Parameter {
+    std::string name;
+    double value = 0.0;
+};
+
+/// Name and parameters, e.g. family "uniform_cone", {cos_theta_max: 0.3}
+/// -> "uniform_cone[cos_theta_max=0.3]".
+std::string case_name(const std::string& family, const std::vector<Parameter>& params);
+
+struct WarpCaseInfo {
+    std::string family;               ///< e.g. "uniform_cone"
+    std::vector<Parameter> params;    ///< concrete values, in display order
+    std::string description;          ///< one line: what it samples, with which density
+    InputKind input = InputKind::Uniform2D;
+    chi2::Domain domain = chi2::Domain::unit_square();
+    /// Largest |invert(sample(u)) - u| (max norm, in u units) that the round trip
+    /// accepts. The default, 2^-16, is ~500 float ulps at u = 0.5: float warps with
+    /// trigonometry lose tens of ulps, while a wrong inverse is off by far more.
+    double roundtrip_tolerance = 0x1p-16;
+    /// Whether the inverse is expected to be exact on raw bits (invert returns
+    /// the first input that maps to x) rather than within a tolerance.
+    bool exact_inverse = false;
+};
+
+class WarpCase {
+public:
+    explicit WarpCase(WarpCaseInfo info) : info_(std::move(info)), name_(case_name(info_.family, info_.params)) {}
+    virtual ~WarpCase() = default;
+    WarpCase(const WarpCase&) = delete;
+    WarpCase& operator=(const WarpCase&) = delete;
+
+    const std::string& name() const { return name_; }
+    const WarpCaseInfo& info() const { return info_; }
+    const chi2::Domain& domain() const { return info_.domain; }
+    InputKind input_kind() const { return info_.input; }
+
+    /// out[i] = sample(in[i]). Sizes must match.
+    virtual void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const = 0;
+    /// out[i] = pdf(x[i]), the density with respect to the domain's measure.
+    virtual void pdf(std::span<const WarpOutput> x, std::span<double> out) const = 0;
+    /// out[i] = the input that sample maps to x[i].
+    virtual void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const = 0;
+
+private:
+    WarpCaseInfo info_;
+    std::string name_;
+};
+
+namespace detail {
+
+// Conversions between a warp's natural types and the uniform WarpInput/WarpOutput.
+template <typename T> struct WarpTypes;
+template <> struct WarpTypes<float> {
+    static WarpOutput to_output(float v) { return {v, 0.0f, 0.0f}; }
+    static float from_output(const WarpOutput& o) { return o[0]; }
+    static WarpInput to_input(float u) { return {{u, 0.0f}, 0}; }
+    static float from_input(const WarpInput& in) { return in.u[0]; }
+};
+template <> struct WarpTypes<Point2f> {
+    static WarpOutput to_output(Point2f p) { return {p.x, p.y, 0.0f}; }
+    static Point2f from_output(const WarpOutput& o) { return {o[0], o[1]}; }
+    static WarpInput to_input(Point2f u) { return {{u.x, u.y}, 0}; }
+    static Point2f from_input(const WarpInput& in) { return {in.u[0], in.u[1]}; }
+};
+template <> struct WarpTypes<Vector3f> {
+    static WarpOutput to_output(Vector3f v) { return {v.x, v.y, v.z}; }
+    static Vector3f from_output(const WarpOutput& o) { return {o[0], o[1], o[2]}; }
+};
+template <> struct WarpTypes<uint32_t> {
+    static WarpInput to_input(uint32_t b) { return {{0.0f, 0.0f}, b}; }
+    static uint32_t from_input(const WarpInput& in) { return static_cast<uint32_t>(in.bits); }
+};
+template <> struct WarpTypes<uint64_t> {
+    static WarpInput to_input(uint64_t b) { return {{0.0f, 0.0f}, b}; }
+    static uint64_t from_input(const WarpInput& in) { return in.bits; }
+};
+
+template <typename F> struct FirstArg : FirstArg<decltype(&F::operator())> {};
+template <typename C, typename R, typename A> struct FirstArg<R (C::*)(A) const> {
+    using type = std::remove_cvref_t<A>;
+};
+
+template <typename Sample, typename Pdf, typename Invert>
+class LambdaWarpCase final : public WarpCase {
+    using In = typename FirstArg<Sample>::type;
+    using Out = typename FirstArg<Pdf>::type;
+
+public:
+    LambdaWarpCase(WarpCaseInfo info, Sample s, Pdf p, Invert i)
+        : WarpCase(std::move(info)), sample_(std::move(s)), pdf_(std::move(p)), invert_(std::move(i)) {}
+
+    void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override {
+        for (std::size_t k = 0; k < in.size(); ++k)
+            out[k] = WarpTypes<Out>::to_output(sample_(WarpTypes<In>::from_input(in[k])));
+    }
+    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
+        for (std::size_t k = 0; k < x.size(); ++k)
+            out[k] = static_cast<double>(pdf_(WarpTypes<Out>::from_output(x[k])));
+    }
+    void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override {
+        for (std::size_t k = 0; k < x.size(); ++k)
+            out[k] = WarpTypes<In>::to_input(invert_(WarpTypes<Out>::from_output(x[k])));
+    }
+
+private:
+    Sample sample_;
+    Pdf pdf_;
+    Invert invert_;
+};
+
+}  // namespace detail
+
+/// Makes a warp case from three callables over the warp's natural types:
+///   sample: In -> Out, pdf: Out -> float/double, invert: Out -> In,
+/// with In one of float, Point2f, uint32_t, uint64_t and Out one of float,
+/// Point2f, Vector3f. The callables are inlined into the batch loops.
+template <typename Sample, typename Pdf, typename Invert>
+std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample, Pdf pdf, Invert invert) {
+    return std::make_unique<detail::LambdaWarpCase<Sample, Pdf, Invert>>(std::move(info), std::move(sample),
+                                                                         std::move(pdf), std::move(invert));
+}
+
+}  // namespace warpcheck
