@@ -115,6 +115,21 @@ struct Domain {
         return false;
     }
 
+    /// Whether p lies exactly on the domain's boundary (interval ends, box edges,
+    /// the unit circle, the cap's rim). A density may vanish there legitimately:
+    /// e.g. the cosine-weighted hemisphere has density 0 at z = 0, which a float
+    /// warp reaches from the input u = 0 exactly.
+    bool on_boundary(const DomainPoint& p) const {
+        switch (kind) {
+            case DomainKind::Interval: return p[0] == a || p[0] == b;
+            case DomainKind::HalfLine: return p[0] == a;
+            case DomainKind::Box: return p[0] == x0 || p[0] == x1 || p[1] == y0 || p[1] == y1;
+            case DomainKind::Disk: return p[0] * p[0] + p[1] * p[1] >= 1.0;
+            case DomainKind::SphericalCap: return z_min > -1.0 && p[2] <= z_min;
+        }
+        return false;
+    }
+
     std::string describe() const;
 };
 
