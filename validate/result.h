@@ -46,6 +46,16 @@ struct Heatmap {
     int cols = 0;
     double x_min = 0.0, x_max = 1.0, y_min = 0.0, y_max = 1.0;
     std::vector<double> values;
+
+    /// How values map to colours. The heatmaps of one plot that use the same kind
+    /// of scale share one scale, so that e.g. observed and expected counts compare
+    /// by eye; a diverging scale is symmetric about 0.
+    enum class ColorScale {
+        Auto,        ///< Diverging if this heatmap's values take both signs, else Sequential
+        Sequential,  ///< low to high: counts, densities
+        Diverging,   ///< about 0: residuals, differences
+    };
+    ColorScale color_scale = ColorScale::Auto;
 };
 
 struct Plot {
