@@ -118,6 +118,9 @@ template <typename F> struct FirstArg : FirstArg<decltype(&F::operator())> {};
 template <typename C, typename R, typename A> struct FirstArg<R (C::*)(A) const> {
     using type = std::remove_cvref_t<A>;
 };
+template <typename R, typename A> struct FirstArg<R (*)(A)> {
+    using type = std::remove_cvref_t<A>;
+};
 
 template <typename Sample, typename Pdf, typename Invert>
 class LambdaWarpCase final : public WarpCase {
@@ -152,7 +155,8 @@ private:
 /// Makes a warp case from three callables over the warp's natural types:
 ///   sample: In -> Out, pdf: Out -> float/double, invert: Out -> In,
 /// with In one of float, Point2f, uint32_t, uint64_t and Out one of float,
-/// Point2f, Vector3f. The callables are inlined into the batch loops.
+/// Point2f, Vector3f. Lambdas are inlined into the batch loops; plain functions
+/// are called through a pointer.
 template <typename Sample, typename Pdf, typename Invert>
 std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample, Pdf pdf, Invert invert) {
     return std::make_unique<detail::LambdaWarpCase<Sample, Pdf, Invert>>(std::move(info), std::move(sample),

@@ -1,0 +1,57 @@
+#include "reports/terminal_table.h"
+
+#include <algorithm>
+#include <ostream>
+
+#include <fmt/format.h>
+
+namespace warpcheck {
+namespace {
+
+std::string verdict_cell(Verdict v, bool color) {
+    const std::string text = fmt::format("{:<5}", to_string(v));
+    if (!color) return text;
+    const char* code = v == Verdict::Pass ? "32" : v == Verdict::Fail ? "1;31" : "1;35";
+    return fmt::format("\033[{}m{}\033[0m", code, text);
+}
+
+}  // namespace
+
+void print_summary(const RunResult& run, std::ostream& out) {
+    const auto& i = run.info;
+    out << fmt::format("{} checks: {} passed, {} failed, {} errors in {:.1f} s  (seed {}, {} samples, {} threads)\n",
+                       run.results.size(), run.count(Verdict::Pass), run.count(Verdict::Fail),
+                       run.count(Verdict::Error), i.wall_seconds, i.seed, i.samples, i.threads);
+    if (i.statistical_tests > 0)
+        out << fmt::format("Statistical tests: {} at per-test level {:.3g} (family-wise alpha {} with Sidak correction)\n",
+                           i.statistical_tests, i.per_test_alpha, i.family_alpha);
+}
+
+void print_table(const RunResult& run, std::ostream& out, const TableStyle& style) {
+    std::size_t case_width = 4, check_width = 5;
+    for (const auto& r : run.results) {
+        case_width = std::max(case_width, r.case_name.size());
+        check_width = std::max(check_width, r.check_name.size());
+    }
+    case_width = std::min<std::size_t>(case_width, 64);
+    out << fmt::format("{:<5}  {:<{}}  {:<{}}  {}\n", "", "check", check_width, "case", case_width, "key figure");
+    for (const auto& r : run.results) {
+        if (style.failures_only && r.verdict == Verdict::Pass) continue;
+        out << fmt::format("{}  {:<{}}  {:<{}}  {}\n", verdict_cell(r.verdict, style.color), r.check_name, check_width,
+                           r.case_name, case_width, r.summary);
+    }
+    bool header = false;
+    for (const auto& r : run.results) {
+        if (r.verdict == Verdict::Pass) continue;
+        if (!header) {
+            out << "\nWhat failed, and how to rerun it:\n";
+            header = true;
+        }
+        out << fmt::format("  {} {} {}: {}\n    rerun: {}\n", to_string(r.verdict), r.check_name, r.case_name,
+                           r.message, r.rerun_command);
+    }
+    out << "\n";
+    print_summary(run, out);
+}
+
+}  // namespace warpcheck

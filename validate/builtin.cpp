@@ -1,0 +1,17 @@
+// The warp families and checks that ship with warpcheck. Adding a family is one
+// line here plus its register_*_cases function (see README, "Adding a warp").
+#include "validate/checks/checks.h"
+#include "validate/registry.h"
+
+namespace warpcheck {
+
+void register_builtin_cases(Registry& registry) {
+    register_geometric_cases(registry);
+}
+
+void register_builtin_checks(Registry& registry) {
+    registry.add_check(make_consistency_check());
+    registry.add_check(make_roundtrip_check());
+}
+
+}  // namespace warpcheck

@@ -1,0 +1,46 @@
+// How checks walk their inputs: a chunk of edge inputs, then random inputs in
+// chunks of fixed size, each chunk from its own stream. Results come back in
+// chunk order, so whatever the thread count the merged figures are identical.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "validate/check.h"
+
+namespace warpcheck {
+
+inline constexpr std::size_t kInputChunkSize = std::size_t{1} << 16;
+
+/// The inputs at the edges of the input space: {0, 2^-24, 0.5, 1 - 2^-24} in
+/// each coordinate (all combinations), or for raw bits 0, 1, the middle, and
+/// the two largest values.
+std::vector<WarpInput> edge_inputs(InputKind kind);
+
+/// Calls f(chunk_index, inputs) for every chunk and returns the results in chunk
+/// order. Chunk 0 holds the edge inputs (empty if !with_edges); chunks 1.. hold
+/// `samples` random inputs, chunk c drawn from ctx.chunk_rng(c).
+template <typename Result, typename F>
+std::vector<Result> map_input_chunks(const CheckContext& ctx, InputKind kind, uint64_t samples, bool with_edges,
+                                     F&& f) {
+    const std::size_t random_chunks = static_cast<std::size_t>((samples + kInputChunkSize - 1) / kInputChunkSize);
+    std::vector<Result> results(random_chunks + 1);
+    ctx.parallel_for(random_chunks + 1, [&](std::size_t chunk) {
+        std::vector<WarpInput> inputs;
+        if (chunk == 0) {
+            if (with_edges) inputs = edge_inputs(kind);
+        } else {
+            const uint64_t first = (chunk - 1) * kInputChunkSize;
+            inputs.resize(static_cast<std::size_t>(std::min<uint64_t>(kInputChunkSize, samples - first)));
+            Pcg32 rng = ctx.chunk_rng(chunk);
+            draw_inputs(rng, kind, inputs);
+        }
+        results[chunk] = f(chunk, std::span<const WarpInput>(inputs));
+    });
+    return results;
+}
+
+}  // namespace warpcheck

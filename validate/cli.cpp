@@ -1,0 +1,187 @@
+#include "validate/cli.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "reports/outputs.h"
+#include "reports/terminal_table.h"
+#include "validate/runner.h"
+
+namespace warpcheck {
+namespace {
+
+struct CliOptions {
+    RunOptions run;
+    bool all = false;
+    bool list = false;
+    bool failures_only = false;
+    std::string color = "auto";
+    std::vector<std::string> filters;
+    std::vector<std::string> checks;
+    std::string report_path, json_path, junit_path;
+};
+
+// An output path is usable when its folder exists and is writable; checked
+// before the run so that a typo does not cost a whole run.
+bool output_path_usable(const std::string& path, std::string& why) {
+    namespace fs = std::filesystem;
+    const fs::path p(path);
+    std::error_code ec;
+    if (fs::is_directory(p, ec)) {
+        why = "it is a directory";
+        return false;
+    }
+    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    if (!fs::is_directory(dir, ec)) {
+        why = "folder " + dir.string() + " does not exist";
+        return false;
+    }
+    if (access(dir.c_str(), W_OK) != 0) {
+        why = "folder " + dir.string() + " is not writable";
+        return false;
+    }
+    return true;
+}
+
+void list_cases(const Registry& registry, const std::vector<Job>& jobs, std::ostream& out) {
+    out << "Checks:\n";
+    for (const auto& c : registry.checks()) out << fmt::format("  {:<22} {}\n", c->name(), c->description());
+    out << "\nWarp cases (with the checks that apply):\n";
+    const WarpCase* current = nullptr;
+    for (const Job& job : jobs) {
+        if (job.warp != current) {
+            current = job.warp;
+            out << fmt::format("  {}\n      {}\n      checks:", current->name(), current->info().description);
+        }
+        out << " " << job.check->name();
+        if (&job == &jobs.back() || (&job + 1)->warp != current) out << "\n";
+    }
+}
+
+std::function<void(std::size_t, std::size_t, const std::string&)> terminal_progress() {
+    if (!isatty(STDERR_FILENO)) return {};
+    return [](std::size_t done, std::size_t total, const std::string& what) {
+        std::cerr << fmt::format("\r\033[K[{}/{}] {}", done, total, what.substr(0, 100));
+        if (done == total) std::cerr << "\r\033[K";
+        std::cerr.flush();
+    };
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv, const Registry& registry) {
+    CliOptions o;
+    CLI::App app{"warpcheck validate: statistical and exhaustive checks of sampling routines (warps).\n"
+                 "Exit status: 0 all passed, 1 a check failed or errored, 2 bad usage.",
+                 "validate"};
+    app.add_flag("--all", o.all, "Run every warp case");
+    app.add_option("--filter", o.filters,
+                   "Run the cases whose name contains PATTERN (or matches it as a glob with * and ?; "
+                   "a full case name selects exactly that case). Repeatable.")
+        ->type_name("PATTERN");
+    app.add_option("--check", o.checks, "Run only this check (repeatable); see --list for names")->type_name("NAME");
+    app.add_flag("--list", o.list, "List the checks and the warp cases (those selected by --filter), then exit");
+    app.add_option("--seed", o.run.seed, "Global seed; every (case, check) stream derives from it")
+        ->capture_default_str();
+    app.add_option("--samples", o.run.samples, "Samples per statistical check")
+        ->check(CLI::Range(uint64_t{1000}, uint64_t{10'000'000'000}))
+        ->capture_default_str();
+    app.add_option("--threads", o.run.threads, "Worker threads (0: all hardware threads); results do not depend on it")
+        ->check(CLI::Range(0u, 1024u))
+        ->capture_default_str();
+    app.add_option("--alpha", o.run.alpha, "Family-wise significance level over all statistical tests of the run")
+        ->check(CLI::Range(1e-12, 0.5))
+        ->capture_default_str();
+    app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
+    app.add_option("--report", o.report_path, "Write a self-contained HTML report")->type_name("FILE");
+    app.add_option("--json", o.json_path, "Write the results as JSON")->type_name("FILE");
+    app.add_option("--junit", o.junit_path, "Write the results as JUnit XML")->type_name("FILE");
+    app.add_flag("--failures-only", o.failures_only, "Print only the rows that did not pass");
+    app.add_option("--color", o.color, "Colour the table: auto, always, never")
+        ->check(CLI::IsMember({"auto", "always", "never"}))
+        ->capture_default_str();
+    app.set_version_flag("--version", "warpcheck validate 0.1.0");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "validate: " << e.what() << "\nRun 'validate --help' for the options.\n";
+        return kExitUsage;
+    }
+
+    if (!o.all && o.filters.empty() && !o.list) {
+        std::cerr << "validate: nothing selected: use --all, --filter PATTERN or --list\n";
+        return kExitUsage;
+    }
+    if (o.all && !o.filters.empty()) {
+        std::cerr << "validate: --all and --filter exclude each other\n";
+        return kExitUsage;
+    }
+    for (const auto& name : o.checks) {
+        if (!registry.find_check(name)) {
+            std::string names;
+            for (const auto& c : registry.checks()) names += " " + c->name();
+            std::cerr << fmt::format("validate: unknown check '{}'; the checks are:{}\n", name, names);
+            return kExitUsage;
+        }
+    }
+    for (const auto& pattern : o.filters) {
+        bool any = false;
+        for (const auto& c : registry.cases()) any = any || name_matches(c->name(), pattern);
+        if (!any) {
+            std::cerr << fmt::format("validate: no warp case matches '{}'; 'validate --list' shows them all\n", pattern);
+            return kExitUsage;
+        }
+    }
+    for (const auto* path : {&o.report_path, &o.json_path, &o.junit_path}) {
+        std::string why;
+        if (!path->empty() && !output_path_usable(*path, why)) {
+            std::cerr << fmt::format("validate: cannot write '{}': {}\n", *path, why);
+            return kExitUsage;
+        }
+    }
+
+    const std::vector<Job> jobs = select_jobs(registry, o.filters, o.checks, o.run);
+    if (o.list) {
+        list_cases(registry, jobs, std::cout);
+        return kExitPass;
+    }
+    if (jobs.empty()) {
+        std::cerr << "validate: the selected checks apply to none of the selected cases\n";
+        return kExitUsage;
+    }
+
+    RunResult run = run_jobs(jobs, o.run, terminal_progress());
+    std::ostringstream command;
+    for (int i = 0; i < argc; ++i) command << (i ? " " : "") << argv[i];
+    run.info.command_line = command.str();
+    run.info.tool_version = "0.1.0";
+
+    TableStyle style;
+    style.color = o.color == "always" || (o.color == "auto" && isatty(STDOUT_FILENO));
+    style.failures_only = o.failures_only;
+    print_table(run, std::cout, style);
+
+    try {
+        if (!o.report_path.empty()) write_html_report(run, o.report_path);
+        if (!o.json_path.empty()) write_json_report(run, o.json_path);
+        if (!o.junit_path.empty()) write_junit_report(run, o.junit_path);
+    } catch (const std::exception& e) {
+        std::cerr << "validate: " << e.what() << "\n";
+        return kExitUsage;
+    }
+    return run.all_passed() ? kExitPass : kExitFail;
+}
+
+}  // namespace warpcheck

@@ -1,0 +1,18 @@
+// `validate`: runs warpcheck's checks on the warps that ship with it.
+#include <exception>
+#include <iostream>
+
+#include "validate/cli.h"
+#include "validate/registry.h"
+
+int main(int argc, char** argv) {
+    warpcheck::Registry registry;
+    try {
+        warpcheck::register_builtin_cases(registry);
+        warpcheck::register_builtin_checks(registry);
+    } catch (const std::exception& e) {
+        std::cerr << "validate: could not register the built-in warps: " << e.what() << "\n";
+        return warpcheck::kExitUsage;
+    }
+    return warpcheck::run_cli(argc, argv, registry);
+}

@@ -1,0 +1,61 @@
+#include "validate/registry.h"
+
+#include <stdexcept>
+
+namespace warpcheck {
+
+void Registry::add_case(std::unique_ptr<WarpCase> warp) {
+    if (!warp) throw std::invalid_argument("registry: null warp case");
+    if (find_case(warp->name())) throw std::invalid_argument("registry: duplicate warp case name " + warp->name());
+    cases_.push_back(std::move(warp));
+}
+
+void Registry::add_check(std::unique_ptr<Check> check) {
+    if (!check) throw std::invalid_argument("registry: null check");
+    if (find_check(check->name())) throw std::invalid_argument("registry: duplicate check name " + check->name());
+    checks_.push_back(std::move(check));
+}
+
+const WarpCase* Registry::find_case(std::string_view name) const {
+    for (const auto& c : cases_)
+        if (c->name() == name) return c.get();
+    return nullptr;
+}
+
+const Check* Registry::find_check(std::string_view name) const {
+    for (const auto& c : checks_)
+        if (c->name() == name) return c.get();
+    return nullptr;
+}
+
+namespace {
+
+// Classic glob matching with backtracking over the last '*'.
+bool glob_match(std::string_view text, std::string_view pattern) {
+    std::size_t t = 0, p = 0, star = std::string_view::npos, mark = 0;
+    while (t < text.size()) {
+        if (p < pattern.size() && (pattern[p] == '?' || pattern[p] == text[t])) {
+            ++t;
+            ++p;
+        } else if (p < pattern.size() && pattern[p] == '*') {
+            star = p++;
+            mark = t;
+        } else if (star != std::string_view::npos) {
+            p = star + 1;
+            t = ++mark;
+        } else {
+            return false;
+        }
+    }
+    while (p < pattern.size() && pattern[p] == '*') ++p;
+    return p == pattern.size();
+}
+
+}  // namespace
+
+bool name_matches(std::string_view name, std::string_view pattern) {
+    if (pattern.find_first_of("*?") != std::string_view::npos) return glob_match(name, pattern);
+    return name.find(pattern) != std::string_view::npos;
+}
+
+}  // namespace warpcheck

@@ -1,0 +1,47 @@
+// The runner: runs (case, check) jobs across a thread pool, seeds each job's
+// stream from its names and the global seed, and applies the multiple-test
+// correction to every statistical result.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "validate/check.h"
+#include "validate/registry.h"
+#include "validate/result.h"
+
+namespace warpcheck {
+
+struct Job {
+    const WarpCase* warp = nullptr;
+    const Check* check = nullptr;
+};
+
+/// Called after each finished job: (jobs done, jobs in all, what just finished).
+using ProgressCallback = std::function<void(std::size_t done, std::size_t total, const std::string& what)>;
+
+/// The stream of one (case, check) job: a function of the names and the seed only.
+StreamId job_stream(const WarpCase& warp, const Check& check, uint64_t seed);
+
+/// The jobs of a selection, in registry order (case by case, then check by check).
+/// Empty `case_patterns` selects every case; empty `check_names` every check that
+/// runs by default.
+std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::string>& case_patterns,
+                             const std::vector<std::string>& check_names, const RunOptions& options);
+
+/// Runs the jobs and returns their results in job order. Exceptions from a check
+/// become Error results; the run goes on. Statistical results get their verdict
+/// from the Šidák-corrected level over all results that carry a p-value.
+RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, const ProgressCallback& progress = {});
+
+/// Per-test level that keeps the family-wise level `alpha` over m independent
+/// tests: 1 - (1 - alpha)^(1/m) (Šidák).
+double sidak_level(double alpha, int tests);
+
+/// Applies the level to every result with a p-value: a p-value below the level,
+/// or NaN, fails.
+void apply_multiple_test_correction(RunResult& run, double family_alpha);
+
+}  // namespace warpcheck
