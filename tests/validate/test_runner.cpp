@@ -1,0 +1,149 @@
+// The runner: multiple-test correction, errors from throwing warps, determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+#include "sampling/hemisphere.h"
+#include "support/check_harness.h"
+#include "validate/checks/checks.h"
+#include "validate/registry.h"
+
+namespace warpcheck {
+namespace {
+
+TEST(Sidak, LevelKeepsTheFamilyWiseRate) {
+    EXPECT_DOUBLE_EQ(sidak_level(0.01, 1), 0.01);
+    const double level = sidak_level(0.01, 100);
+    EXPECT_NEAR(1.0 - std::pow(1.0 - level, 100), 0.01, 1e-15);
+    EXPECT_GT(level, 0.01 / 100);  // Sidak is slightly less strict than Bonferroni
+    EXPECT_LT(level, 0.01 / 99);
+    // Tiny levels keep their digits (no cancellation in 1 - (1 - alpha)^(1/m)).
+    EXPECT_NEAR(sidak_level(1e-9, 1000) / 1e-12, 1.0, 1e-6);
+}
+
+TEST(Sidak, NaNAndLowPValuesFail) {
+    RunResult run;
+    for (double p : {0.5, 1e-6, std::numeric_limits<double>::quiet_NaN()}) {
+        CheckResult r;
+        r.verdict = Verdict::Pass;
+        r.p_value = p;
+        run.results.push_back(r);
+    }
+    CheckResult no_p;
+    no_p.verdict = Verdict::Pass;
+    run.results.push_back(no_p);
+    apply_multiple_test_correction(run, 0.01);
+    EXPECT_EQ(run.info.statistical_tests, 3);
+    EXPECT_EQ(run.results[0].verdict, Verdict::Pass);
+    EXPECT_EQ(run.results[1].verdict, Verdict::Fail);
+    EXPECT_EQ(run.results[2].verdict, Verdict::Fail);
+    EXPECT_NE(run.results[2].message.find("NaN"), std::string::npos);
+    EXPECT_EQ(run.results[3].verdict, Verdict::Pass);
+    EXPECT_FALSE(run.results[3].level.has_value());
+}
+
+TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
+    auto thrower = make_warp_case({"thrower", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+                                  [](Point2f u) {
+                                      if (u.x > 0.99f) throw std::runtime_error("boom");
+                                      return square_to_uniform_hemisphere(u);
+                                  },
+                                  square_to_uniform_hemisphere_pdf, uniform_hemisphere_to_square);
+    auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+                               square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
+                               uniform_hemisphere_to_square);
+    const auto check = make_roundtrip_check();
+    RunOptions options;
+    options.samples = 100'000;
+    options.threads = 2;
+    const RunResult run = run_jobs({{thrower.get(), check.get()}, {fine.get(), check.get()}}, options);
+    ASSERT_EQ(run.results.size(), 2u);
+    EXPECT_EQ(run.results[0].verdict, Verdict::Error);
+    EXPECT_NE(run.results[0].message.find("boom"), std::string::npos);
+    EXPECT_EQ(run.results[1].verdict, Verdict::Pass);
+    EXPECT_EQ(run.results[0].case_name, "thrower");
+    EXPECT_NE(run.results[0].rerun_command.find("--filter 'thrower' --check roundtrip"), std::string::npos);
+}
+
+// Figures must be bit-identical for any thread count, and for a case run alone
+// or among others.
+TEST(Runner, ResultsDoNotDependOnThreadsOrSelection) {
+    Registry registry;
+    register_geometric_cases(registry);
+    register_builtin_checks(registry);
+    RunOptions options;
+    options.samples = 150'000;
+    auto figures_of = [&](unsigned threads, const std::vector<std::string>& filter) {
+        options.threads = threads;
+        const RunResult run = run_jobs(select_jobs(registry, filter, {}, options), options);
+        std::map<std::string, std::vector<Figure>> out;
+        for (const auto& r : run.results) {
+            auto& v = out[r.case_name + "/" + r.check_name];
+            v = r.figures;
+            if (r.p_value) v.push_back({"p_value(raw)", *r.p_value});
+        }
+        return out;
+    };
+    const auto one = figures_of(1, {});
+    const auto two = figures_of(2, {});
+    const auto eight = figures_of(8, {});
+    EXPECT_EQ(one.size(), two.size());
+    for (const auto& [key, values] : one) {
+        ASSERT_TRUE(two.count(key)) << key;
+        ASSERT_EQ(values.size(), two.at(key).size()) << key;
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            // memcmp-equal: bit for bit, NaN included.
+            EXPECT_EQ(values[i].name, two.at(key)[i].name);
+            EXPECT_EQ(std::memcmp(&values[i].value, &two.at(key)[i].value, sizeof(double)), 0) << key << " " << values[i].name;
+            EXPECT_EQ(std::memcmp(&values[i].value, &eight.at(key)[i].value, sizeof(double)), 0) << key << " " << values[i].name;
+        }
+    }
+    const auto alone = figures_of(2, {"uniform_cone[cos_theta_max=0.3]"});
+    ASSERT_FALSE(alone.empty());
+    for (const auto& [key, values] : alone) {
+        ASSERT_TRUE(one.count(key)) << key;
+        const auto& full = one.at(key);
+        ASSERT_EQ(values.size(), full.size());
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            // The corrected level depends on how many tests ran; nothing else may.
+            EXPECT_EQ(values[i].name, full[i].name);
+            if (values[i].name == "level") continue;
+            EXPECT_EQ(std::memcmp(&values[i].value, &full[i].value, sizeof(double)), 0) << key << " " << values[i].name;
+        }
+    }
+}
+
+TEST(Registry, NamesAndMatching) {
+    EXPECT_EQ(case_name("uniform_cone", {{"cos_theta_max", 0.3}}), "uniform_cone[cos_theta_max=0.3]");
+    EXPECT_EQ(case_name("tr", {{"ax", 0.05}, {"theta_o", 85}}), "tr[ax=0.05,theta_o=85]");
+    EXPECT_EQ(case_name("e", {{"c", 1e-6}}), "e[c=1e-06]");
+    EXPECT_TRUE(name_matches("uniform_cone[cos_theta_max=0.3]", "cone"));
+    EXPECT_TRUE(name_matches("uniform_cone[cos_theta_max=0.3]", "uniform_*[*0.3]"));
+    EXPECT_FALSE(name_matches("uniform_cone[cos_theta_max=0.3]", "uniform_*[*0.5]"));
+    EXPECT_TRUE(name_matches("abc", "a?c"));
+    EXPECT_FALSE(name_matches("abc", "sphere"));
+    Registry r;
+    r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+                              square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
+                              uniform_hemisphere_to_square));
+    EXPECT_THROW(r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+                                           square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
+                                           uniform_hemisphere_to_square)),
+                 std::invalid_argument);
+}
+
+TEST(ThreadPool, NestedLoopsAndExceptions) {
+    ThreadPool pool(3);
+    std::vector<int> hits(100, 0);
+    pool.parallel_for(10, [&](std::size_t i) { pool.parallel_for(10, [&](std::size_t j) { hits[i * 10 + j]++; }); });
+    for (int h : hits) EXPECT_EQ(h, 1);
+    EXPECT_THROW(pool.parallel_for(50, [](std::size_t i) { if (i == 17) throw std::runtime_error("x"); }),
+                 std::runtime_error);
+}
+
+}  // namespace
+}  // namespace warpcheck
