@@ -2,11 +2,13 @@
 // warp case and returns a result. Checks never print.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <span>
+#include <stdexcept>
 #include <string>
 
 #include "sampling/hash.h"
@@ -24,14 +26,22 @@ struct RunOptions {
     unsigned threads = 0;          ///< 0: all hardware threads
     double alpha = 0.01;           ///< family-wise significance level (Šidák-corrected per test)
     bool exhaustive = false;       ///< run the heavy optional sweeps too
-    double check_time_budget = 60.0;  ///< seconds one check may take before it is reported as an error
+    /// Seconds one check may take before it is reported as an error and
+    /// abandoned (a sampler that never terminates must not hang the run).
+    double check_time_budget = 60.0;
+};
+
+/// Thrown inside a check that the runner has cancelled.
+struct CheckCancelled : std::runtime_error {
+    using std::runtime_error::runtime_error;
 };
 
 /// What a check gets to run with.
 class CheckContext {
 public:
-    CheckContext(const RunOptions& options, ThreadPool& pool, StreamId stream)
-        : options_(options), pool_(pool), stream_(stream) {}
+    CheckContext(const RunOptions& options, ThreadPool& pool, StreamId stream,
+                 const std::atomic<bool>* cancelled = nullptr)
+        : options_(options), pool_(pool), stream_(stream), cancelled_(cancelled) {}
 
     const RunOptions& options() const { return options_; }
     StreamId stream() const { return stream_; }
@@ -48,10 +58,19 @@ public:
         pool_.parallel_for(n, body);
     }
 
+    /// Whether the runner has given up on this check (its time budget ran out).
+    bool cancelled() const { return cancelled_ && cancelled_->load(std::memory_order_relaxed); }
+    /// Long loops call this between chunks, so a check over its budget stops
+    /// working soon after the runner has reported it.
+    void throw_if_cancelled() const {
+        if (cancelled()) throw CheckCancelled("cancelled: over the time budget");
+    }
+
 private:
     const RunOptions& options_;
     ThreadPool& pool_;
     StreamId stream_;
+    const std::atomic<bool>* cancelled_;
 };
 
 /// Fills `out` with fresh inputs of the given kind from `rng`: uniform floats on

@@ -121,6 +121,9 @@ struct RunInfo {
     std::string compiler;
     std::string machine;
     std::string started_at;  ///< ISO 8601, UTC
+    /// Checks given up on after their time budget; their threads may still be
+    /// running, so a program should exit soon after such a run.
+    int abandoned_checks = 0;
 };
 
 struct RunResult {

@@ -29,6 +29,7 @@ std::vector<Result> map_input_chunks(const CheckContext& ctx, InputKind kind, ui
     const std::size_t random_chunks = static_cast<std::size_t>((samples + kInputChunkSize - 1) / kInputChunkSize);
     std::vector<Result> results(random_chunks + 1);
     ctx.parallel_for(random_chunks + 1, [&](std::size_t chunk) {
+        ctx.throw_if_cancelled();
         std::vector<WarpInput> inputs;
         if (chunk == 0) {
             if (with_edges) inputs = edge_inputs(kind);
