@@ -148,3 +148,24 @@ inline std::string Domain::describe() const {
 }
 
 }  // namespace warpcheck::chi2
+
+namespace warpcheck::chi2 {
+
+/// How finely the chi-square test bins a domain. Zero means "the default for
+/// the domain" (see Binning). Cells are uniform in the domain's parameters:
+///   Interval, HalfLine: `first` cells along the line (the half-line's last one
+///                       is the tail cell, reaching to infinity);
+///   Box:               `first` columns in x, `second` rows in y;
+///   Disk:              `first` columns in phi, `second` rows in r^2 (equal area);
+///   SphericalCap:      `first` columns in phi, `second` rows in z = cos theta
+///                      (equal solid angle).
+struct BinResolution {
+    int first = 0;
+    int second = 0;
+    /// HalfLine only: the length scale s of the map t = d / (s + d), d = x - a,
+    /// whose uniform cells in t in [0, 1) bin the half-line. Half the cells lie
+    /// within s of the start; choose s near the distribution's median.
+    double half_line_scale = 1.0;
+};
+
+}  // namespace warpcheck::chi2

@@ -1,0 +1,367 @@
+#include "chi2/binning.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace warpcheck::chi2 {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+bool has_phi(DomainKind kind) { return kind == DomainKind::Disk || kind == DomainKind::SphericalCap; }
+
+int clamp_index(double f, int n) {
+    // f may be slightly negative or reach n for points within the tolerance.
+    if (!(f >= 0.0)) return 0;
+    const auto i = static_cast<long long>(f);
+    return i >= n ? n - 1 : static_cast<int>(i);
+}
+
+/// phi in [0, 2 pi) with the exact atan2.
+double exact_phi(double x, double y) {
+    double phi = std::atan2(y, x);
+    if (phi < 0.0) phi += kTwoPi;
+    return phi >= kTwoPi ? 0.0 : phi;
+}
+
+}  // namespace
+
+double fast_phi(double x, double y) {
+    const double ax = std::abs(x), ay = std::abs(y);
+    const double hi = std::max(ax, ay), lo = std::min(ax, ay);
+    if (hi == 0.0) return 0.0;
+    const double t = lo / hi, t2 = t * t;
+    // Abramowitz & Stegun 4.4.49: atan t = t (1 + a2 t^2 + ... + a16 t^16), |error| <= 2e-8 on [0, 1].
+    double p = 0.0028662257;
+    p = p * t2 - 0.0161657367;
+    p = p * t2 + 0.0429096138;
+    p = p * t2 - 0.0752896400;
+    p = p * t2 + 0.1065626393;
+    p = p * t2 - 0.1420889944;
+    p = p * t2 + 0.1999355085;
+    p = p * t2 - 0.3333314528;
+    p = p * t2 + 1.0;
+    double a = t * p;
+    if (ay > ax) a = 0.5 * std::numbers::pi - a;
+    if (x < 0.0) a = std::numbers::pi - a;
+    if (y < 0.0) a = kTwoPi - a;
+    return a;
+}
+
+uint64_t Histogram::total() const {
+    uint64_t n = outside + nan;
+    for (uint64_t c : counts) n += c;
+    return n;
+}
+
+void Histogram::merge(const Histogram& other) {
+    if (counts.size() != other.counts.size()) throw std::invalid_argument("Histogram::merge: different binnings");
+    for (std::size_t i = 0; i < counts.size(); ++i) counts[i] += other.counts[i];
+    outside += other.outside;
+    nan += other.nan;
+    snapped += other.snapped;
+}
+
+Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domain), resolution_(resolution) {
+    if (resolution_.first < 0 || resolution_.second < 0) throw std::invalid_argument("bin resolution must be >= 0");
+    if (!(resolution_.half_line_scale > 0.0) || !std::isfinite(resolution_.half_line_scale))
+        throw std::invalid_argument("half-line scale must be positive and finite");
+    auto pick = [](int requested, int fallback) { return requested > 0 ? requested : fallback; };
+    switch (domain_.kind) {
+        case DomainKind::Interval:
+            dims_ = 1;
+            cols_ = pick(resolution_.first, 200);
+            bounds_ = {domain_.a, domain_.b, 0.0, 1.0};
+            tol_x_ = kDomainTolerance * std::max({domain_.b - domain_.a, std::abs(domain_.a), std::abs(domain_.b)});
+            break;
+        case DomainKind::HalfLine:
+            dims_ = 1;
+            cols_ = pick(resolution_.first, 200);
+            bounds_ = {0.0, 1.0, 0.0, 1.0};
+            tol_x_ = kDomainTolerance * std::max(resolution_.half_line_scale, std::abs(domain_.a));
+            break;
+        case DomainKind::Box:
+            dims_ = 2;
+            cols_ = pick(resolution_.first, 40);
+            rows_ = pick(resolution_.second, 40);
+            bounds_ = {domain_.x0, domain_.x1, domain_.y0, domain_.y1};
+            tol_x_ = kDomainTolerance * std::max({domain_.x1 - domain_.x0, std::abs(domain_.x0), std::abs(domain_.x1)});
+            tol_y_ = kDomainTolerance * std::max({domain_.y1 - domain_.y0, std::abs(domain_.y0), std::abs(domain_.y1)});
+            break;
+        case DomainKind::Disk:
+            dims_ = 2;
+            cols_ = pick(resolution_.first, 64);
+            rows_ = pick(resolution_.second, 32);
+            bounds_ = {0.0, kTwoPi, 0.0, 1.0};
+            tol_x_ = tol_y_ = kDomainTolerance;
+            break;
+        case DomainKind::SphericalCap:
+            dims_ = 2;
+            cols_ = pick(resolution_.first, 64);
+            rows_ = pick(resolution_.second, 32);
+            bounds_ = {0.0, kTwoPi, domain_.z_min, 1.0};
+            tol_x_ = tol_y_ = kDomainTolerance;
+            break;
+    }
+    if (dims_ == 1 && resolution_.second > 1) throw std::invalid_argument("1D domains take one resolution value");
+    if (cell_count() > (std::size_t{1} << 26)) throw std::invalid_argument("bin resolution too large");
+    du_ = (bounds_.u1 - bounds_.u0) / cols_;
+    dv_ = (bounds_.v1 - bounds_.v0) / rows_;
+}
+
+ParamRect Binning::cell_rect(std::size_t cell) const {
+    const auto col = static_cast<int>(cell % static_cast<std::size_t>(cols_));
+    const auto row = static_cast<int>(cell / static_cast<std::size_t>(cols_));
+    // Edges from the index (not by accumulation), and exact at the domain's ends.
+    auto edge = [](double lo, double hi, int i, int n) { return i == n ? hi : lo + (hi - lo) * i / n; };
+    return {edge(bounds_.u0, bounds_.u1, col, cols_), edge(bounds_.u0, bounds_.u1, col + 1, cols_),
+            edge(bounds_.v0, bounds_.v1, row, rows_), edge(bounds_.v0, bounds_.v1, row + 1, rows_)};
+}
+
+double Binning::cell_measure(std::size_t cell) const {
+    const ParamRect r = cell_rect(cell);
+    switch (domain_.kind) {
+        case DomainKind::Interval: return r.u1 - r.u0;
+        case DomainKind::HalfLine: {
+            if (r.u1 >= 1.0) return std::numeric_limits<double>::infinity();
+            const double s = resolution_.half_line_scale;
+            return s * r.u1 / (1.0 - r.u1) - s * r.u0 / (1.0 - r.u0);
+        }
+        case DomainKind::Box:
+        case DomainKind::SphericalCap: return (r.u1 - r.u0) * (r.v1 - r.v0);
+        case DomainKind::Disk: return 0.5 * (r.u1 - r.u0) * (r.v1 - r.v0);
+    }
+    return 0.0;
+}
+
+DomainPoint Binning::point_at(double u, double v) const {
+    switch (domain_.kind) {
+        case DomainKind::Interval: return {u, 0.0, 0.0};
+        case DomainKind::HalfLine: return {domain_.a + resolution_.half_line_scale * u / (1.0 - u), 0.0, 0.0};
+        case DomainKind::Box: return {u, v, 0.0};
+        case DomainKind::Disk: {
+            const double r = std::sqrt(v);
+            return {r * std::cos(u), r * std::sin(u), 0.0};
+        }
+        case DomainKind::SphericalCap: {
+            const double s = std::sqrt(std::max(0.0, 1.0 - v * v));
+            return {s * std::cos(u), s * std::sin(u), v};
+        }
+    }
+    return {};
+}
+
+double Binning::jacobian(double u, double v) const {
+    (void)v;
+    switch (domain_.kind) {
+        case DomainKind::HalfLine: return resolution_.half_line_scale / ((1.0 - u) * (1.0 - u));
+        case DomainKind::Disk: return 0.5;
+        default: return 1.0;
+    }
+}
+
+std::array<double, 2> Binning::parameters_of(const DomainPoint& p) const {
+    switch (domain_.kind) {
+        case DomainKind::Interval: return {p[0], 0.5};
+        case DomainKind::HalfLine: {
+            const double d = std::max(0.0, p[0] - domain_.a);
+            return {d / (resolution_.half_line_scale + d), 0.5};
+        }
+        case DomainKind::Box: return {p[0], p[1]};
+        case DomainKind::Disk: return {exact_phi(p[0], p[1]), p[0] * p[0] + p[1] * p[1]};
+        case DomainKind::SphericalCap: return {exact_phi(p[0], p[1]), p[2]};
+    }
+    return {};
+}
+
+std::size_t Binning::cell_at_parameters(double u, double v) const {
+    if (has_phi(domain_.kind)) {
+        u = std::fmod(u, kTwoPi);
+        if (u < 0.0) u += kTwoPi;
+    }
+    // The same arithmetic as bin_impl, so both put a point in the same cell.
+    const int col = clamp_index((u - bounds_.u0) * (1.0 / du_), cols_);
+    const int row = clamp_index((v - bounds_.v0) * (1.0 / dv_), rows_);
+    return static_cast<std::size_t>(row) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(col);
+}
+
+std::ptrdiff_t Binning::cell_of(const DomainPoint& p) const {
+    const int n = domain_.point_dimension();
+    for (int k = 0; k < n; ++k)
+        if (std::isnan(p[static_cast<std::size_t>(k)])) return kNaN;
+    bool inside = false;
+    switch (domain_.kind) {
+        case DomainKind::Interval: inside = p[0] >= domain_.a - tol_x_ && p[0] <= domain_.b + tol_x_; break;
+        case DomainKind::HalfLine: inside = p[0] >= domain_.a - tol_x_ && std::isfinite(p[0]); break;
+        case DomainKind::Box:
+            inside = p[0] >= domain_.x0 - tol_x_ && p[0] <= domain_.x1 + tol_x_ && p[1] >= domain_.y0 - tol_y_ &&
+                     p[1] <= domain_.y1 + tol_y_;
+            break;
+        case DomainKind::Disk: inside = std::hypot(p[0], p[1]) <= 1.0 + kDomainTolerance; break;
+        case DomainKind::SphericalCap: inside = domain_.contains(p, kDomainTolerance); break;
+    }
+    if (!inside) return kOutside;
+    const auto uv = parameters_of(p);
+    return static_cast<std::ptrdiff_t>(cell_at_parameters(uv[0], uv[1]));
+}
+
+std::size_t Binning::snap_from_zero_cell(double u, double v, std::size_t cell, std::span<const unsigned char> zero_cells,
+                                         uint64_t& snapped) const {
+    // Tolerance in parameter units: the coordinate slack, and 2 pi times it for phi.
+    const double tu = has_phi(domain_.kind) ? kTwoPi * kDomainTolerance
+                      : domain_.kind == DomainKind::HalfLine ? kDomainTolerance
+                                                              : tol_x_;
+    const double tv = dims_ == 1 ? 0.0 : tol_y_;
+    static constexpr int kSteps[8][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    for (const auto& s : kSteps) {
+        if (dims_ == 1 && s[1] != 0) continue;
+        const std::size_t other = cell_at_parameters(u + s[0] * tu, v + s[1] * tv);
+        if (!zero_cells[other]) {
+            ++snapped;
+            return other;
+        }
+    }
+    return cell;
+}
+
+template <typename Point>
+void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span<const unsigned char> zero_cells) const {
+    if (hist.counts.size() != cell_count()) throw std::invalid_argument("Binning::bin: histogram of another binning");
+    if (!zero_cells.empty() && zero_cells.size() != cell_count())
+        throw std::invalid_argument("Binning::bin: zero-cell mask of another binning");
+    uint64_t* const counts = hist.counts.data();
+    const double inv_du = 1.0 / du_, inv_dv = 1.0 / dv_;
+    const bool check_zero = !zero_cells.empty();
+    auto add = [&](std::size_t cell, double u, double v) {
+        if (check_zero && zero_cells[cell]) cell = snap_from_zero_cell(u, v, cell, zero_cells, hist.snapped);
+        ++counts[cell];
+    };
+    // phi column: the fast atan2, or the exact one within a safety margin of a
+    // cell edge (the fast one is within 3e-8 rad; the margin is 1e-6 rad).
+    const double edge_margin = 1e-6 * inv_du;
+    auto phi_column = [&](double x, double y, double& phi) {
+        phi = fast_phi(x, y);
+        const double f = phi * inv_du;
+        const double fl = std::floor(f);
+        if (f - fl < edge_margin || fl + 1.0 - f < edge_margin) {
+            phi = exact_phi(x, y);
+            return clamp_index(phi * inv_du, cols_);
+        }
+        return clamp_index(fl, cols_);
+    };
+    const std::size_t cols = static_cast<std::size_t>(cols_);
+
+    switch (domain_.kind) {
+        case DomainKind::Interval: {
+            const double lo = domain_.a - tol_x_, hi = domain_.b + tol_x_;
+            for (const auto& p : points) {
+                const double x = p[0];
+                if (x != x) { ++hist.nan; continue; }
+                if (!(x >= lo && x <= hi)) { ++hist.outside; continue; }
+                add(static_cast<std::size_t>(clamp_index((x - bounds_.u0) * inv_du, cols_)), x, 0.5);
+            }
+            break;
+        }
+        case DomainKind::HalfLine: {
+            const double s = resolution_.half_line_scale;
+            for (const auto& p : points) {
+                const double x = p[0];
+                if (x != x) { ++hist.nan; continue; }
+                if (!(x >= domain_.a - tol_x_) || std::isinf(x)) { ++hist.outside; continue; }
+                const double d = std::max(0.0, x - domain_.a);
+                const double t = d / (s + d);
+                add(static_cast<std::size_t>(clamp_index(t * inv_du, cols_)), t, 0.5);
+            }
+            break;
+        }
+        case DomainKind::Box: {
+            for (const auto& p : points) {
+                const double x = p[0], y = p[1];
+                if (x != x || y != y) { ++hist.nan; continue; }
+                if (!(x >= domain_.x0 - tol_x_ && x <= domain_.x1 + tol_x_ && y >= domain_.y0 - tol_y_ &&
+                      y <= domain_.y1 + tol_y_)) {
+                    ++hist.outside;
+                    continue;
+                }
+                const auto col = static_cast<std::size_t>(clamp_index((x - bounds_.u0) * inv_du, cols_));
+                const auto row = static_cast<std::size_t>(clamp_index((y - bounds_.v0) * inv_dv, rows_));
+                add(row * cols + col, x, y);
+            }
+            break;
+        }
+        case DomainKind::Disk: {
+            const double r2_max = (1.0 + kDomainTolerance) * (1.0 + kDomainTolerance);
+            for (const auto& p : points) {
+                const double x = p[0], y = p[1];
+                if (x != x || y != y) { ++hist.nan; continue; }
+                const double r2 = x * x + y * y;
+                if (!(r2 <= r2_max)) { ++hist.outside; continue; }
+                double phi;
+                const auto col = static_cast<std::size_t>(phi_column(x, y, phi));
+                const auto row = static_cast<std::size_t>(clamp_index(r2 * inv_dv, rows_));
+                add(row * cols + col, phi, r2);
+            }
+            break;
+        }
+        case DomainKind::SphericalCap: {
+            // |len - 1| <= tol  <=>  len^2 within [(1 - tol)^2, (1 + tol)^2].
+            const double len2_lo = (1.0 - kDomainTolerance) * (1.0 - kDomainTolerance);
+            const double len2_hi = (1.0 + kDomainTolerance) * (1.0 + kDomainTolerance);
+            const double z_lo = domain_.z_min - kDomainTolerance, z0 = domain_.z_min;
+            for (const auto& p : points) {
+                const double x = p[0], y = p[1], z = p[2];
+                if (x != x || y != y || z != z) { ++hist.nan; continue; }
+                const double len2 = x * x + y * y + z * z;
+                if (!(len2 >= len2_lo && len2 <= len2_hi && z >= z_lo)) { ++hist.outside; continue; }
+                double phi;
+                const auto col = static_cast<std::size_t>(phi_column(x, y, phi));
+                const auto row = static_cast<std::size_t>(clamp_index((z - z0) * inv_dv, rows_));
+                add(row * cols + col, phi, z);
+            }
+            break;
+        }
+    }
+}
+
+void Binning::bin(std::span<const std::array<float, 3>> points, Histogram& hist,
+                  std::span<const unsigned char> zero_cells) const {
+    bin_impl(points, hist, zero_cells);
+}
+
+void Binning::bin(std::span<const DomainPoint> points, Histogram& hist, std::span<const unsigned char> zero_cells) const {
+    bin_impl(points, hist, zero_cells);
+}
+
+std::string Binning::u_label() const {
+    switch (domain_.kind) {
+        case DomainKind::Interval: return "x";
+        case DomainKind::HalfLine: return "x";
+        case DomainKind::Box: return "x";
+        case DomainKind::Disk:
+        case DomainKind::SphericalCap: return "phi";
+    }
+    return "u";
+}
+
+std::string Binning::v_label() const {
+    switch (domain_.kind) {
+        case DomainKind::Box: return "y";
+        case DomainKind::Disk: return "r^2";
+        case DomainKind::SphericalCap: return "cos theta";
+        default: return "";
+    }
+}
+
+double Binning::cell_position(std::size_t cell) const {
+    const ParamRect r = cell_rect(cell);
+    if (domain_.kind == DomainKind::HalfLine) {
+        const double t = r.u1 >= 1.0 ? r.u0 : 0.5 * (r.u0 + r.u1);
+        return point_at(t, 0.5)[0];
+    }
+    return 0.5 * (r.u0 + r.u1);
+}
+
+}  // namespace warpcheck::chi2

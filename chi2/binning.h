@@ -1,0 +1,126 @@
+// The cells of a chi-square test: a grid that is uniform in the domain's
+// parameters (u, v), how a parameter point maps to a domain point and measure,
+// and the fast classification of samples into cells.
+//
+// Parameters per domain (cell measure = du dv * jacobian):
+//   Interval      u = x                              jacobian 1
+//   HalfLine      u = t, x = a + s t / (1 - t)       jacobian s / (1 - t)^2
+//                 (the last cell, t in [t_last, 1), is the tail to infinity)
+//   Box           (u, v) = (x, y)                    jacobian 1
+//   Disk          (u, v) = (phi, r^2)                jacobian 1/2 (r dr dphi = d(r^2) dphi / 2)
+//   SphericalCap  (u, v) = (phi, z = cos theta)      jacobian 1 (dA = dphi dz on the unit sphere)
+// Cells are numbered row-major: index = row * cols + col, row along v.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "chi2/domain.h"
+
+namespace warpcheck::chi2 {
+
+/// Samples are accepted this far outside the domain (relative to the domain's
+/// extent per coordinate, and on the unit length for spherical domains) and
+/// counted in the nearest cell. Float warps round at ~6e-8 relative and lose a
+/// few ulps more in trigonometry; 1e-5 is about 100 times that, while a wrong
+/// warp misplaces samples by far more.
+inline constexpr double kDomainTolerance = 1e-5;
+
+/// A rectangle of parameter space.
+struct ParamRect {
+    double u0 = 0.0, u1 = 1.0;
+    double v0 = 0.0, v1 = 1.0;
+};
+
+/// Counts of one histogram: per cell, plus the samples that fell in no cell.
+struct Histogram {
+    std::vector<uint64_t> counts;
+    uint64_t outside = 0;  ///< beyond kDomainTolerance of the domain
+    uint64_t nan = 0;      ///< a NaN coordinate
+    uint64_t snapped = 0;  ///< moved (within tolerance) from a zero-expected cell to a neighbour
+    uint64_t total() const;
+    /// Adds another histogram of the same binning (integer sums: any order gives the same result).
+    void merge(const Histogram& other);
+};
+
+class Binning {
+public:
+    static constexpr std::ptrdiff_t kOutside = -1;
+    static constexpr std::ptrdiff_t kNaN = -2;
+
+    /// Bins `domain` at `resolution`; zero fields take the defaults: 200 cells
+    /// for 1D domains, 40 x 40 for a box, 64 (phi) x 32 (r^2) for the disk and
+    /// 64 (phi) x 32 (z) for spherical caps: about 2000 cells, hence ~500 samples
+    /// per cell of a uniform density at the default 10^6 samples.
+    explicit Binning(const Domain& domain, BinResolution resolution = {});
+
+    const Domain& domain() const { return domain_; }
+    const BinResolution& resolution() const { return resolution_; }
+    /// 1 for intervals and half-lines, 2 otherwise.
+    int parameter_dimension() const { return dims_; }
+    int cols() const { return cols_; }
+    int rows() const { return rows_; }
+    std::size_t cell_count() const { return static_cast<std::size_t>(cols_) * static_cast<std::size_t>(rows_); }
+
+    /// The parameter range; v is [0, 1] for 1D domains.
+    ParamRect parameter_bounds() const { return bounds_; }
+    ParamRect cell_rect(std::size_t cell) const;
+    /// The cell's length, area or solid angle (infinite for a half-line's tail cell).
+    double cell_measure(std::size_t cell) const;
+
+    /// The domain point at parameters (u, v) and the measure density there.
+    DomainPoint point_at(double u, double v) const;
+    double jacobian(double u, double v) const;
+
+    /// Parameters of a point of the domain (no tolerance handling): the inverse of point_at.
+    std::array<double, 2> parameters_of(const DomainPoint& p) const;
+
+    /// The cell of `p`, or kOutside / kNaN. Points within kDomainTolerance
+    /// outside go to the nearest cell. Uses the exact (libm) atan2.
+    std::ptrdiff_t cell_of(const DomainPoint& p) const;
+    /// The cell at parameters (u, v), clamped into the grid (u wraps for phi).
+    std::size_t cell_at_parameters(double u, double v) const;
+
+    /// Adds `points` to `hist` (whose counts must have cell_count() entries).
+    /// When `zero_cells` is not empty (one flag per cell), a sample that lands in
+    /// a flagged cell but lies within the tolerance of an unflagged cell is
+    /// moved there and counted in hist.snapped: rounding at the edge of a
+    /// density's support must not read as a sample where the density is zero.
+    void bin(std::span<const std::array<float, 3>> points, Histogram& hist,
+             std::span<const unsigned char> zero_cells = {}) const;
+    void bin(std::span<const DomainPoint> points, Histogram& hist, std::span<const unsigned char> zero_cells = {}) const;
+
+    /// Axis names for plots: "x", "phi", "cos theta", "r^2", "t = d/(s+d)".
+    std::string u_label() const;
+    std::string v_label() const;
+    /// The centre of a cell along u in the domain's own coordinate (for 1D plots:
+    /// x for intervals; for the half-line the left edge of the tail cell).
+    double cell_position(std::size_t cell) const;
+
+private:
+    template <typename Point>
+    void bin_impl(std::span<const Point> points, Histogram& hist, std::span<const unsigned char> zero_cells) const;
+    std::size_t snap_from_zero_cell(double u, double v, std::size_t cell, std::span<const unsigned char> zero_cells,
+                                    uint64_t& snapped) const;
+
+    Domain domain_;
+    BinResolution resolution_;
+    int dims_ = 1;
+    int cols_ = 1;
+    int rows_ = 1;
+    ParamRect bounds_;
+    double du_ = 1.0, dv_ = 1.0;  // cell sizes in parameter space
+    double tol_x_ = 0.0, tol_y_ = 0.0;  // accepted slack outside the domain, per coordinate
+};
+
+/// atan2(y, x) mapped to [0, 2 pi), within 3e-8 of the exact value: the
+/// polynomial of Abramowitz & Stegun 4.4.49 (|error| <= 2e-8 on [0, 1]) after
+/// reduction to the first octant. Binning uses it away from cell edges and the
+/// exact atan2 near them.
+double fast_phi(double x, double y);
+
+}  // namespace warpcheck::chi2

@@ -1,0 +1,135 @@
+#include "chi2/chi2_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+namespace warpcheck::chi2 {
+
+namespace {
+
+std::string format_number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+std::string count_of(uint64_t n, const char* noun) {
+    return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+}  // namespace
+
+Histogram sample_histogram(const Binning& binning, uint64_t samples, std::size_t chunk_size,
+                           const SampleChunk& generate, std::span<const unsigned char> zero_cells,
+                           const ParallelFor& parallel_for) {
+    if (chunk_size == 0) throw std::invalid_argument("sample_histogram: chunk size must be > 0");
+    if (!generate) throw std::invalid_argument("sample_histogram: no sampler");
+    const std::size_t cells = binning.cell_count();
+    const uint64_t chunks = (samples + chunk_size - 1) / chunk_size;
+    // Lanes: enough to keep any thread count busy, few enough that their
+    // histograms stay small (at most ~2^22 counters in all).
+    const uint64_t lane_cap = std::clamp<uint64_t>((uint64_t{1} << 22) / std::max<std::size_t>(cells, 1), 1, 64);
+    const auto lanes = static_cast<std::size_t>(std::min<uint64_t>(chunks, lane_cap));
+    std::vector<Histogram> lane_hist(lanes);
+    const ParallelFor& run = parallel_for ? parallel_for : ParallelFor(serial_for);
+    run(lanes, [&](std::size_t lane) {
+        Histogram& h = lane_hist[lane];
+        h.counts.assign(cells, 0);
+        std::vector<SamplePoint> buffer(chunk_size);
+        for (uint64_t chunk = lane; chunk < chunks; chunk += lanes) {
+            const uint64_t begin = chunk * chunk_size;
+            const auto n = static_cast<std::size_t>(std::min<uint64_t>(chunk_size, samples - begin));
+            const std::span<SamplePoint> out(buffer.data(), n);
+            generate(static_cast<std::size_t>(chunk), out);
+            binning.bin(std::span<const SamplePoint>(out), h, zero_cells);
+        }
+    });
+    Histogram total;
+    total.counts.assign(cells, 0);
+    for (const Histogram& h : lane_hist) total.merge(h);
+    return total;
+}
+
+std::vector<unsigned char> zero_cells_of(const CellIntegrals& integrals) {
+    std::vector<unsigned char> zero(integrals.probability.size());
+    for (std::size_t i = 0; i < zero.size(); ++i) zero[i] = integrals.probability[i] <= 0.0 ? 1 : 0;
+    return zero;
+}
+
+Chi2Outcome evaluate_chi2(const Binning& binning, Histogram histogram, CellIntegrals integrals, uint64_t samples,
+                          const Chi2Options& options) {
+    const std::size_t cells = binning.cell_count();
+    if (histogram.counts.size() != cells || integrals.probability.size() != cells)
+        throw std::invalid_argument("evaluate_chi2: histogram or integrals of another binning");
+    Chi2Outcome out;
+    out.samples = samples;
+    out.histogram = std::move(histogram);
+    out.integrals = std::move(integrals);
+    const Histogram& h = out.histogram;
+    const CellIntegrals& q = out.integrals;
+    const std::string where = binning.domain().describe();
+
+    // Failures that need no significance level.
+    if (h.nan > 0) out.failures.push_back(count_of(h.nan, "sample") + " with NaN coordinates");
+    if (h.outside > 0)
+        out.failures.push_back(count_of(h.outside, "sample") + " outside the " + where + " (beyond the tolerance " +
+                               format_number(kDomainTolerance) + ")");
+    if (q.nonfinite_values > 0)
+        out.failures.push_back("the density is NaN or infinite at " + count_of(q.nonfinite_values, "quadrature node"));
+    if (q.negative_values > 0)
+        out.failures.push_back("the density is negative at " + count_of(q.negative_values, "quadrature node"));
+    out.integral_tolerance = std::max(options.integral_tolerance, q.error_total);
+    if (!(std::abs(q.total - 1.0) <= out.integral_tolerance))
+        out.failures.push_back("the density integrates to " + format_number(q.total) + " over the " + where +
+                               ", not 1 (tolerance " + format_number(out.integral_tolerance) + ")");
+
+    out.expected.resize(cells);
+    out.residual.resize(cells);
+    std::vector<double> observed(cells);
+    const double n = static_cast<double>(samples);
+    for (std::size_t i = 0; i < cells; ++i) {
+        observed[i] = static_cast<double>(h.counts[i]);
+        out.expected[i] = n * q.probability[i];
+        const double e = out.expected[i];
+        out.residual[i] = e > 0.0 ? (observed[i] - e) / std::sqrt(e) : std::numeric_limits<double>::quiet_NaN();
+        if (q.probability[i] <= 0.0) {
+            ++out.zero_expected_cells;
+            out.zero_expected_hits += h.counts[i];
+        }
+    }
+    if (out.zero_expected_hits > 0)
+        out.failures.push_back(count_of(out.zero_expected_hits, "sample") +
+                               " in cells where the density integrates to zero");
+
+    if (q.unconverged_cells > 0)
+        out.errors.push_back("quadrature missed the accuracy rule in " + count_of(q.unconverged_cells, "cell") +
+                             " (worst error " + format_number(q.worst_error_ratio) +
+                             " times the allowance); the density may be discontinuous or singular inside a cell");
+
+    out.pearson = pearson_test(observed, out.expected, options.min_expected);
+    if (out.pearson.dof < 1)
+        out.errors.push_back("fewer than two cells remain after pooling: no degrees of freedom (increase --samples)");
+    else if (!std::isfinite(out.pearson.statistic))
+        out.failures.push_back("the chi-square statistic is not finite");
+    else if (!std::isfinite(out.pearson.p_value))
+        out.failures.push_back("the chi-square p-value is not finite");
+    return out;
+}
+
+Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const SampleChunk& generate, const BatchPdf& pdf,
+                          const Chi2Options& options, const ParallelFor& parallel_for) {
+    QuadratureOptions qo;
+    qo.sample_count = samples;
+    qo.accuracy_fraction = options.accuracy_fraction;
+    qo.max_regions_per_cell = options.max_regions_per_cell;
+    CellIntegrals integrals = integrate_cells(binning, pdf, qo, parallel_for);
+    const std::vector<unsigned char> zero = zero_cells_of(integrals);
+    Histogram hist = sample_histogram(binning, samples, options.chunk_size, generate, zero, parallel_for);
+    return evaluate_chi2(binning, std::move(hist), std::move(integrals), samples, options);
+}
+
+}  // namespace warpcheck::chi2

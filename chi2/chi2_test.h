@@ -1,0 +1,91 @@
+// The whole chi-square goodness-of-fit test: expected counts by quadrature,
+// the observed histogram from chunked samples, then the non-statistical
+// failures (NaN or outside samples, samples where the density is zero, a
+// density that does not integrate to 1) and Pearson's statistic and p-value.
+//
+// The test does not decide pass/fail on the p-value: that takes the level
+// corrected for all tests of a run (see multiple_testing.h), which the caller
+// applies.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "chi2/binning.h"
+#include "chi2/domain.h"
+#include "chi2/parallel.h"
+#include "chi2/pearson.h"
+#include "chi2/quadrature.h"
+
+namespace warpcheck::chi2 {
+
+/// How far the density's total integral may be from 1, either way. Float
+/// densities are accurate to ~1e-6 relative, so 1e-3 flags only real errors;
+/// and it has to be a separate test: a normalisation error d moves Pearson's
+/// statistic by only about N d^2 (= 1 for d = 1e-3 at 10^6 samples).
+/// When the quadrature's own error bound is larger, that bound is used instead.
+inline constexpr double kIntegralTolerance = 1e-3;
+
+struct Chi2Options {
+    BinResolution resolution;
+    double min_expected = kMinExpectedCount;
+    double accuracy_fraction = 0.01;  ///< f of the accuracy rule (quadrature.h)
+    double integral_tolerance = kIntegralTolerance;
+    /// Samples per chunk. Fixed, so chunk boundaries (and each chunk's random
+    /// stream) do not depend on the thread count.
+    std::size_t chunk_size = 4096;
+    std::size_t max_regions_per_cell = 1024;
+};
+
+/// A sample point as warps produce it: float coordinates, unused ones 0.
+using SamplePoint = std::array<float, 3>;
+/// Fills `out` with the samples of chunk `chunk` (every chunk has chunk_size
+/// samples except possibly the last). Called from several threads at once.
+using SampleChunk = std::function<void(std::size_t chunk, std::span<SamplePoint> out)>;
+
+/// Draws `samples` samples chunk by chunk and bins them. Chunks are spread
+/// over a fixed number of lanes, each with its own histogram, merged at the
+/// end; counts are integers, so the result is the same for any executor.
+Histogram sample_histogram(const Binning& binning, uint64_t samples, std::size_t chunk_size,
+                           const SampleChunk& generate, std::span<const unsigned char> zero_cells = {},
+                           const ParallelFor& parallel_for = serial_for);
+
+struct Chi2Outcome {
+    uint64_t samples = 0;
+    Histogram histogram;
+    CellIntegrals integrals;
+    PearsonResult pearson;
+    std::vector<double> expected;  ///< per cell: samples * probability
+    std::vector<double> residual;  ///< per cell: (O - E) / sqrt(E); NaN where E <= 0
+    std::size_t zero_expected_cells = 0;  ///< cells where the density integrates to zero
+    uint64_t zero_expected_hits = 0;      ///< samples that landed in them
+    double integral_tolerance = 0.0;      ///< the tolerance applied to |integral - 1|
+
+    /// Failures that need no significance level, one message each.
+    std::vector<std::string> failures;
+    /// Reasons the test could not be trusted to run (the check reports them as errors).
+    std::vector<std::string> errors;
+
+    double statistic() const { return pearson.statistic; }
+    int dof() const { return pearson.dof; }
+    double p_value() const { return pearson.p_value; }
+};
+
+/// Per-cell zero flags: 1 where the probability is not positive.
+std::vector<unsigned char> zero_cells_of(const CellIntegrals& integrals);
+
+/// Everything after sampling: expected counts, failures, pooling, statistic.
+Chi2Outcome evaluate_chi2(const Binning& binning, Histogram histogram, CellIntegrals integrals, uint64_t samples,
+                          const Chi2Options& options);
+
+/// The full test: integrates `pdf` over the cells, draws and bins `samples`
+/// samples from `generate`, and evaluates.
+Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const SampleChunk& generate, const BatchPdf& pdf,
+                          const Chi2Options& options, const ParallelFor& parallel_for = serial_for);
+
+}  // namespace warpcheck::chi2

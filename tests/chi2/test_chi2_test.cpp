@@ -1,0 +1,278 @@
+// The whole test on test-local samplers: correct ones pass, wrong ones fail,
+// each non-statistical problem with its own message, and the outcome does not
+// depend on the executor.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <span>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "chi2/chi2_test.h"
+#include "sampling/pcg32.h"
+
+namespace warpcheck::chi2 {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr uint64_t kSamples = 1'000'000;  // the suite's default sample count
+// A correct sampler's p-value is uniform; with fixed seeds each test below is
+// deterministic, and this level is far below any p-value a correct one gave.
+constexpr double kPassLevel = 1e-4;
+// Wrong samplers must fall below this: stricter than the Šidák level of any
+// realistic run (alpha = 0.01 over 10^4 tests gives 1.0e-6).
+constexpr double kFailLevel = 1e-6;
+
+using PointFn = std::function<SamplePoint(Pcg32&)>;
+
+SampleChunk sampler(PointFn f) {
+    return [f = std::move(f)](std::size_t chunk, std::span<SamplePoint> out) {
+        Pcg32 rng(chunk, 20240601);
+        for (SamplePoint& p : out) p = f(rng);
+    };
+}
+
+BatchPdf pointwise(std::function<double(const DomainPoint&)> f) {
+    return [f = std::move(f)](std::span<const DomainPoint> x, std::span<double> out) {
+        for (std::size_t i = 0; i < x.size(); ++i) out[i] = f(x[i]);
+    };
+}
+
+SamplePoint uniform_sphere(Pcg32& rng) {
+    const double z = 1 - 2 * rng.next_double(), phi = 2 * kPi * rng.next_double();
+    const double s = std::sqrt(std::max(0.0, 1 - z * z));
+    return {static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)), static_cast<float>(z)};
+}
+
+SamplePoint cosine_hemisphere(Pcg32& rng) {
+    const double z = std::sqrt(rng.next_double()), phi = 2 * kPi * rng.next_double();
+    const double s = std::sqrt(std::max(0.0, 1 - z * z));
+    return {static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)), static_cast<float>(z)};
+}
+
+const BatchPdf kUniformSpherePdf = pointwise([](const DomainPoint&) { return 0.25 / kPi; });
+const BatchPdf kCosinePdf = pointwise([](const DomainPoint& p) { return std::max(0.0, p[2]) / kPi; });
+
+bool mentions(const Chi2Outcome& o, const std::string& text) {
+    return std::any_of(o.failures.begin(), o.failures.end(),
+                       [&](const std::string& f) { return f.find(text) != std::string::npos; });
+}
+
+Chi2Outcome run(const Domain& d, const PointFn& f, const BatchPdf& pdf, uint64_t n = kSamples,
+                BinResolution res = {}) {
+    Chi2Options opt;
+    opt.resolution = res;
+    return run_chi2_test(Binning(d, res), n, sampler(f), pdf, opt);
+}
+
+// --- Null: correct samplers pass -------------------------------------------
+
+TEST(Chi2Null, UniformSpherePasses) {
+    const Chi2Outcome o = run(Domain::sphere(), uniform_sphere, kUniformSpherePdf);
+    EXPECT_TRUE(o.failures.empty()) << o.failures.front();
+    EXPECT_TRUE(o.errors.empty());
+    EXPECT_EQ(o.dof(), 2047);
+    EXPECT_GE(o.p_value(), kPassLevel);
+    EXPECT_EQ(o.histogram.total(), kSamples);
+}
+
+TEST(Chi2Null, CosineHemispherePasses) {
+    const Chi2Outcome o = run(Domain::hemisphere(), cosine_hemisphere, kCosinePdf);
+    EXPECT_TRUE(o.failures.empty());
+    EXPECT_GE(o.p_value(), kPassLevel);
+}
+
+TEST(Chi2Null, PeakedTrowbridgeReitzPassesWithPooling) {
+    // GGX normals at alpha = 0.05: tan^2 theta = alpha^2 u / (1 - u); density
+    // D(h) cos theta in solid angle. Almost all mass is in the top row of cells.
+    const double alpha = 0.05;
+    const PointFn ggx = [alpha](Pcg32& rng) {
+        const double u = rng.next_double(), phi = 2 * kPi * rng.next_double();
+        const double tan2 = alpha * alpha * u / (1 - u), z = 1 / std::sqrt(1 + tan2);
+        const double s = std::sqrt(std::max(0.0, 1 - z * z));
+        return SamplePoint{static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)),
+                           static_cast<float>(z)};
+    };
+    const BatchPdf pdf = pointwise([alpha](const DomainPoint& p) {
+        const double z2 = p[2] * p[2], a2 = alpha * alpha, d = a2 * z2 + (1 - z2);
+        return p[2] <= 0 ? 0.0 : a2 * p[2] / (kPi * d * d);
+    });
+    const Chi2Outcome o = run(Domain::hemisphere(), ggx, pdf);
+    EXPECT_TRUE(o.failures.empty());
+    EXPECT_TRUE(o.errors.empty());
+    EXPECT_GE(o.p_value(), kPassLevel);
+    EXPECT_GT(o.pearson.small_cells, 1000u);  // most cells expect almost nothing
+    EXPECT_GT(o.pearson.pools, 0u);
+    EXPECT_GE(o.dof(), 64);
+    EXPECT_NEAR(o.integrals.total, 1.0, 1e-6);
+}
+
+TEST(Chi2Null, ExponentialOnHalfLinePasses) {
+    const PointFn exp_sample = [](Pcg32& rng) {
+        return SamplePoint{static_cast<float>(-std::log1p(-rng.next_double()) / 2.0), 0, 0};
+    };
+    const Chi2Outcome o = run(Domain::half_line(0), exp_sample,
+                              pointwise([](const DomainPoint& p) { return 2.0 * std::exp(-2.0 * p[0]); }), kSamples,
+                              {0, 0, 0.35});
+    EXPECT_TRUE(o.failures.empty());
+    EXPECT_GE(o.p_value(), kPassLevel);
+}
+
+TEST(Chi2Null, DiskAndBoxPass) {
+    const PointFn disk = [](Pcg32& rng) {  // uniform disk by polar map
+        const double r = std::sqrt(rng.next_double()), phi = 2 * kPi * rng.next_double();
+        return SamplePoint{static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)), 0};
+    };
+    const Chi2Outcome od = run(Domain::unit_disk(), disk, pointwise([](const DomainPoint&) { return 1 / kPi; }));
+    EXPECT_TRUE(od.failures.empty());
+    EXPECT_GE(od.p_value(), kPassLevel);
+    const PointFn tent = [](Pcg32& rng) {  // density 2x * 1 on the unit square
+        return SamplePoint{static_cast<float>(std::sqrt(rng.next_double())), static_cast<float>(rng.next_double()), 0};
+    };
+    const Chi2Outcome ob = run(Domain::unit_square(), tent, pointwise([](const DomainPoint& p) { return 2 * p[0]; }));
+    EXPECT_TRUE(ob.failures.empty());
+    EXPECT_GE(ob.p_value(), kPassLevel);
+}
+
+// --- Power: wrong samplers fail ----------------------------------------------
+
+TEST(Chi2Power, DensityOffByTwoPercentOverHalfTheSphereFails) {
+    // The pdf claims 2% more density on the upper half and 2% less on the lower
+    // (still normalised), while the samples are uniform.
+    const Chi2Outcome o = run(Domain::sphere(), uniform_sphere,
+                              pointwise([](const DomainPoint& p) { return (p[2] >= 0 ? 1.02 : 0.98) * 0.25 / kPi; }));
+    EXPECT_TRUE(o.failures.empty());  // not a normalisation problem: a statistical one
+    EXPECT_LT(o.p_value(), kFailLevel);
+}
+
+TEST(Chi2Power, MirroredSamplesFail) {
+    // Density (1 + 0.5 x) / (4 pi), sampled by rejection, then mirrored in x.
+    const auto tilted = [](Pcg32& rng, bool mirror) {
+        for (;;) {
+            SamplePoint p = uniform_sphere(rng);
+            if (1.5 * rng.next_double() < 1 + 0.5 * p[0]) {
+                if (mirror) p[0] = -p[0];
+                return p;
+            }
+        }
+    };
+    const BatchPdf pdf = pointwise([](const DomainPoint& p) { return (1 + 0.5 * p[0]) * 0.25 / kPi; });
+    const Chi2Outcome good = run(Domain::sphere(), [&](Pcg32& r) { return tilted(r, false); }, pdf);
+    EXPECT_GE(good.p_value(), kPassLevel);
+    const Chi2Outcome bad = run(Domain::sphere(), [&](Pcg32& r) { return tilted(r, true); }, pdf);
+    EXPECT_LT(bad.p_value(), kFailLevel);
+}
+
+TEST(Chi2Power, PValueIsTinyButNotZeroForALargeDeviation) {
+    const Chi2Outcome o = run(Domain::hemisphere(), cosine_hemisphere,
+                              pointwise([](const DomainPoint&) { return 0.5 / kPi; }));
+    EXPECT_TRUE(std::isfinite(o.statistic()));
+    EXPECT_TRUE(o.p_value() >= 0.0 && o.p_value() < 1e-12);
+}
+
+// --- Non-statistical failures, each with its own message --------------------
+
+TEST(Chi2Failures, NaNAndOutsideSamples) {
+    const PointFn f = [](Pcg32& rng) {
+        SamplePoint p = uniform_sphere(rng);
+        const uint32_t k = rng.next_u32() % 100000;
+        if (k == 0) p[0] = std::numeric_limits<float>::quiet_NaN();
+        if (k == 1) p[2] *= 1.01f;  // off the unit sphere
+        return p;
+    };
+    const Chi2Outcome o = run(Domain::sphere(), f, kUniformSpherePdf);
+    EXPECT_GT(o.histogram.nan, 0u);
+    EXPECT_GT(o.histogram.outside, 0u);
+    EXPECT_TRUE(mentions(o, "NaN coordinates"));
+    EXPECT_TRUE(mentions(o, "outside the sphere"));
+    EXPECT_EQ(o.histogram.total(), kSamples);
+}
+
+TEST(Chi2Failures, DensityThatIntegratesToLessOrMoreThanOne) {
+    for (double scale : {0.98, 1.02, 0.995}) {
+        const Chi2Outcome o = run(Domain::sphere(), uniform_sphere,
+                                  pointwise([scale](const DomainPoint&) { return scale * 0.25 / kPi; }));
+        EXPECT_TRUE(mentions(o, "integrates to")) << scale;
+        EXPECT_NEAR(o.integrals.total, scale, 1e-12);
+    }
+    // Within the tolerance: no failure.
+    const Chi2Outcome ok = run(Domain::sphere(), uniform_sphere,
+                               pointwise([](const DomainPoint&) { return 1.0005 * 0.25 / kPi; }));
+    EXPECT_FALSE(mentions(ok, "integrates to"));
+}
+
+TEST(Chi2Failures, SamplesWhereTheDensityIsZero) {
+    // Uniform sphere samples, but the pdf is the upper hemisphere's (1 / 2pi on z >= 0).
+    const Chi2Outcome o = run(Domain::sphere(), uniform_sphere,
+                              pointwise([](const DomainPoint& p) { return p[2] >= 0 ? 0.5 / kPi : 0.0; }));
+    EXPECT_GT(o.zero_expected_hits, 400000u);
+    EXPECT_EQ(o.zero_expected_cells, 1024u);
+    EXPECT_TRUE(mentions(o, "density integrates to zero"));
+}
+
+TEST(Chi2Failures, RoundingAtTheSupportEdgeIsNotAZeroHit) {
+    // Upper-hemisphere samples on the sphere domain, a few rounded to z = -1e-7.
+    const PointFn f = [](Pcg32& rng) {
+        SamplePoint p = cosine_hemisphere(rng);
+        if (rng.next_u32() % 1000 == 0) p = {1.0f, 0.0f, -1e-7f};
+        return p;
+    };
+    const Chi2Outcome o = run(Domain::sphere(), f, kCosinePdf, 200'000);
+    EXPECT_EQ(o.zero_expected_hits, 0u);
+    EXPECT_GT(o.histogram.snapped, 0u);
+    EXPECT_FALSE(mentions(o, "integrates to zero"));
+}
+
+TEST(Chi2Failures, NonFiniteDensity) {
+    const Chi2Outcome o = run(Domain::hemisphere(), cosine_hemisphere,
+                              pointwise([](const DomainPoint& p) { return p[2] > 0.99 ? std::nan("") : p[2] / kPi; }));
+    EXPECT_TRUE(mentions(o, "NaN or infinite"));
+    EXPECT_FALSE(o.failures.empty());
+}
+
+// --- Per-cell data and determinism -------------------------------------------
+
+TEST(Chi2Outcome, PerCellDataForPlots) {
+    const Chi2Outcome o = run(Domain::interval(0, 1), [](Pcg32& r) { return SamplePoint{r.next_float(), 0, 0}; },
+                              pointwise([](const DomainPoint&) { return 1.0; }), 100'000);
+    ASSERT_EQ(o.expected.size(), 200u);
+    for (std::size_t c = 0; c < 200; ++c) {
+        EXPECT_NEAR(o.expected[c], 500.0, 1e-9);
+        const double obs = static_cast<double>(o.histogram.counts[c]);
+        EXPECT_NEAR(o.residual[c], (obs - 500.0) / std::sqrt(500.0), 1e-9);
+    }
+}
+
+TEST(Chi2Outcome, IdenticalForAnyExecutor) {
+    const ParallelFor threaded = [](std::size_t n, const std::function<void(std::size_t)>& body) {
+        std::atomic<std::size_t> next{0};
+        auto work = [&] {
+            for (std::size_t i; (i = next.fetch_add(1)) < n;) body(i);
+        };
+        std::thread a(work), b(work);
+        work();
+        a.join();
+        b.join();
+    };
+    const Binning bins(Domain::hemisphere());
+    const Chi2Outcome serial = run_chi2_test(bins, 300'000, sampler(cosine_hemisphere), kCosinePdf, {});
+    const Chi2Outcome parallel = run_chi2_test(bins, 300'000, sampler(cosine_hemisphere), kCosinePdf, {}, threaded);
+    EXPECT_EQ(serial.histogram.counts, parallel.histogram.counts);
+    EXPECT_EQ(serial.expected, parallel.expected);
+    EXPECT_EQ(serial.statistic(), parallel.statistic());
+    EXPECT_EQ(serial.p_value(), parallel.p_value());
+}
+
+TEST(Chi2Outcome, TooFewSamplesIsAnErrorNotAPass) {
+    const Chi2Outcome o = run(Domain::sphere(), uniform_sphere, kUniformSpherePdf, 4);
+    EXPECT_FALSE(o.errors.empty());
+    EXPECT_TRUE(std::isnan(o.p_value()));
+}
+
+}  // namespace
+}  // namespace warpcheck::chi2
