@@ -1,0 +1,34 @@
+# Installs warpcheck as a CMake package: find_package(warpcheck) gives
+# warpcheck::validate (the library), warpcheck::main (a ready main() for
+# programs that validate their own warps) and warpcheck::sampling (the warps).
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(warpcheck_targets warpcheck_options warpcheck_sampling warpcheck_chi2 warpcheck_reports warpcheck_validate
+    warpcheck_main)
+set_target_properties(warpcheck_sampling PROPERTIES EXPORT_NAME sampling)
+set_target_properties(warpcheck_chi2 PROPERTIES EXPORT_NAME chi2)
+set_target_properties(warpcheck_reports PROPERTIES EXPORT_NAME reports)
+set_target_properties(warpcheck_validate PROPERTIES EXPORT_NAME validate)
+set_target_properties(warpcheck_main PROPERTIES EXPORT_NAME main)
+set_target_properties(warpcheck_options PROPERTIES EXPORT_NAME options)
+
+install(TARGETS validate RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS ${warpcheck_targets}
+  EXPORT warpcheckTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY sampling chi2 validate reports
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/warpcheck
+  FILES_MATCHING PATTERN "*.h")
+install(EXPORT warpcheckTargets NAMESPACE warpcheck:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/warpcheck)
+
+configure_package_config_file(cmake/warpcheckConfig.cmake.in
+  "${CMAKE_CURRENT_BINARY_DIR}/warpcheckConfig.cmake"
+  INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/warpcheck)
+write_basic_package_version_file("${CMAKE_CURRENT_BINARY_DIR}/warpcheckConfigVersion.cmake"
+  COMPATIBILITY SameMinorVersion)
+install(FILES "${CMAKE_CURRENT_BINARY_DIR}/warpcheckConfig.cmake"
+              "${CMAKE_CURRENT_BINARY_DIR}/warpcheckConfigVersion.cmake"
+  DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/warpcheck)
