@@ -1,0 +1,718 @@
+#include "reports/svg_plot.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "reports/color_map.h"
+#include "reports/png.h"
+#include "reports/text.h"
+
+namespace warpcheck::report {
+namespace {
+
+constexpr double kFontSize = 11.0;
+constexpr double kCharWidth = 6.4;  // average advance of an 11 px sans-serif character
+constexpr const char* kTextColor = "#2b2f36";
+constexpr const char* kGridColor = "#e3e6ea";
+constexpr const char* kAxisColor = "#8a9099";
+
+// ---------------------------------------------------------------------------
+// Small formatting helpers
+
+/// A coordinate with at most one decimal and no trailing ".0": compact SVG.
+std::string px(double v) {
+    if (!std::isfinite(v)) v = 0.0;
+    std::string s = fmt::format("{:.1f}", v);
+    if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.resize(s.size() - 2);
+    if (s == "-0") s = "0";
+    return s;
+}
+
+double text_width(std::string_view text) {
+    std::size_t characters = 0;
+    for (char c : text) characters += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    return static_cast<double>(characters) * kCharWidth;
+}
+
+/// A tick label: its SVG markup (possibly with a superscript) and its plain
+/// length, for layout.
+struct Label {
+    std::string markup;
+    std::string plain;
+};
+
+Label plain_label(std::string text) {
+    Label l{escaped(text), text};
+    return l;
+}
+
+/// "10" with a superscript exponent, e.g. 10^-3.
+Label power_of_ten_label(int exponent) {
+    std::string e = exponent < 0 ? fmt::format("\u2212{}", -exponent) : fmt::format("{}", exponent);
+    return {fmt::format("10<tspan dy=\"-0.45em\" font-size=\"8\">{}</tspan>", e), "10" + e};
+}
+
+/// The label of a linear tick at `value` on an axis with tick spacing `step`:
+/// as few digits as tell the ticks apart; scientific (m x 10^e) for very large
+/// or very small magnitudes.
+Label number_label(double value, double step) {
+    if (std::abs(value) < step * 1e-9) return plain_label("0");
+    const double magnitude = std::max(std::abs(value), step);
+    const int step_exponent = static_cast<int>(std::floor(std::log10(step) + 1e-9));
+    if (magnitude >= 1e5 || magnitude < 1e-3) {
+        const int exponent = static_cast<int>(std::floor(std::log10(magnitude) + 1e-9));
+        const int decimals = std::clamp(exponent - step_exponent, 0, 8);
+        const double mantissa = value / std::pow(10.0, exponent);
+        std::string m = fmt::format("{:.{}f}", mantissa, decimals);
+        if (m == "1" || m == "-1") {
+            Label p = power_of_ten_label(exponent);
+            if (m == "-1") p.markup = "\u2212" + p.markup, p.plain = "-" + p.plain;
+            return p;
+        }
+        if (m[0] == '-') m.replace(0, 1, "\u2212");
+        Label p = power_of_ten_label(exponent);
+        return {m + "\u00d7" + p.markup, m + "x" + p.plain};
+    }
+    const int decimals = std::clamp(-step_exponent, 0, 10);
+    std::string s = fmt::format("{:.{}f}", value, decimals);
+    if (s[0] == '-') s.replace(0, 1, "\u2212");
+    return {s, s};
+}
+
+// ---------------------------------------------------------------------------
+// Axes
+
+struct Tick {
+    double value;
+    Label label;
+    bool major = true;
+};
+
+struct Axis {
+    double lo = 0.0, hi = 1.0;  ///< data range shown
+    bool log = false;
+    double from = 0.0, to = 1.0;  ///< pixel positions of lo and hi
+    std::vector<Tick> ticks;
+
+    double map(double v) const {
+        const double t = log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo))
+                             : (v - lo) / (hi - lo);
+        return from + t * (to - from);
+    }
+    bool shows(double v) const { return std::isfinite(v) && (!log || v > 0.0); }
+};
+
+double nice_step(double range, int target) {
+    const double raw = range / std::max(target, 1);
+    const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+    const double n = raw / magnitude;
+    return (n < 1.5 ? 1.0 : n < 3.0 ? 2.0 : n < 7.0 ? 5.0 : 10.0) * magnitude;
+}
+
+/// Linear ticks within [lo, hi]; with `extend`, lo and hi first grow to the
+/// enclosing ticks (so the plot ends on a labelled value).
+std::vector<Tick> linear_ticks(double& lo, double& hi, int target, bool extend) {
+    const double step = nice_step(hi - lo, target);
+    if (extend) {
+        lo = std::floor(lo / step + 1e-9) * step;
+        hi = std::ceil(hi / step - 1e-9) * step;
+    }
+    std::vector<Tick> ticks;
+    const double first = std::ceil(lo / step - 1e-9);
+    for (double k = first; k * step <= hi + step * 1e-9 && ticks.size() < 50; k += 1.0) {
+        const double v = k * step;
+        ticks.push_back({v, number_label(v, step)});
+    }
+    return ticks;
+}
+
+/// Ticks at multiples of pi/2 when both ends of the range are such multiples
+/// (azimuth axes of spherical domains); nothing otherwise.
+std::vector<Tick> pi_ticks(double lo, double hi) {
+    constexpr double half_pi = std::numbers::pi / 2.0;
+    const double a = lo / half_pi, b = hi / half_pi;
+    if (!(std::abs(a - std::round(a)) < 1e-6 && std::abs(b - std::round(b)) < 1e-6)) return {};
+    const long first = std::lround(a), last = std::lround(b);
+    if (last - first < 1) return {};
+    const long stride = last - first > 8 ? 2 : 1;
+    std::vector<Tick> ticks;
+    for (long k = first; k <= last; k += stride) {
+        std::string s;
+        const long n = std::labs(k);
+        if (k == 0)
+            s = "0";
+        else if (n % 2 == 0)
+            s = (n == 2 ? std::string("\u03c0") : fmt::format("{}\u03c0", n / 2));
+        else
+            s = (n == 1 ? std::string("\u03c0/2") : fmt::format("{}\u03c0/2", n));
+        if (k < 0) s = "\u2212" + s;
+        ticks.push_back({static_cast<double>(k) * half_pi, Label{escaped(s), s}});
+    }
+    return ticks;
+}
+
+/// Decade ticks (and minor ticks at 2..9 for short ranges); lo and hi grow to
+/// whole decades.
+std::vector<Tick> log_ticks(double& lo, double& hi) {
+    int first = static_cast<int>(std::floor(std::log10(lo) + 1e-9));
+    int last = static_cast<int>(std::ceil(std::log10(hi) - 1e-9));
+    if (last <= first) last = first + 1;
+    lo = std::pow(10.0, first);
+    hi = std::pow(10.0, last);
+    const int decades = last - first;
+    const int stride = decades > 24 ? 6 : decades > 12 ? 3 : decades > 7 ? 2 : 1;
+    std::vector<Tick> ticks;
+    for (int e = first; e <= last; ++e) {
+        if ((e - first) % stride == 0) ticks.push_back({std::pow(10.0, e), power_of_ten_label(e)});
+        if (decades <= 3 && e < last) {
+            for (int m = 2; m <= 9; ++m) {
+                Label label;
+                if (decades == 1 && (m == 2 || m == 5)) label = number_label(m * std::pow(10.0, e), std::pow(10.0, e));
+                ticks.push_back({m * std::pow(10.0, e), label, false});
+            }
+        }
+    }
+    return ticks;
+}
+
+struct Range {
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -std::numeric_limits<double>::infinity();
+    void add(double v) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+    }
+    bool empty() const { return !(lo <= hi); }
+};
+
+/// Sets an axis up over the data range `r`.
+Axis make_axis(Range r, bool log, bool extend_to_ticks, int target_ticks) {
+    Axis axis;
+    axis.log = log;
+    if (r.empty()) r = log ? Range{1.0, 10.0} : Range{0.0, 1.0};
+    if (log) {
+        axis.lo = r.lo, axis.hi = r.hi;
+        axis.ticks = log_ticks(axis.lo, axis.hi);
+        return axis;
+    }
+    if (r.hi - r.lo <= std::abs(r.hi) * 1e-12) {  // one value: show it in the middle
+        const double pad = r.hi == 0.0 ? 1.0 : std::abs(r.hi) * 0.5;
+        r.lo -= pad, r.hi += pad;
+    }
+    axis.lo = r.lo, axis.hi = r.hi;
+    axis.ticks = pi_ticks(axis.lo, axis.hi);
+    if (axis.ticks.empty()) axis.ticks = linear_ticks(axis.lo, axis.hi, target_ticks, extend_to_ticks);
+    return axis;
+}
+
+// ---------------------------------------------------------------------------
+// Line, bar and point plots
+
+struct Point {
+    double x, y;
+};
+
+/// The points of a series that the axes can show, in order; a missing x is the
+/// index. Points that cannot be shown become NaN (a break in a line).
+std::vector<Point> points_of(const Series& s, bool log_x, bool log_y) {
+    const bool indexed = s.x.empty();
+    const std::size_t n = indexed ? s.y.size() : std::min(s.x.size(), s.y.size());
+    std::vector<Point> points(n);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t i = 0; i < n; ++i) {
+        double x = indexed ? static_cast<double>(i) : s.x[i];
+        double y = s.y[i];
+        if (!std::isfinite(x) || (log_x && x <= 0.0)) x = nan;
+        if (!std::isfinite(y) || (log_y && y <= 0.0)) y = nan;
+        points[i] = {x, y};
+    }
+    return points;
+}
+
+bool valid(const Point& p) { return !std::isnan(p.x) && !std::isnan(p.y); }
+
+/// Appends "M x y L x y ..." for a line through `points`, broken at invalid
+/// points. Long monotonic series keep, per pixel column, the first, lowest,
+/// highest and last point: the drawing is the same, the file much smaller.
+void append_line_path(std::string& d, const std::vector<Point>& points, const Axis& ax, const Axis& ay) {
+    bool pen_down = false;
+    double column = std::numeric_limits<double>::quiet_NaN();
+    std::vector<std::pair<double, double>> bucket;  // pixel positions in the current column
+    const bool decimate = points.size() > 4 * static_cast<std::size_t>(std::abs(ax.to - ax.from)) &&
+                          std::is_sorted(points.begin(), points.end(), [](const Point& a, const Point& b) {
+                              return valid(a) && valid(b) && a.x < b.x;
+                          });
+    const auto emit = [&](double x, double y) {
+        d += pen_down ? 'L' : 'M';
+        d += px(x);
+        d += ' ';
+        d += px(y);
+        pen_down = true;
+    };
+    const auto flush = [&] {
+        if (bucket.empty()) return;
+        if (bucket.size() <= 4) {
+            for (auto [x, y] : bucket) emit(x, y);
+        } else {
+            auto [lo, hi] = std::minmax_element(bucket.begin() + 1, bucket.end() - 1,
+                                                [](auto a, auto b) { return a.second < b.second; });
+            emit(bucket.front().first, bucket.front().second);
+            if (lo < hi) {
+                emit(lo->first, lo->second), emit(hi->first, hi->second);
+            } else {
+                emit(hi->first, hi->second), emit(lo->first, lo->second);
+            }
+            emit(bucket.back().first, bucket.back().second);
+        }
+        bucket.clear();
+    };
+    for (const Point& p : points) {
+        if (!valid(p)) {
+            flush();
+            pen_down = false;
+            continue;
+        }
+        const double x = ax.map(p.x), y = ay.map(p.y);
+        if (!decimate) {
+            emit(x, y);
+            continue;
+        }
+        if (std::floor(x) != column) {
+            flush();
+            column = std::floor(x);
+        }
+        bucket.emplace_back(x, y);
+    }
+    flush();
+}
+
+struct LegendItem {
+    std::string label;
+    std::string color;
+    Plot::Kind kind;
+    std::string dash;
+};
+
+/// Lines after the first are dashed, each differently, so that a curve lying
+/// on top of another (min = ideal = max) leaves both visible.
+std::string dash_of(std::size_t series) {
+    static constexpr std::array<const char*, 4> dashes{"", "7 4", "2 3", "10 3 2 3"};
+    const char* d = dashes[series % dashes.size()];
+    return *d ? fmt::format(" stroke-dasharray=\"{}\"", d) : std::string();
+}
+
+/// Legend entries laid out left to right in rows of at most `width`; returns
+/// the height used.
+double append_legend(std::string& svg, const std::vector<LegendItem>& items, double left, double top, double width) {
+    double x = left, y = top;
+    const double row_height = 18.0;
+    for (const auto& item : items) {
+        const double w = 22.0 + text_width(item.label) + 18.0;
+        if (x > left && x + w > left + width) x = left, y += row_height;
+        const std::string& c = item.color;
+        const double cy = y + 8.0;
+        if (item.kind == Plot::Kind::Bars)
+            svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"14\" height=\"10\" fill=\"{}\"/>", px(x), px(cy - 5), c);
+        else if (item.kind == Plot::Kind::Points)
+            svg += fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"3.5\" fill=\"{}\"/>", px(x + 7), px(cy), c);
+        else
+            svg += fmt::format("<path d=\"M{} {}h16\" stroke=\"{}\" stroke-width=\"2.5\"{}/>", px(x), px(cy), c, item.dash);
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" dy=\"0.35em\">{}</text>", px(x + 21), px(cy), escaped(item.label));
+        x += w;
+    }
+    return items.empty() ? 0.0 : y - top + row_height + 4.0;
+}
+
+/// Grid, ticks, tick labels and axis labels of an x-y plot area.
+void append_axes(std::string& svg, const Axis& ax, const Axis& ay, const std::string& x_label,
+                 const std::string& y_label, double y_label_x) {
+    const double left = ax.from, right = ax.to, bottom = ay.from, top = ay.to;
+    svg += fmt::format("<g stroke=\"{}\" stroke-width=\"1\">", kGridColor);
+    for (const Tick& t : ay.ticks) {
+        if (!t.major && ay.log && ay.ticks.size() > 24) continue;
+        const double y = ay.map(t.value);
+        svg += fmt::format("<path d=\"M{} {}H{}\"{}/>", px(left), px(y), px(right), t.major ? "" : " stroke-opacity=\"0.5\"");
+    }
+    for (const Tick& t : ax.ticks) {
+        if (!t.major && ax.log && ax.ticks.size() > 24) continue;
+        const double x = ax.map(t.value);
+        svg += fmt::format("<path d=\"M{} {}V{}\"{}/>", px(x), px(top), px(bottom), t.major ? "" : " stroke-opacity=\"0.5\"");
+    }
+    svg += "</g>";
+    if (!ay.log && ay.lo < 0.0 && ay.hi > 0.0)  // the zero line, where differences are read against
+        svg += fmt::format("<path d=\"M{} {}H{}\" stroke=\"{}\" stroke-width=\"1\"/>", px(left), px(ay.map(0.0)), px(right),
+                           kAxisColor);
+    svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"{}\"/>", px(left), px(top),
+                       px(right - left), px(bottom - top), kAxisColor);
+    svg += "<g text-anchor=\"middle\">";
+    for (const Tick& t : ax.ticks) {
+        const double x = ax.map(t.value);
+        svg += fmt::format("<path d=\"M{} {}v{}\" stroke=\"{}\"/>", px(x), px(bottom), t.major ? 4 : 2, kAxisColor);
+        if (!t.label.markup.empty())
+            svg += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>", px(x), px(bottom + 16), t.label.markup);
+    }
+    svg += "</g><g text-anchor=\"end\">";
+    for (const Tick& t : ay.ticks) {
+        const double y = ay.map(t.value);
+        svg += fmt::format("<path d=\"M{} {}h-{}\" stroke=\"{}\"/>", px(left), px(y), t.major ? 4 : 2, kAxisColor);
+        if (!t.label.markup.empty())
+            svg += fmt::format("<text x=\"{}\" y=\"{}\" dy=\"0.35em\">{}</text>", px(left - 7), px(y), t.label.markup);
+    }
+    svg += "</g>";
+    if (!x_label.empty())
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" class=\"axis-label\">{}</text>",
+                           px((left + right) / 2), px(bottom + 34), escaped(x_label));
+    if (!y_label.empty())
+        svg += fmt::format(
+            "<text transform=\"translate({} {}) rotate(-90)\" text-anchor=\"middle\" class=\"axis-label\">{}</text>",
+            px(y_label_x), px((top + bottom) / 2), escaped(y_label));
+}
+
+double max_label_width(const std::vector<Tick>& ticks) {
+    double w = 0.0;
+    for (const Tick& t : ticks) w = std::max(w, text_width(t.label.plain));
+    return w;
+}
+
+std::string svg_open(double width, double height, std::string_view label) {
+    return fmt::format(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
+        "font-size=\"{2}\" fill=\"{3}\" role=\"img\" aria-label=\"{4}\">",
+        px(width), px(height), px(kFontSize), kTextColor, escaped(label));
+}
+
+std::string render_xy(const Plot& plot, const SvgOptions& options) {
+    const double width = options.width, height = options.height;
+    std::vector<std::vector<Point>> data;
+    Range rx, ry;
+    for (const Series& s : plot.series) {
+        data.push_back(points_of(s, plot.log_x, plot.log_y));
+        for (const Point& p : data.back()) {
+            if (!std::isnan(p.x)) rx.add(p.x);
+            if (valid(p)) ry.add(p.y);
+        }
+    }
+    const bool bars = plot.kind == Plot::Kind::Bars;
+    if (bars && !plot.log_y && !ry.empty()) ry.add(0.0);  // bars grow from zero
+
+    // Bars are as wide as the closest pair of x values allows.
+    double spacing = std::numeric_limits<double>::infinity();
+    if (bars) {
+        std::vector<double> xs;
+        for (const auto& points : data)
+            for (const Point& p : points)
+                if (!std::isnan(p.x)) xs.push_back(plot.log_x ? std::log10(p.x) : p.x);
+        std::sort(xs.begin(), xs.end());
+        xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+        for (std::size_t i = 1; i < xs.size(); ++i) spacing = std::min(spacing, xs[i] - xs[i - 1]);
+        if (!std::isfinite(spacing)) spacing = 1.0;
+        if (!rx.empty()) {
+            if (plot.log_x)
+                rx.lo *= std::pow(10.0, -spacing / 2), rx.hi *= std::pow(10.0, spacing / 2);
+            else
+                rx.lo -= spacing / 2, rx.hi += spacing / 2;
+        }
+    }
+    if (plot.kind == Plot::Kind::Points && !rx.empty() && !plot.log_x) {
+        const double pad = (rx.hi - rx.lo) * 0.02;
+        rx.lo -= pad, rx.hi += pad;
+    }
+
+    Axis ax = make_axis(rx, plot.log_x, false, 7);
+    Axis ay = make_axis(ry, plot.log_y, true, 6);
+
+    // Layout: legend on top, y tick labels and label on the left.
+    std::vector<LegendItem> legend;
+    for (std::size_t i = 0; i < plot.series.size(); ++i)
+        if (!plot.series[i].label.empty() || plot.series.size() > 1)
+            legend.push_back({plot.series[i].label.empty() ? fmt::format("series {}", i + 1) : plot.series[i].label,
+                              series_color(i), plot.kind, plot.kind == Plot::Kind::Lines ? dash_of(i) : ""});
+    const double y_label_space = plot.y_label.empty() ? 0.0 : 18.0;
+    const double left = 12.0 + y_label_space + std::max(24.0, max_label_width(ay.ticks));
+    const double right = width - 16.0;
+    std::string legend_svg;
+    const double legend_height = append_legend(legend_svg, legend, left, 8.0, right - left);
+    const double top = 10.0 + legend_height;
+    const double bottom = height - (plot.x_label.empty() ? 26.0 : 42.0);
+    ax.from = left, ax.to = right;
+    ay.from = bottom, ay.to = top;
+
+    std::string svg = svg_open(width, height, plot.title);
+    svg += legend_svg;
+    append_axes(svg, ax, ay, plot.x_label, plot.y_label, 14.0);
+
+    if (rx.empty() || ry.empty()) {
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"{}\">no data to plot</text>",
+                           px((left + right) / 2), px((top + bottom) / 2), kAxisColor);
+        return svg + "</svg>";
+    }
+
+    const double base = ay.log ? ay.lo : std::clamp(0.0, ay.lo, ay.hi);
+    const double pixel_spacing = std::abs(ax.map(plot.log_x ? std::pow(10.0, spacing) * ax.lo : ax.lo + spacing) - ax.map(ax.lo));
+    const std::size_t n_series = data.size();
+    std::size_t most_points = 0;
+    for (const auto& points : data) most_points = std::max(most_points, points.size());
+    const bool grouped = bars && n_series > 1 && pixel_spacing * 0.8 / static_cast<double>(n_series) >= 5.0;
+
+    for (std::size_t i = 0; i < n_series; ++i) {
+        const auto& points = data[i];
+        const std::string color = series_color(i);
+        if (plot.kind == Plot::Kind::Lines) {
+            std::string d;
+            append_line_path(d, points, ax, ay);
+            svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\"{}/>", d,
+                               color, i == 0 ? 2.2 : 1.8, dash_of(i));
+            if (points.size() <= 40) {  // few points: mark them, a lone point would be invisible
+                std::string marks;
+                for (const Point& p : points)
+                    if (valid(p)) marks += fmt::format("M{} {}h0", px(ax.map(p.x)), px(ay.map(p.y)));
+                svg += fmt::format("<path d=\"{}\" stroke=\"{}\" stroke-width=\"5\" stroke-linecap=\"round\"/>", marks, color);
+            }
+        } else if (plot.kind == Plot::Kind::Points) {
+            std::string marks;
+            for (const Point& p : points)
+                if (valid(p)) marks += fmt::format("M{} {}h0", px(ax.map(p.x)), px(ay.map(p.y)));
+            const bool many = points.size() > 2000;
+            svg += fmt::format("<path d=\"{}\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-opacity=\"{}\"/>",
+                               marks, color, many ? 2.5 : 5, many ? 0.6 : 0.85);
+        } else if (grouped || i == 0) {  // filled bars
+            const double full = std::max(pixel_spacing * 0.8, 1.0);
+            const double w = grouped ? full / static_cast<double>(n_series) : full;
+            const double offset = grouped ? -full / 2 + w * static_cast<double>(i) : -w / 2;
+            svg += fmt::format("<g fill=\"{}\"{}>", color, grouped ? "" : " fill-opacity=\"0.8\"");
+            for (const Point& p : points) {
+                if (!valid(p)) continue;
+                const double y0 = ay.map(base), y1 = ay.map(p.y);
+                svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>", px(ax.map(p.x) + offset),
+                                   px(std::min(y0, y1)), px(w), px(std::max(std::abs(y1 - y0), 0.5)));
+            }
+            svg += "</g>";
+        } else {  // further series over dense bars: a step outline each
+            std::string d;
+            bool pen_down = false;
+            const double half = pixel_spacing / 2;
+            for (const Point& p : points) {
+                if (!valid(p)) {
+                    pen_down = false;
+                    continue;
+                }
+                const double x = ax.map(p.x), y = ay.map(p.y);
+                d += fmt::format("{}{} {}H{}", pen_down ? 'L' : 'M', px(x - half), px(y), px(x + half));
+                pen_down = true;
+            }
+            svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\"/>", d, color);
+        }
+    }
+    return svg + "</svg>";
+}
+
+// ---------------------------------------------------------------------------
+// Heatmaps
+
+bool well_formed(const Heatmap& h) {
+    return h.rows > 0 && h.cols > 0 && h.values.size() == static_cast<std::size_t>(h.rows) * static_cast<std::size_t>(h.cols);
+}
+
+/// A colour scale shared by some heatmaps of a plot.
+struct Scale {
+    ColorMap map = ColorMap::Sequential;
+    double lo = 0.0, hi = 1.0;
+    std::vector<std::string> members;  ///< labels of the heatmaps that use it
+    double t(double v) const { return (v - lo) / (hi - lo); }
+};
+
+ColorMap resolve(const Heatmap& h) {
+    switch (h.color_scale) {
+        case Heatmap::ColorScale::Sequential: return ColorMap::Sequential;
+        case Heatmap::ColorScale::Diverging: return ColorMap::Diverging;
+        case Heatmap::ColorScale::Auto: break;
+    }
+    bool negative = false, positive = false;
+    for (double v : h.values) negative |= v < 0.0, positive |= v > 0.0;
+    return negative && positive ? ColorMap::Diverging : ColorMap::Sequential;
+}
+
+/// The data URL of a heatmap's image: one pixel per cell, row 0 at the bottom,
+/// cells without a value transparent (the hatching behind them shows).
+std::string heatmap_image(const Heatmap& h, const Scale& scale) {
+    std::array<Rgba, 256> palette{};
+    for (int i = 0; i < 255; ++i) palette[static_cast<std::size_t>(i)] = color_at(scale.map, i / 254.0);
+    palette[255] = {0, 0, 0, 0};
+    std::vector<std::uint8_t> pixels(h.values.size());
+    for (int r = 0; r < h.rows; ++r) {
+        for (int c = 0; c < h.cols; ++c) {
+            const double v = h.values[static_cast<std::size_t>(r) * static_cast<std::size_t>(h.cols) + static_cast<std::size_t>(c)];
+            std::uint8_t index = 255;
+            if (!std::isnan(v)) index = static_cast<std::uint8_t>(std::lround(std::clamp(scale.t(v), 0.0, 1.0) * 254.0));
+            pixels[static_cast<std::size_t>(h.rows - 1 - r) * static_cast<std::size_t>(h.cols) + static_cast<std::size_t>(c)] = index;
+        }
+    }
+    return "data:image/png;base64," + base64(encode_palette_png(h.cols, h.rows, pixels, palette));
+}
+
+std::string join(const std::vector<std::string>& parts, std::string_view separator) {
+    std::string out;
+    for (std::size_t i = 0; i < parts.size(); ++i) out += (i ? std::string(separator) : "") + parts[i];
+    return out;
+}
+
+/// A horizontal colour bar with ticks, its title above; returns its height.
+double append_color_bar(std::string& svg, const Scale& scale, const std::string& id, double x, double y, double width) {
+    svg += fmt::format("<linearGradient id=\"{}\">", id);
+    for (int i = 0; i <= 16; ++i)
+        svg += fmt::format("<stop offset=\"{}\" stop-color=\"{}\"/>", px(i / 16.0 * 100.0) + "%", hex(color_at(scale.map, i / 16.0)));
+    svg += "</linearGradient>";
+    const std::string title = join(scale.members, ", ");
+    svg += fmt::format("<text x=\"{}\" y=\"{}\" class=\"legend-title\">{}</text>", px(x), px(y + 10), escaped(title));
+    const double bar_top = y + 16;
+    svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"10\" fill=\"url(#{})\" stroke=\"{}\" stroke-width=\"0.5\"/>",
+                       px(x), px(bar_top), px(width), id, kAxisColor);
+    double lo = scale.lo, hi = scale.hi;
+    const auto ticks = linear_ticks(lo, hi, 5, false);
+    svg += "<g text-anchor=\"middle\">";
+    for (const Tick& t : ticks) {
+        const double tx = x + scale.t(t.value) * width;
+        svg += fmt::format("<path d=\"M{} {}v13\" stroke=\"{}\"/><text x=\"{}\" y=\"{}\">{}</text>", px(tx), px(bar_top),
+                           kAxisColor, px(tx), px(bar_top + 25), t.label.markup);
+    }
+    svg += "</g>";
+    return 48.0;
+}
+
+std::string render_heatmaps(const Plot& plot, const SvgOptions& options) {
+    const auto& maps = plot.heatmaps;
+    // One scale per colour map, over all heatmaps that use it.
+    std::vector<Scale> scales;
+    std::vector<std::size_t> scale_of(maps.size(), 0);
+    bool any_missing = false;
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        if (!well_formed(maps[i])) continue;
+        const ColorMap map = resolve(maps[i]);
+        auto it = std::find_if(scales.begin(), scales.end(), [&](const Scale& s) { return s.map == map; });
+        if (it == scales.end()) {
+            scales.push_back({map, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), {}});
+            it = scales.end() - 1;
+        }
+        scale_of[i] = static_cast<std::size_t>(it - scales.begin());
+        it->members.push_back(maps[i].label.empty() ? fmt::format("map {}", i + 1) : maps[i].label);
+        for (double v : maps[i].values) {
+            if (std::isnan(v)) {
+                any_missing = true;
+            } else if (std::isfinite(v)) {
+                it->lo = std::min(it->lo, v);
+                it->hi = std::max(it->hi, v);
+            }
+        }
+    }
+    for (Scale& s : scales) {
+        if (!(s.lo <= s.hi)) s.lo = 0.0, s.hi = 1.0;
+        if (s.map == ColorMap::Diverging) {
+            const double limit = std::max(std::abs(s.lo), std::abs(s.hi));
+            s.lo = -(limit > 0 ? limit : 1.0), s.hi = -s.lo;
+        } else {
+            if (s.lo >= 0.0) s.lo = 0.0;  // counts and densities: from zero, so that flat looks flat
+            if (s.hi <= s.lo) s.hi = s.lo + 1.0;
+        }
+    }
+
+    // Panels: up to three in a row (two by two for four), each with its own axes.
+    const std::size_t n = std::max<std::size_t>(maps.size(), 1);
+    const std::size_t per_row = n == 4 ? 2 : std::min<std::size_t>(n, 3);
+    const double panel_width = per_row == 1 ? 440.0 : per_row == 2 ? 380.0 : 300.0;
+    double aspect = 0.0;  // width / height of the widest grid of cells
+    for (const Heatmap& h : maps)
+        if (well_formed(h)) aspect = std::max(aspect, static_cast<double>(h.cols) / h.rows);
+    aspect = std::clamp(aspect == 0.0 ? 1.0 : aspect, 0.75, 3.0);
+    const double panel_height = std::min(panel_width / aspect, 320.0);
+    const double margin_left = (plot.y_label.empty() ? 16.0 : 34.0) + 34.0, margin_top = 22.0;
+    const double margin_bottom = plot.x_label.empty() ? 28.0 : 44.0, gap = 18.0;
+    const double cell_width = margin_left + panel_width + gap, cell_height = margin_top + panel_height + margin_bottom;
+    const std::size_t panel_rows = (n + per_row - 1) / per_row;
+    const double legend_top = static_cast<double>(panel_rows) * cell_height + 6.0;
+    const double width = static_cast<double>(per_row) * cell_width + 4.0;
+    const double legend_height = 56.0;
+    const double height = legend_top + legend_height;
+
+    std::string svg = svg_open(width, height, plot.title);
+    const std::string hatch = options.id_prefix + "-nan";
+    svg += fmt::format(
+        "<defs><pattern id=\"{}\" width=\"6\" height=\"6\" patternUnits=\"userSpaceOnUse\" patternTransform=\"rotate(45)\">"
+        "<rect width=\"6\" height=\"6\" fill=\"#eceef1\"/><path d=\"M0 0V6\" stroke=\"#a7adb5\" stroke-width=\"2\"/></pattern></defs>",
+        hatch);
+
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        const Heatmap& h = maps[i];
+        const double x0 = static_cast<double>(i % per_row) * cell_width + margin_left;
+        const double y0 = static_cast<double>(i / per_row) * cell_height + margin_top;
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" class=\"panel-title\">{}</text>", px(x0), px(y0 - 8), escaped(h.label));
+        if (!well_formed(h)) {
+            svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"url(#{})\"/>", px(x0), px(y0),
+                               px(panel_width), px(panel_height), hatch);
+            svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">malformed heatmap: {} x {} cells, {} values</text>",
+                               px(x0 + panel_width / 2), px(y0 + panel_height / 2), h.rows, h.cols, h.values.size());
+            continue;
+        }
+        Range rx{h.x_min, h.x_max}, ry{h.y_min, h.y_max};
+        Axis ax = make_axis(rx, false, false, 5);
+        Axis ay = make_axis(ry, false, false, 4);
+        ax.from = x0, ax.to = x0 + panel_width;
+        ay.from = y0 + panel_height, ay.to = y0;
+        svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"url(#{})\"/>", px(x0), px(y0),
+                           px(panel_width), px(panel_height), hatch);
+        svg += fmt::format(
+            "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" class=\"cells\" href=\"{}\"/>",
+            px(x0), px(y0), px(panel_width), px(panel_height), heatmap_image(h, scales[scale_of[i]]));
+        // Axes without the grid, which would hide cells.
+        svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"{}\"/>", px(x0), px(y0),
+                           px(panel_width), px(panel_height), kAxisColor);
+        svg += "<g text-anchor=\"middle\">";
+        for (const Tick& t : ax.ticks)
+            svg += fmt::format("<path d=\"M{0} {1}v4\" stroke=\"{2}\"/><text x=\"{0}\" y=\"{3}\">{4}</text>", px(ax.map(t.value)),
+                               px(ay.from), kAxisColor, px(ay.from + 16), t.label.markup);
+        svg += "</g><g text-anchor=\"end\">";
+        for (const Tick& t : ay.ticks)
+            svg += fmt::format("<path d=\"M{0} {1}h-4\" stroke=\"{2}\"/><text x=\"{3}\" y=\"{1}\" dy=\"0.35em\">{4}</text>",
+                               px(x0), px(ay.map(t.value)), kAxisColor, px(x0 - 7), t.label.markup);
+        svg += "</g>";
+        if (!plot.x_label.empty())
+            svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" class=\"axis-label\">{}</text>",
+                               px(x0 + panel_width / 2), px(ay.from + 34), escaped(plot.x_label));
+        if (!plot.y_label.empty())
+            svg += fmt::format(
+                "<text transform=\"translate({} {}) rotate(-90)\" text-anchor=\"middle\" class=\"axis-label\">{}</text>",
+                px(x0 - margin_left + 14), px(y0 + panel_height / 2), escaped(plot.y_label));
+    }
+
+    // Legends: one colour bar per scale, then the swatch for cells without a value.
+    double x = margin_left;
+    for (std::size_t s = 0; s < scales.size(); ++s) {
+        append_color_bar(svg, scales[s], fmt::format("{}-scale{}", options.id_prefix, s), x, legend_top, 220.0);
+        x += 220.0 + 48.0;
+    }
+    if (any_missing) {
+        svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"16\" height=\"10\" fill=\"url(#{})\" stroke=\"{}\" stroke-width=\"0.5\"/>",
+                           px(x), px(legend_top + 16), hatch, kAxisColor);
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" dy=\"0.35em\">no value (e.g. pooled)</text>", px(x + 22), px(legend_top + 21));
+    }
+    if (maps.empty())
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">no heatmaps</text>", px(margin_left), px(margin_top + 20), kAxisColor);
+    return svg + "</svg>";
+}
+
+}  // namespace
+
+std::string render_svg(const Plot& plot, const SvgOptions& options) {
+    if (plot.kind == Plot::Kind::Heatmaps) return render_heatmaps(plot, options);
+    return render_xy(plot, options);
+}
+
+}  // namespace warpcheck::report
