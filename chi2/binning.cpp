@@ -67,6 +67,7 @@ void Histogram::merge(const Histogram& other) {
 
 Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domain), resolution_(resolution) {
     if (resolution_.first < 0 || resolution_.second < 0) throw std::invalid_argument("bin resolution must be >= 0");
+    if (resolution_.half_line_scale == 0.0) resolution_.half_line_scale = 1.0;
     if (!(resolution_.half_line_scale > 0.0) || !std::isfinite(resolution_.half_line_scale))
         throw std::invalid_argument("half-line scale must be positive and finite");
     auto pick = [](int requested, int fallback) { return requested > 0 ? requested : fallback; };
@@ -110,6 +111,41 @@ Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domai
     if (cell_count() > (std::size_t{1} << 26)) throw std::invalid_argument("bin resolution too large");
     du_ = (bounds_.u1 - bounds_.u0) / cols_;
     dv_ = (bounds_.v1 - bounds_.v0) / rows_;
+    if (has_phi(domain_.kind) && cols_ % 8 == 0) {
+        octant_cols_ = cols_ / 8;
+        tan_edges_.resize(static_cast<std::size_t>(octant_cols_) + 1);
+        for (int k = 0; k < octant_cols_; ++k) tan_edges_[static_cast<std::size_t>(k)] = std::tan(k * du_);
+        tan_edges_.back() = std::numeric_limits<double>::infinity();
+        // Edges are at least du apart in t (tan' >= 1): with a lookup cell of
+        // du / 2 or less, the comparison loop below runs at most twice.
+        const int cells = std::max(256, 4 * octant_cols_);
+        lookup_scale_ = cells;
+        edge_lookup_.resize(static_cast<std::size_t>(cells) + 1);
+        int j = 0;
+        for (int m = 0; m <= cells; ++m) {
+            while (j + 1 < octant_cols_ && tan_edges_[static_cast<std::size_t>(j) + 1] <= m / lookup_scale_) ++j;
+            edge_lookup_[static_cast<std::size_t>(m)] = j;
+        }
+    }
+}
+
+// Branch-free apart from the rare extra edge comparison: the octant and the
+// quadrant are random per sample, so branches on them would mispredict half
+// the time.
+[[gnu::always_inline]] inline int Binning::phi_column_by_table(double x, double y) const {
+    const double ax = std::abs(x), ay = std::abs(y);
+    const double hi = std::max(ax, ay), lo = std::min(ax, ay);
+    // t = lo / hi in [0, 1]; (0, 0) maps to t = 0, column 0.
+    const double t = hi > 0.0 ? lo / hi : 0.0;
+    int j = edge_lookup_[static_cast<std::size_t>(t * lookup_scale_)];
+    while (t >= tan_edges_[static_cast<std::size_t>(j) + 1]) ++j;
+    const int quadrant_cols = 2 * octant_cols_;
+    const int steep = ay > ax;  // above the diagonal: phi = pi/2 - atan(t) within the quadrant
+    const int q = j + steep * (quadrant_cols - 1 - 2 * j);
+    // Quadrants by the signs: (+,+) q, (-,+) 2Q-1-q, (-,-) 2Q+q, (+,-) 4Q-1-q.
+    const int sx = x < 0.0, sy = y < 0.0;
+    const int mirrored = sx ^ sy;
+    return q + mirrored * (2 * quadrant_cols - 1 - 2 * q) + sy * 2 * quadrant_cols;
 }
 
 ParamRect Binning::cell_rect(std::size_t cell) const {
@@ -239,17 +275,21 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
         if (check_zero && zero_cells[cell]) cell = snap_from_zero_cell(u, v, cell, zero_cells, hist.snapped);
         ++counts[cell];
     };
-    // phi column: the fast atan2, or the exact one within a safety margin of a
-    // cell edge (the fast one is within 3e-8 rad; the margin is 1e-6 rad).
+    // Spherical and disk samples: phi is computed exactly only to snap out of a zero cell (rare).
+    auto add_phi = [&](std::size_t cell, double x, double y, double v) {
+        if (check_zero && zero_cells[cell])
+            cell = snap_from_zero_cell(exact_phi(x, y), v, cell, zero_cells, hist.snapped);
+        ++counts[cell];
+    };
+    // phi column: by the octant table, or else by the fast atan2, with the exact
+    // one within a safety margin of a cell edge (the fast one is within 3e-8
+    // rad; the margin is 1e-6 rad).
     const double edge_margin = 1e-6 * inv_du;
-    auto phi_column = [&](double x, double y, double& phi) {
-        phi = fast_phi(x, y);
-        const double f = phi * inv_du;
+    auto phi_column = [&](double x, double y) {
+        if (octant_cols_ > 0) return phi_column_by_table(x, y);
+        const double f = fast_phi(x, y) * inv_du;
         const double fl = std::floor(f);
-        if (f - fl < edge_margin || fl + 1.0 - f < edge_margin) {
-            phi = exact_phi(x, y);
-            return clamp_index(phi * inv_du, cols_);
-        }
+        if (f - fl < edge_margin || fl + 1.0 - f < edge_margin) return clamp_index(exact_phi(x, y) * inv_du, cols_);
         return clamp_index(fl, cols_);
     };
     const std::size_t cols = static_cast<std::size_t>(cols_);
@@ -299,10 +339,9 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
                 if (x != x || y != y) { ++hist.nan; continue; }
                 const double r2 = x * x + y * y;
                 if (!(r2 <= r2_max)) { ++hist.outside; continue; }
-                double phi;
-                const auto col = static_cast<std::size_t>(phi_column(x, y, phi));
+                const auto col = static_cast<std::size_t>(phi_column(x, y));
                 const auto row = static_cast<std::size_t>(clamp_index(r2 * inv_dv, rows_));
-                add(row * cols + col, phi, r2);
+                add_phi(row * cols + col, x, y, r2);
             }
             break;
         }
@@ -316,10 +355,9 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
                 if (x != x || y != y || z != z) { ++hist.nan; continue; }
                 const double len2 = x * x + y * y + z * z;
                 if (!(len2 >= len2_lo && len2 <= len2_hi && z >= z_lo)) { ++hist.outside; continue; }
-                double phi;
-                const auto col = static_cast<std::size_t>(phi_column(x, y, phi));
+                const auto col = static_cast<std::size_t>(phi_column(x, y));
                 const auto row = static_cast<std::size_t>(clamp_index((z - z0) * inv_dv, rows_));
-                add(row * cols + col, phi, z);
+                add_phi(row * cols + col, x, y, z);
             }
             break;
         }

@@ -115,6 +115,14 @@ private:
     ParamRect bounds_;
     double du_ = 1.0, dv_ = 1.0;  // cell sizes in parameter space
     double tol_x_ = 0.0, tol_y_ = 0.0;  // accepted slack outside the domain, per coordinate
+    // Column of phi without atan (when cols is a multiple of 8): reduce (x, y)
+    // to t = min/max in [0, 1] of one octant; the octant's column edges are at
+    // t = tan(k du), found by a lookup on t and a comparison or two.
+    int octant_cols_ = 0;              // cols / 8, or 0 when the table is not used
+    std::vector<double> tan_edges_;    // tan(k du), k = 0..octant_cols_ - 1, then +inf
+    std::vector<int> edge_lookup_;     // edges <= m / lookup_scale_, for m = 0..lookup_scale_
+    double lookup_scale_ = 0.0;
+    int phi_column_by_table(double x, double y) const;
 };
 
 /// atan2(y, x) mapped to [0, 2 pi), within 3e-8 of the exact value: the

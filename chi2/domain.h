@@ -164,8 +164,9 @@ struct BinResolution {
     int second = 0;
     /// HalfLine only: the length scale s of the map t = d / (s + d), d = x - a,
     /// whose uniform cells in t in [0, 1) bin the half-line. Half the cells lie
-    /// within s of the start; choose s near the distribution's median.
-    double half_line_scale = 1.0;
+    /// within s of the start; choose s near the distribution's median. Zero
+    /// means 1 to Binning; the chi2 check derives it from the density instead.
+    double half_line_scale = 0.0;
 };
 
 }  // namespace warpcheck::chi2

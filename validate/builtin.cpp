@@ -12,6 +12,7 @@ void register_builtin_cases(Registry& registry) {
 void register_builtin_checks(Registry& registry) {
     registry.add_check(make_consistency_check());
     registry.add_check(make_roundtrip_check());
+    registry.add_check(make_chi2_check());
 }
 
 }  // namespace warpcheck

@@ -59,6 +59,8 @@ struct WarpCaseInfo {
     /// Whether the inverse is expected to be exact on raw bits (invert returns
     /// the first input that maps to x) rather than within a tolerance.
     bool exact_inverse = false;
+    /// Cells of the chi-square test; zero fields take the domain's defaults (chi2/binning.h).
+    chi2::BinResolution chi2_resolution{};
 };
 
 class WarpCase {

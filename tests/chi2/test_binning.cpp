@@ -32,6 +32,8 @@ std::vector<DomainCase> domain_cases() {
         {"sphere", Domain::sphere(), {}},
         {"hemisphere", Domain::hemisphere(), {}},
         {"cone_cap", Domain::spherical_cap(0.7), {24, 9, 1.0}},
+        {"sphere_odd_columns", Domain::sphere(), {20, 10, 1.0}},  // phi by fast atan2, not the octant table
+        {"disk_odd_columns", Domain::unit_disk(), {13, 7, 1.0}},
     };
 }
 

@@ -11,5 +11,7 @@ namespace warpcheck {
 std::unique_ptr<Check> make_roundtrip_check();
 /// "consistency": every sample lies in the domain and has a finite, positive pdf.
 std::unique_ptr<Check> make_consistency_check();
+/// "chi2": Pearson chi-square test of samples against the pdf integrated over cells.
+std::unique_ptr<Check> make_chi2_check();
 
 }  // namespace warpcheck

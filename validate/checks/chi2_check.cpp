@@ -1,0 +1,205 @@
+// "chi2": Pearson's chi-square goodness-of-fit test of a warp's samples against
+// its own density, on the cells of chi2::Binning (see chi2/chi2_test.h).
+//
+// Samples come in fixed chunks of chi2::Chi2Options::chunk_size, chunk c drawn
+// from ctx.chunk_rng(c), so the histogram (integer counts) and everything after
+// it are bit-identical for any --threads. Quadrature splits by cell, likewise.
+//
+// The check sets p_value and leaves the verdict at Pass unless it found a
+// failure that needs no significance level (NaN or outside samples, samples
+// where the density integrates to zero, a density that does not integrate to 1,
+// a non-finite statistic): the runner applies the Šidák-corrected level.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "chi2/chi2_test.h"
+#include "validate/checks/checks.h"
+
+namespace warpcheck {
+namespace {
+
+/// The half-line's length scale when the case does not set one: 1 / pdf(a),
+/// the scale of the density at the start (1/rate for an exponential), so that
+/// its cells follow the distribution whatever its rate.
+double half_line_scale(const WarpCase& warp) {
+    const std::vector<WarpOutput> start = {{static_cast<float>(warp.domain().a), 0.0f, 0.0f}};
+    std::vector<double> density(1);
+    warp.pdf(start, density);
+    const double s = 1.0 / density[0];
+    return std::isfinite(s) && s > 0.0 ? s : 1.0;
+}
+
+Plot heatmaps(const chi2::Binning& b, const chi2::Chi2Outcome& o, const std::string& case_name) {
+    Plot plot;
+    plot.kind = Plot::Kind::Heatmaps;
+    plot.title = "chi2 cells of " + case_name;
+    plot.x_label = b.u_label();
+    plot.y_label = b.v_label();
+    const chi2::ParamRect r = b.parameter_bounds();
+    auto map = [&](std::string label, std::vector<double> values) {
+        Heatmap h;
+        h.label = std::move(label);
+        h.rows = b.rows();
+        h.cols = b.cols();
+        h.x_min = r.u0;
+        h.x_max = r.u1;
+        h.y_min = r.v0;
+        h.y_max = r.v1;
+        h.values = std::move(values);
+        return h;
+    };
+    std::vector<double> observed(o.histogram.counts.begin(), o.histogram.counts.end());
+    plot.heatmaps.push_back(map("observed", std::move(observed)));
+    plot.heatmaps.push_back(map("expected", o.expected));
+    plot.heatmaps.push_back(map("residual (obs - exp) / sqrt(exp)", o.residual));
+    return plot;
+}
+
+std::vector<Plot> line_plots(const chi2::Binning& b, const chi2::Chi2Outcome& o, const std::string& case_name) {
+    std::vector<double> x(b.cell_count());
+    for (std::size_t c = 0; c < x.size(); ++c) x[c] = b.cell_position(c);
+    Plot counts;
+    counts.kind = Plot::Kind::Lines;
+    counts.title = "chi2 cells of " + case_name;
+    counts.x_label = b.u_label();
+    counts.y_label = "samples per cell";
+    counts.series.push_back({"observed", x, std::vector<double>(o.histogram.counts.begin(), o.histogram.counts.end())});
+    counts.series.push_back({"expected", x, o.expected});
+    Plot residual;
+    residual.kind = Plot::Kind::Points;
+    residual.title = "chi2 residuals of " + case_name;
+    residual.x_label = b.u_label();
+    residual.y_label = "(obs - exp) / sqrt(exp)";
+    residual.series.push_back({"residual", x, o.residual});
+    return {std::move(counts), std::move(residual)};
+}
+
+/// The cells that deviate most, for the reader hunting a bug.
+Table worst_cells(const chi2::Binning& b, const chi2::Chi2Outcome& o) {
+    std::vector<std::size_t> order(b.cell_count());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    auto badness = [&](std::size_t c) {
+        const double r = o.residual[c];
+        return std::isnan(r) ? (o.histogram.counts[c] > 0 ? HUGE_VAL : -1.0) : std::abs(r);
+    };
+    const std::size_t shown = std::min<std::size_t>(8, order.size());
+    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
+                      [&](std::size_t a, std::size_t c) {
+                          const double ba = badness(a), bc = badness(c);
+                          return ba != bc ? ba > bc : a < c;
+                      });
+    const bool two_d = b.parameter_dimension() == 2;
+    Table t{"Cells with the largest residuals", {}, {}};
+    t.columns = {"cell", b.u_label() + " range"};
+    if (two_d) t.columns.push_back(b.v_label() + " range");
+    for (const char* c : {"observed", "expected", "residual"}) t.columns.emplace_back(c);
+    for (std::size_t k = 0; k < shown; ++k) {
+        const std::size_t c = order[k];
+        const chi2::ParamRect r = b.cell_rect(c);
+        std::vector<std::string> row = {std::to_string(c), fmt::format("[{:.5g}, {:.5g})", r.u0, r.u1)};
+        if (two_d) row.push_back(fmt::format("[{:.5g}, {:.5g})", r.v0, r.v1));
+        row.push_back(std::to_string(o.histogram.counts[c]));
+        row.push_back(fmt::format("{:.6g}", o.expected[c]));
+        row.push_back(fmt::format("{:.3g}", o.residual[c]));
+        t.rows.push_back(std::move(row));
+    }
+    return t;
+}
+
+class Chi2Check final : public Check {
+public:
+    std::string name() const override { return "chi2"; }
+    std::string description() const override {
+        return "Pearson chi-square test of the samples against the pdf integrated over cells (pooled, Sidak-corrected)";
+    }
+    bool applies_to(const WarpCase&) const override { return true; }
+
+    CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
+        chi2::BinResolution resolution = warp.info().chi2_resolution;
+        if (warp.domain().kind == chi2::DomainKind::HalfLine && resolution.half_line_scale == 0.0)
+            resolution.half_line_scale = half_line_scale(warp);
+        const chi2::Binning binning(warp.domain(), resolution);
+        chi2::Chi2Options options;
+        options.resolution = resolution;
+        const uint64_t samples = ctx.options().samples;
+        const InputKind kind = warp.input_kind();
+
+        const chi2::SampleChunk generate = [&](std::size_t chunk, std::span<chi2::SamplePoint> out) {
+            ctx.throw_if_cancelled();
+            std::vector<WarpInput> inputs(out.size());
+            Pcg32 rng = ctx.chunk_rng(chunk);
+            draw_inputs(rng, kind, inputs);
+            warp.sample(inputs, out);
+        };
+        const chi2::BatchPdf pdf = [&](std::span<const chi2::DomainPoint> points, std::span<double> density) {
+            std::vector<WarpOutput> x(points.size());
+            for (std::size_t i = 0; i < points.size(); ++i)
+                x[i] = {static_cast<float>(points[i][0]), static_cast<float>(points[i][1]),
+                        static_cast<float>(points[i][2])};
+            warp.pdf(x, density);
+        };
+        const chi2::ParallelFor parallel = [&ctx](std::size_t n, const std::function<void(std::size_t)>& body) {
+            ctx.parallel_for(n, body);
+        };
+        const chi2::Chi2Outcome o = chi2::run_chi2_test(binning, samples, generate, pdf, options, parallel);
+
+        CheckResult r;
+        r.samples = samples;
+        const chi2::Histogram& h = o.histogram;
+        r.figures = {
+            {"statistic", o.statistic()},
+            {"dof", static_cast<double>(o.dof())},
+            {"p_value", o.p_value()},
+            {"integral", o.integrals.total},
+            {"integral_tolerance", o.integral_tolerance},
+            {"integration_error", o.integrals.error_total},
+            {"integration_error_ratio", o.integrals.worst_error_ratio},
+            {"quadrature_evaluations", static_cast<double>(o.integrals.evaluations)},
+            {"cells", static_cast<double>(binning.cell_count())},
+            {"cells_used", static_cast<double>(o.pearson.terms)},
+            {"pooled_cells", static_cast<double>(o.pearson.small_cells)},
+            {"pools", static_cast<double>(o.pearson.pools)},
+            {"outside", static_cast<double>(h.outside)},
+            {"nan", static_cast<double>(h.nan)},
+            {"zero_expected_hits", static_cast<double>(o.zero_expected_hits)},
+            {"zero_expected_cells", static_cast<double>(o.zero_expected_cells)},
+            {"snapped_at_support_edge", static_cast<double>(h.snapped)},
+            {"samples", static_cast<double>(samples)},
+        };
+        if (binning.domain().kind == chi2::DomainKind::HalfLine)
+            r.figures.push_back({"half_line_scale", binning.resolution().half_line_scale});
+        if (o.dof() >= 1) r.p_value = o.p_value();
+
+        r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}", o.statistic(), o.dof(), o.p_value());
+        if (!o.errors.empty()) {
+            r.verdict = Verdict::Error;
+            r.message = fmt::format("{}", fmt::join(o.errors, "; "));
+        } else if (!o.failures.empty()) {
+            r.verdict = Verdict::Fail;
+            r.summary = o.failures.front();
+            r.message = fmt::format("{}", fmt::join(o.failures, "; "));
+        } else {
+            r.verdict = Verdict::Pass;
+        }
+
+        if (binning.parameter_dimension() == 2) {
+            r.plots.push_back(heatmaps(binning, o, warp.name()));
+        } else {
+            for (Plot& p : line_plots(binning, o, warp.name())) r.plots.push_back(std::move(p));
+        }
+        r.tables.push_back(worst_cells(binning, o));
+        return r;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Check> make_chi2_check() { return std::make_unique<Chi2Check>(); }
+
+}  // namespace warpcheck
