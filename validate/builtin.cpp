@@ -7,6 +7,7 @@ namespace warpcheck {
 
 void register_builtin_cases(Registry& registry) {
     register_geometric_cases(registry);
+    register_linear_cases(registry);
 }
 
 void register_builtin_checks(Registry& registry) {
