@@ -86,22 +86,22 @@ Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domai
             break;
         case DomainKind::Box:
             dims_ = 2;
-            cols_ = pick(resolution_.first, 40);
-            rows_ = pick(resolution_.second, 40);
+            cols_ = pick(resolution_.first, 32);
+            rows_ = pick(resolution_.second, 32);
             bounds_ = {domain_.x0, domain_.x1, domain_.y0, domain_.y1};
             tol_x_ = kDomainTolerance * std::max({domain_.x1 - domain_.x0, std::abs(domain_.x0), std::abs(domain_.x1)});
             tol_y_ = kDomainTolerance * std::max({domain_.y1 - domain_.y0, std::abs(domain_.y0), std::abs(domain_.y1)});
             break;
         case DomainKind::Disk:
             dims_ = 2;
-            cols_ = pick(resolution_.first, 64);
+            cols_ = pick(resolution_.first, 32);
             rows_ = pick(resolution_.second, 32);
             bounds_ = {0.0, kTwoPi, 0.0, 1.0};
             tol_x_ = tol_y_ = kDomainTolerance;
             break;
         case DomainKind::SphericalCap:
             dims_ = 2;
-            cols_ = pick(resolution_.first, 64);
+            cols_ = pick(resolution_.first, 32);
             rows_ = pick(resolution_.second, 32);
             bounds_ = {0.0, kTwoPi, domain_.z_min, 1.0};
             tol_x_ = tol_y_ = kDomainTolerance;

@@ -171,9 +171,10 @@ INSTANTIATE_TEST_SUITE_P(Domains, BinningTest, ::testing::ValuesIn(domain_cases(
 
 TEST(Binning, DefaultResolutions) {
     EXPECT_EQ(Binning(Domain::interval(0, 1)).cell_count(), 200u);
-    EXPECT_EQ(Binning(Domain::hemisphere()).cols(), 64);
+    EXPECT_EQ(Binning(Domain::hemisphere()).cols(), 32);
     EXPECT_EQ(Binning(Domain::hemisphere()).rows(), 32);
-    EXPECT_EQ(Binning(Domain::unit_square()).cell_count(), 1600u);
+    EXPECT_EQ(Binning(Domain::unit_disk()).cell_count(), 1024u);
+    EXPECT_EQ(Binning(Domain::unit_square()).cell_count(), 1024u);
 }
 
 TEST(Binning, SphericalCellAreaIsSolidAngle) {
