@@ -7,12 +7,16 @@ namespace warpcheck {
 
 void register_builtin_cases(Registry& registry) {
     register_geometric_cases(registry);
+    register_interval_cases(registry);
     register_linear_cases(registry);
 }
 
 void register_builtin_checks(Registry& registry) {
     registry.add_check(make_consistency_check());
     registry.add_check(make_roundtrip_check());
+    registry.add_check(make_exhaustive_check());
+    registry.add_check(make_binade_check());
+    registry.add_check(make_exhaustive_roundtrip_check());
     registry.add_check(make_chi2_check());
 }
 

@@ -38,6 +38,7 @@ void register_builtin_cases(Registry& registry);
 void register_builtin_checks(Registry& registry);
 
 void register_geometric_cases(Registry& registry);
+void register_interval_cases(Registry& registry);
 void register_linear_cases(Registry& registry);
 
 }  // namespace warpcheck

@@ -11,6 +11,15 @@ namespace warpcheck {
 std::unique_ptr<Check> make_roundtrip_check();
 /// "consistency": every sample lies in the domain and has a finite, positive pdf.
 std::unique_ptr<Check> make_consistency_check();
+/// "exhaustive": every input of a float sampler's grid (all 2^32 for 32 bits),
+/// counted exactly per output float against the uniform measure.
+std::unique_ptr<Check> make_exhaustive_check();
+/// "binade": for 64-bit float samplers, chi-square of the mass per binade and
+/// of the significand parity within binades (sees a 257/255 alternation).
+std::unique_ptr<Check> make_binade_check();
+/// "exhaustive_roundtrip": for 1D warps, every float u of [0,1): invert(sample(u))
+/// against u, monotonicity of sample, finite positive pdf. Only with --exhaustive.
+std::unique_ptr<Check> make_exhaustive_roundtrip_check();
 /// "chi2": Pearson chi-square test of samples against the pdf integrated over cells.
 std::unique_ptr<Check> make_chi2_check();
 

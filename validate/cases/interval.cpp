@@ -1,0 +1,179 @@
+// Interval warps: floats in [0,1) from 32 or 64 random bits, lerps over [a,b),
+// and the exact sampler of every float of [a,b). The 32-bit samplers and the
+// lerps can be swept exhaustively (validate/exhaustive_sweep.h).
+#include <cmath>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "sampling/hash.h"
+#include "sampling/interval.h"
+#include "sampling/pcg32.h"
+#include "sampling/unit_float.h"
+#include "validate/exhaustive_sweep.h"
+#include "validate/registry.h"
+
+namespace warpcheck {
+namespace {
+
+// A warp case that also offers its sampler to the exhaustive sweep: it forwards
+// sample/pdf/invert to an ordinary lambda case and adds the block function.
+class SweepableWarpCase final : public WarpCase, public SweepableCase {
+public:
+    SweepableWarpCase(std::unique_ptr<WarpCase> inner, FloatBlockFn fn, uint64_t inputs, std::string grid,
+                      bool monotone)
+        : WarpCase(inner->info()), inner_(std::move(inner)), fn_(std::move(fn)), inputs_(inputs),
+          grid_(std::move(grid)), monotone_(monotone) {}
+
+    void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override { inner_->sample(in, out); }
+    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override { inner_->pdf(x, out); }
+    void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override { inner_->invert(x, out); }
+
+    FloatBlockFn sweep_fn() const override { return fn_; }
+    uint64_t sweep_inputs() const override { return inputs_; }
+    std::string sweep_grid() const override { return grid_; }
+    bool claims_monotone() const override { return monotone_; }
+
+private:
+    std::unique_ptr<WarpCase> inner_;
+    FloatBlockFn fn_;
+    uint64_t inputs_;
+    std::string grid_;
+    bool monotone_;
+};
+
+// A [0,1) sampler of 32 bits with its first-preimage inverse.
+template <typename Sample, typename Invert>
+std::unique_ptr<WarpCase> unit_float_32_case(std::string family, std::string description, Sample sample,
+                                             Invert invert) {
+    WarpCaseInfo info{std::move(family), {}, std::move(description), InputKind::Bits32,
+                      chi2::Domain::interval(0.0, 1.0)};
+    info.exact_inverse = true;
+    auto inner = make_warp_case(
+        info, [sample](uint32_t u) { return sample(u); }, [](float x) { return x >= 0.0f && x < 1.0f ? 1.0f : 0.0f; },
+        [invert](float x) { return invert(x); });
+    return std::make_unique<SweepableWarpCase>(std::move(inner), u32_block_fn(sample), uint64_t{1} << 32,
+                                               "all 2^32 inputs", true);
+}
+
+// The random source of a 64-bit case: the input bits first, then (for the rare
+// samples that need more) a stream that is a function of those bits, so that
+// sample(bits) is deterministic.
+class FirstThenStream {
+public:
+    explicit FirstThenStream(uint64_t first) : first_(first) {}
+    uint64_t operator()() {
+        if (!used_) {
+            used_ = true;
+            return first_;
+        }
+        if (!stream_started_) {
+            rest_ = Pcg32(mix64(first_), first_);
+            stream_started_ = true;
+        }
+        return rest_.next_u64();
+    }
+
+private:
+    uint64_t first_;
+    bool used_ = false;
+    bool stream_started_ = false;
+    Pcg32 rest_;
+};
+
+std::string interval_text(double a, double b, char close) { return fmt::format("[{}, {}{}", a, b, close); }
+
+}  // namespace
+
+void register_interval_cases(Registry& registry) {
+    using chi2::Domain;
+
+    // --- [0,1) from 32 bits: exhaustively countable ---------------------------
+    registry.add_case(unit_float_32_case(
+        "unit_float_mul32", "u * 2^-32 in float, round to nearest; biased, and 1.0 for the 128 largest u",
+        u32_to_unit_float_mul, unit_float_mul_to_u32));
+    registry.add_case(unit_float_32_case(
+        "unit_float_mul32_clamped", "u * 2^-32 clamped to 0x1.fffffep-1: in [0,1), but that float is hit 383 times",
+        u32_to_unit_float_mul_clamped, unit_float_mul_clamped_to_u32));
+    registry.add_case(unit_float_32_case("unit_float_24bit",
+                                         "(u >> 8) * 2^-24: the 2^-24 grid, each value exactly 256 times",
+                                         u32_to_unit_float_24bit, unit_float_24bit_to_u32));
+    registry.add_case(unit_float_32_case("unit_float_bits",
+                                         "23 bits as the significand of [1,2), minus 1: the 2^-23 grid",
+                                         u32_to_unit_float_bits, unit_float_bits_to_u32));
+
+    // --- [0,1) from 64 bits: every float with its measure ----------------------
+    {
+        WarpCaseInfo info{"unit_float_reynolds", {},
+                          "leading zeros of 41 bits pick the binade, 23 low bits the significand; exact above 2^-41",
+                          InputKind::Bits64, Domain::interval(0.0, 1.0)};
+        info.exact_inverse = true;
+        registry.add_case(make_warp_case(
+            info, [](uint64_t bits) { return u64_to_unit_float_reynolds(bits); },
+            [](float x) { return x >= 0.0f && x < 1.0f ? 1.0f : 0.0f; },
+            [](float x) { return unit_float_reynolds_to_u64(x); }));
+    }
+    {
+        WarpCaseInfo info{"unit_float_walker", {},
+                          "Walker: exponent from leading zeros of as many words as needed, down to the denormals",
+                          InputKind::Bits64, Domain::interval(0.0, 1.0)};
+        info.exact_inverse = true;
+        registry.add_case(make_warp_case(
+            info,
+            [](uint64_t bits) {
+                FirstThenStream rng(bits);
+                return unit_float_walker(rng);
+            },
+            [](float x) { return x >= 0.0f && x < 1.0f ? 1.0f : 0.0f; },
+            [](float x) { return unit_float_walker_to_u64(x); }));
+    }
+
+    // --- every float of [a,b), exactly ----------------------------------------
+    // Wide ([0,1), [-3,5), [0.001, 1000)), straddling a binade ([0.999, 1.001)),
+    // within one binade (negative), and spanning zero with a tiny negative part.
+    const std::pair<double, double> exact_intervals[] = {
+        {0.0, 1.0}, {-3.0, 5.0}, {0.001, 1000.0}, {0.999, 1.001}, {-1.0, -0.75}, {-1e-30, 1.0}};
+    for (const auto& [a, b] : exact_intervals) {
+        const UniformFloatInterval sampler(static_cast<float>(a), static_cast<float>(b));
+        WarpCaseInfo info{"uniform_float_interval", {{"a", a}, {"b", b}},
+                          fmt::format("every float of {} with probability (next float - x)/(b - a)",
+                                      interval_text(a, b, ')')),
+                          InputKind::Bits64, Domain::interval(sampler.a(), sampler.b())};
+        info.exact_inverse = true;
+        registry.add_case(make_warp_case(
+            info,
+            [sampler](uint64_t bits) {
+                FirstThenStream rng(bits);
+                return sampler.sample(rng);
+            },
+            [sampler](float x) { return sampler.pdf(x); }, [sampler](float x) { return sampler.first_word(x); }));
+    }
+
+    // --- lerps over [a,b) on the t grid the runner draws (k 2^-24) ------------
+    // Chosen to show the failures: [1,3) and [100,101) reach b, the blend steps
+    // down on [1,3) and [0.2,0.3); [-3,5) shows the coarse grid near 0.
+    const std::pair<double, double> lerp_intervals[] = {{1.0, 3.0}, {100.0, 101.0}, {0.2, 0.3}, {-3.0, 5.0}};
+    for (const auto form : {LerpInterval::Form::Offset, LerpInterval::Form::Blend}) {
+        for (const auto& [a, b] : lerp_intervals) {
+            const LerpInterval lerp(static_cast<float>(a), static_cast<float>(b), form);
+            const bool offset = form == LerpInterval::Form::Offset;
+            WarpCaseInfo info{offset ? "lerp_offset" : "lerp_blend", {{"a", a}, {"b", b}},
+                              fmt::format("{} over {}; pdf 1/(b - a)", offset ? "a + t (b - a)" : "(1 - t) a + t b",
+                                          interval_text(a, b, ')')),
+                              InputKind::Uniform1D, Domain::interval(lerp.a, lerp.b)};
+            auto inner = make_warp_case(
+                info, [lerp](float t) { return lerp.sample(t); }, [lerp](float x) { return lerp.pdf(x); },
+                [lerp](float x) { return lerp.invert(x); });
+            FloatBlockFn fn = [lerp](uint64_t first, std::size_t n, float* out) {
+                for (std::size_t i = 0; i < n; ++i)
+                    out[i] = lerp.sample(static_cast<float>(first + i) * 0x1p-24f);  // exact: k < 2^24
+            };
+            registry.add_case(std::make_unique<SweepableWarpCase>(std::move(inner), std::move(fn), uint64_t{1} << 24,
+                                                                  "t = k 2^-24 for every k < 2^24", offset));
+        }
+    }
+}
+
+}  // namespace warpcheck
