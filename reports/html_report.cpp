@@ -96,9 +96,12 @@ svg.plot text { font-family: inherit; }
 svg.plot .axis-label, svg.plot .panel-title { font-weight: 600; }
 svg.plot .legend-title { fill: #5f6773; }
 svg.plot image.cells { image-rendering: pixelated; }
-table.evidence { border-collapse: collapse; font-size: 12.5px; margin: 4px 0 10px; }
-table.evidence caption { text-align: left; font-weight: 600; padding-bottom: 4px; }
-table.evidence th, table.evidence td { border: 1px solid var(--line); padding: 3px 8px; text-align: left; }
+table.evidence { border-collapse: separate; border-spacing: 0; font-size: 12.5px; }
+.table-title { font-weight: 600; margin: 10px 0 4px; }
+.table-scroll { max-width: 100%; overflow-x: auto; margin: 0 0 10px; }
+@media screen { .table-scroll { max-height: 460px; overflow-y: auto; } table.evidence thead th { position: sticky; top: 0; } }
+table.evidence th, table.evidence td { border-right: 1px solid var(--line); border-bottom: 1px solid var(--line); padding: 3px 8px; text-align: left; }
+table.evidence tr > :first-child { border-left: 1px solid var(--line); } table.evidence thead th { border-top: 1px solid var(--line); }
 table.evidence th { background: var(--soft); font-weight: 600; }
 table.evidence td { font-family: ui-monospace, "DejaVu Sans Mono", monospace; font-size: 12px; }
 .note { color: var(--muted); font-size: 12.5px; }
@@ -278,8 +281,8 @@ void append_table(std::string& html, const RunResult& run, const std::vector<std
 
 void append_evidence_table(std::string& html, const Table& table) {
     constexpr std::size_t kMaxRows = 500;
-    html += "<table class=\"evidence\">";
-    if (!table.title.empty()) html += "<caption>" + escaped(table.title) + "</caption>";
+    if (!table.title.empty()) html += "<p class=\"table-title\">" + escaped(table.title) + "</p>";
+    html += "<div class=\"table-scroll\"><table class=\"evidence\">";
     if (!table.columns.empty()) {
         html += "<thead><tr>";
         for (const auto& c : table.columns) html += "<th>" + escaped(c) + "</th>";
@@ -291,7 +294,7 @@ void append_evidence_table(std::string& html, const Table& table) {
         for (const auto& cell : table.rows[i]) html += "<td>" + escaped(cell) + "</td>";
         html += "</tr>";
     }
-    html += "</tbody></table>\n";
+    html += "</tbody></table></div>\n";
     if (table.rows.size() > kMaxRows)
         html += fmt::format("<p class=\"note\">{} more rows are in the JSON report.</p>\n", table.rows.size() - kMaxRows);
 }

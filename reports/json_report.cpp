@@ -73,6 +73,7 @@ Json plot_json(const Plot& plot) {
                             {"y_min", number(h.y_min)},
                             {"y_max", number(h.y_max)},
                             {"color_scale", scale_name(h.color_scale)},
+                            {"min_color_limit", number(h.min_color_limit)},
                             {"values", numbers(h.values)}});
     return {{"kind", kind_name(plot.kind)},     {"title", plot.title}, {"x_label", plot.x_label},
             {"y_label", plot.y_label},          {"log_x", plot.log_x}, {"log_y", plot.log_y},

@@ -43,6 +43,42 @@ double text_width(std::string_view text) {
     return static_cast<double>(characters) * kCharWidth;
 }
 
+/// `text` broken at spaces into lines no wider than `width` pixels (bold
+/// labels are a little wider than kCharWidth); a longer word gets its own line.
+std::vector<std::string> wrap(const std::string& text, double width) {
+    std::vector<std::string> lines;
+    std::string line;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        std::size_t end = text.find(' ', start);
+        if (end == std::string::npos) end = text.size();
+        const std::string word = text.substr(start, end - start);
+        const std::string candidate = line.empty() ? word : line + " " + word;
+        if (!line.empty() && text_width(candidate) * 1.08 > width) {
+            lines.push_back(line);
+            line = word;
+        } else {
+            line = candidate;
+        }
+        start = end + 1;
+    }
+    if (!line.empty()) lines.push_back(line);
+    return lines;
+}
+
+constexpr double kLineHeight = 14.0;
+
+/// An axis label of one or more lines. The x label is centred at (x, y); the
+/// y label is turned a quarter left about (x, y), its further lines towards
+/// the plot.
+std::string axis_label(const std::vector<std::string>& lines, double x, double y, bool vertical) {
+    std::string svg = vertical ? fmt::format("<text transform=\"translate({} {}) rotate(-90)\" text-anchor=\"middle\" class=\"axis-label\">", px(x), px(y))
+                               : fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" class=\"axis-label\">", px(x), px(y));
+    for (std::size_t i = 0; i < lines.size(); ++i)
+        svg += fmt::format("<tspan x=\"{}\" dy=\"{}\">{}</tspan>", vertical ? "0" : px(x), i == 0 ? 0.0 : kLineHeight, escaped(lines[i]));
+    return svg + "</text>";
+}
+
 /// A tick label: its SVG markup (possibly with a superscript) and its plain
 /// length, for layout.
 struct Label {
@@ -333,8 +369,8 @@ double append_legend(std::string& svg, const std::vector<LegendItem>& items, dou
 }
 
 /// Grid, ticks, tick labels and axis labels of an x-y plot area.
-void append_axes(std::string& svg, const Axis& ax, const Axis& ay, const std::string& x_label,
-                 const std::string& y_label, double y_label_x) {
+void append_axes(std::string& svg, const Axis& ax, const Axis& ay, const std::vector<std::string>& x_label,
+                 const std::vector<std::string>& y_label, double y_label_x) {
     const double left = ax.from, right = ax.to, bottom = ay.from, top = ay.to;
     svg += fmt::format("<g stroke=\"{}\" stroke-width=\"1\">", kGridColor);
     for (const Tick& t : ay.ticks) {
@@ -368,13 +404,8 @@ void append_axes(std::string& svg, const Axis& ax, const Axis& ay, const std::st
             svg += fmt::format("<text x=\"{}\" y=\"{}\" dy=\"0.35em\">{}</text>", px(left - 7), px(y), t.label.markup);
     }
     svg += "</g>";
-    if (!x_label.empty())
-        svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" class=\"axis-label\">{}</text>",
-                           px((left + right) / 2), px(bottom + 34), escaped(x_label));
-    if (!y_label.empty())
-        svg += fmt::format(
-            "<text transform=\"translate({} {}) rotate(-90)\" text-anchor=\"middle\" class=\"axis-label\">{}</text>",
-            px(y_label_x), px((top + bottom) / 2), escaped(y_label));
+    if (!x_label.empty()) svg += axis_label(x_label, (left + right) / 2, bottom + 34, false);
+    if (!y_label.empty()) svg += axis_label(y_label, y_label_x, (top + bottom) / 2, true);
 }
 
 double max_label_width(const std::vector<Tick>& ticks) {
@@ -427,7 +458,14 @@ std::string render_xy(const Plot& plot, const SvgOptions& options) {
         rx.lo -= pad, rx.hi += pad;
     }
 
+    // The x axis ends on ticks when that adds little (e.g. cell centres 0.0025
+    // .. 0.9975 become 0 .. 1), else exactly at the data.
     Axis ax = make_axis(rx, plot.log_x, false, 7);
+    if (!plot.log_x && !rx.empty() && ax.ticks.size() >= 2) {
+        Range extended = rx;
+        Axis trial = make_axis(extended, false, true, 7);
+        if (trial.hi - trial.lo <= (ax.hi - ax.lo) * 1.1) ax = trial;
+    }
     Axis ay = make_axis(ry, plot.log_y, true, 6);
 
     // Layout: legend on top, y tick labels and label on the left.
@@ -436,19 +474,21 @@ std::string render_xy(const Plot& plot, const SvgOptions& options) {
         if (!plot.series[i].label.empty() || plot.series.size() > 1)
             legend.push_back({plot.series[i].label.empty() ? fmt::format("series {}", i + 1) : plot.series[i].label,
                               series_color(i), plot.kind, plot.kind == Plot::Kind::Lines ? dash_of(i) : ""});
-    const double y_label_space = plot.y_label.empty() ? 0.0 : 18.0;
+    const std::vector<std::string> x_label = wrap(plot.x_label, width - 90.0);
+    const std::vector<std::string> y_label = wrap(plot.y_label, height - 70.0);
+    const double y_label_space = y_label.empty() ? 0.0 : 18.0 + kLineHeight * static_cast<double>(y_label.size() - 1);
     const double left = 12.0 + y_label_space + std::max(24.0, max_label_width(ay.ticks));
     const double right = width - 16.0;
     std::string legend_svg;
     const double legend_height = append_legend(legend_svg, legend, left, 8.0, right - left);
     const double top = 10.0 + legend_height;
-    const double bottom = height - (plot.x_label.empty() ? 26.0 : 42.0);
+    const double bottom = height - (x_label.empty() ? 26.0 : 42.0 + kLineHeight * static_cast<double>(x_label.size() - 1));
     ax.from = left, ax.to = right;
     ay.from = bottom, ay.to = top;
 
     std::string svg = svg_open(width, height, plot.title);
     svg += legend_svg;
-    append_axes(svg, ax, ay, plot.x_label, plot.y_label, 14.0);
+    append_axes(svg, ax, ay, x_label, y_label, 14.0);
 
     if (rx.empty() || ry.empty()) {
         svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"{}\">no data to plot</text>",
@@ -604,6 +644,11 @@ std::string render_heatmaps(const Plot& plot, const SvgOptions& options) {
         }
         scale_of[i] = static_cast<std::size_t>(it - scales.begin());
         it->members.push_back(maps[i].label.empty() ? fmt::format("map {}", i + 1) : maps[i].label);
+        const double floor = std::abs(maps[i].min_color_limit);
+        if (floor > 0.0 && std::isfinite(floor)) {
+            it->hi = std::max(it->hi, floor);
+            if (map == ColorMap::Diverging) it->lo = std::min(it->lo, -floor);
+        }
         for (double v : maps[i].values) {
             if (std::isnan(v)) {
                 any_missing = true;
@@ -633,8 +678,12 @@ std::string render_heatmaps(const Plot& plot, const SvgOptions& options) {
         if (well_formed(h)) aspect = std::max(aspect, static_cast<double>(h.cols) / h.rows);
     aspect = std::clamp(aspect == 0.0 ? 1.0 : aspect, 0.75, 3.0);
     const double panel_height = std::min(panel_width / aspect, 320.0);
-    const double margin_left = (plot.y_label.empty() ? 16.0 : 34.0) + 34.0, margin_top = 22.0;
-    const double margin_bottom = plot.x_label.empty() ? 28.0 : 44.0, gap = 18.0;
+    const std::vector<std::string> x_label = wrap(plot.x_label, panel_width);
+    const std::vector<std::string> y_label = wrap(plot.y_label, panel_height);
+    const double extra_lines_x = x_label.empty() ? 0.0 : kLineHeight * static_cast<double>(x_label.size() - 1);
+    const double extra_lines_y = y_label.empty() ? 0.0 : kLineHeight * static_cast<double>(y_label.size() - 1);
+    const double margin_left = (y_label.empty() ? 16.0 : 34.0 + extra_lines_y) + 34.0, margin_top = 22.0;
+    const double margin_bottom = x_label.empty() ? 28.0 : 44.0 + extra_lines_x, gap = 18.0;
     const double cell_width = margin_left + panel_width + gap, cell_height = margin_top + panel_height + margin_bottom;
     const std::size_t panel_rows = (n + per_row - 1) / per_row;
     const double legend_top = static_cast<double>(panel_rows) * cell_height + 6.0;
@@ -683,13 +732,8 @@ std::string render_heatmaps(const Plot& plot, const SvgOptions& options) {
             svg += fmt::format("<path d=\"M{0} {1}h-4\" stroke=\"{2}\"/><text x=\"{3}\" y=\"{1}\" dy=\"0.35em\">{4}</text>",
                                px(x0), px(ay.map(t.value)), kAxisColor, px(x0 - 7), t.label.markup);
         svg += "</g>";
-        if (!plot.x_label.empty())
-            svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" class=\"axis-label\">{}</text>",
-                               px(x0 + panel_width / 2), px(ay.from + 34), escaped(plot.x_label));
-        if (!plot.y_label.empty())
-            svg += fmt::format(
-                "<text transform=\"translate({} {}) rotate(-90)\" text-anchor=\"middle\" class=\"axis-label\">{}</text>",
-                px(x0 - margin_left + 14), px(y0 + panel_height / 2), escaped(plot.y_label));
+        if (!x_label.empty()) svg += axis_label(x_label, x0 + panel_width / 2, ay.from + 34, false);
+        if (!y_label.empty()) svg += axis_label(y_label, x0 - margin_left + 14, y0 + panel_height / 2, true);
     }
 
     // Legends: one colour bar per scale, then the swatch for cells without a value.

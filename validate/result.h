@@ -56,6 +56,11 @@ struct Heatmap {
         Diverging,   ///< about 0: residuals, differences
     };
     ColorScale color_scale = ColorScale::Auto;
+    /// The colour scale reaches at least this far from 0 (both ways when
+    /// diverging), however small the values: with 4 on a map of residuals in
+    /// standard deviations, noise stays pale and a real deviation stands out.
+    /// Larger values still widen the scale. 0: fit the scale to the values.
+    double min_color_limit = 0.0;
 };
 
 struct Plot {

@@ -72,7 +72,7 @@ TEST_F(ReportFiles, HtmlHasTheFigures) {
     EXPECT_EQ(count_of(html, "<linearGradient "), 2u);
     EXPECT_THAT(html, HasSubstr("Observed and expected counts per cell"));
     EXPECT_THAT(html, HasSubstr("no value (e.g. pooled)"));  // NaN residuals are hatched and explained
-    EXPECT_THAT(html, HasSubstr(">cos theta</text>"));       // axes in the domain's coordinates
+    EXPECT_THAT(html, HasSubstr(">cos theta</tspan>"));       // axes in the domain's coordinates
     EXPECT_THAT(html, HasSubstr(">2\xCF\x80</text>"));       // phi ticks in multiples of pi
 }
 

@@ -67,6 +67,7 @@ inline CheckResult sample_chi2_fail(int rows = 16, int cols = 32) {
     Heatmap residual = observed;
     residual.label = "(obs - exp) / sqrt(exp)";
     residual.color_scale = Heatmap::ColorScale::Diverging;
+    residual.min_color_limit = 4.0;
     const double n = 1e6 / (rows * cols);
     for (int i = 0; i < rows; ++i) {
         for (int j = 0; j < cols; ++j) {
@@ -119,7 +120,7 @@ inline CheckResult sample_exhaustive_pass() {
     Plot p;
     p.kind = Plot::Kind::Lines;
     p.title = "Inputs per float, per binade";
-    p.x_label = "binade (exponent)";
+    p.x_label = "binade exponent e ([2^e, 2^(e+1)); -127: denormals; negative side mirrored below)";
     p.y_label = "inputs per float";
     p.log_y = true;
     Series lo{"min", {}, {}}, ideal{"ideal", {}, {}}, hi{"max", {}, {}};

@@ -104,8 +104,16 @@ TEST(SvgPlot, LinePlotHasAxesLegendAndIsWellFormed) {
     EXPECT_THAT(xml_problem(svg), IsEmpty());
     EXPECT_THAT(svg, HasSubstr(">analytic</text>"));
     EXPECT_THAT(svg, HasSubstr(">tabulated</text>"));
-    EXPECT_THAT(svg, HasSubstr(">x</text>"));
+    EXPECT_THAT(svg, HasSubstr(">x</tspan>"));
     EXPECT_THAT(svg, HasSubstr(">10</text>"));  // the y axis ends on a round tick
+}
+
+TEST(SvgPlot, LongAxisLabelsWrapInsideThePlot) {
+    const Plot p = sample_exhaustive_pass().plots[0];
+    const std::string svg = render_svg(p);
+    EXPECT_THAT(xml_problem(svg), IsEmpty());
+    EXPECT_THAT(svg, HasSubstr("<tspan x=\"0\" dy=\"0\">inputs per float</tspan>"));
+    EXPECT_GE(count_of(svg, "dy=\"14\""), 1u) << "the long x label takes two lines";
 }
 
 TEST(SvgPlot, LogAxesLabelDecadesAndDropNonPositiveValues) {
@@ -147,6 +155,19 @@ TEST(SvgPlot, HeatmapsShareScalesAndMarkMissingCells) {
     EXPECT_THAT(svg, HasSubstr(">observed, expected</text>"));
     EXPECT_THAT(svg, HasSubstr("id=\"t0-nan\""));
     EXPECT_THAT(svg, HasSubstr("no value (e.g. pooled)"));
+}
+
+TEST(SvgPlot, MinColorLimitKeepsNoisePale) {
+    Plot p;
+    p.kind = Plot::Kind::Heatmaps;
+    Heatmap noise{"residual", 1, 2, 0, 1, 0, 1, {-0.5, 0.5}};
+    noise.min_color_limit = 4.0;
+    p.heatmaps = {noise};
+    const std::string svg = render_svg(p);
+    EXPECT_THAT(svg, HasSubstr(">\xE2\x88\x92" "4</text>"));  // the legend reaches -4 .. 4
+    EXPECT_THAT(svg, HasSubstr(">4</text>"));
+    p.heatmaps[0].min_color_limit = 0.0;
+    EXPECT_THAT(render_svg(p), Not(HasSubstr(">4</text>")));
 }
 
 TEST(SvgPlot, MalformedHeatmapIsShownNotFatal) {
