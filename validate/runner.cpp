@@ -14,6 +14,8 @@
 
 #include <fmt/format.h>
 
+#include "chi2/multiple_testing.h"
+
 namespace warpcheck {
 
 StreamId job_stream(const WarpCase& warp, const Check& check, uint64_t seed) {
@@ -41,16 +43,10 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
     return jobs;
 }
 
-double sidak_level(double alpha, int tests) {
-    if (tests <= 1) return alpha;
-    // 1 - (1 - alpha)^(1/m), written with log1p/expm1 so tiny levels keep their digits.
-    return -std::expm1(std::log1p(-alpha) / tests);
-}
-
 void apply_multiple_test_correction(RunResult& run, double family_alpha) {
     int tests = 0;
     for (const auto& r : run.results) tests += r.p_value.has_value();
-    const double level = sidak_level(family_alpha, tests);
+    const double level = chi2::sidak_level(family_alpha, tests);
     run.info.family_alpha = family_alpha;
     run.info.statistical_tests = tests;
     run.info.per_test_alpha = level;

@@ -36,11 +36,7 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
 /// from the Šidák-corrected level over all results that carry a p-value.
 RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, const ProgressCallback& progress = {});
 
-/// Per-test level that keeps the family-wise level `alpha` over m independent
-/// tests: 1 - (1 - alpha)^(1/m) (Šidák).
-double sidak_level(double alpha, int tests);
-
-/// Applies the level to every result with a p-value: a p-value below the level,
+/// Applies the Šidák-corrected level (chi2/multiple_testing.h) to every result with a p-value: a p-value below the level,
 /// or NaN, fails.
 void apply_multiple_test_correction(RunResult& run, double family_alpha);
 

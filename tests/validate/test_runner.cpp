@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "chi2/multiple_testing.h"
 #include "sampling/hemisphere.h"
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
@@ -16,13 +17,13 @@ namespace warpcheck {
 namespace {
 
 TEST(Sidak, LevelKeepsTheFamilyWiseRate) {
-    EXPECT_DOUBLE_EQ(sidak_level(0.01, 1), 0.01);
-    const double level = sidak_level(0.01, 100);
+    EXPECT_DOUBLE_EQ(chi2::sidak_level(0.01, 1), 0.01);
+    const double level = chi2::sidak_level(0.01, 100);
     EXPECT_NEAR(1.0 - std::pow(1.0 - level, 100), 0.01, 1e-15);
     EXPECT_GT(level, 0.01 / 100);  // Sidak is slightly less strict than Bonferroni
     EXPECT_LT(level, 0.01 / 99);
     // Tiny levels keep their digits (no cancellation in 1 - (1 - alpha)^(1/m)).
-    EXPECT_NEAR(sidak_level(1e-9, 1000) / 1e-12, 1.0, 1e-6);
+    EXPECT_NEAR(chi2::sidak_level(1e-9, 1000) / 1e-12, 1.0, 1e-6);
 }
 
 TEST(Sidak, NaNAndLowPValuesFail) {
