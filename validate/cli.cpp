@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "reports/outputs.h"
+#include "reports/progress.h"
 #include "reports/terminal_table.h"
 #include "validate/runner.h"
 
@@ -63,15 +64,6 @@ void list_cases(const Registry& registry, const std::vector<Job>& jobs, std::ost
         out << " " << job.check->name();
         if (&job == &jobs.back() || (&job + 1)->warp != current) out << "\n";
     }
-}
-
-std::function<void(std::size_t, std::size_t, const std::string&)> terminal_progress() {
-    if (!isatty(STDERR_FILENO)) return {};
-    return [](std::size_t done, std::size_t total, const std::string& what) {
-        std::cerr << fmt::format("\r\033[K[{}/{}] {}", done, total, what.substr(0, 100));
-        if (done == total) std::cerr << "\r\033[K";
-        std::cerr.flush();
-    };
 }
 
 }  // namespace
@@ -162,7 +154,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         return kExitUsage;
     }
 
-    RunResult run = run_jobs(jobs, o.run, terminal_progress());
+    RunResult run = run_jobs(jobs, o.run, stderr_progress());
     std::ostringstream command;
     for (int i = 0; i < argc; ++i) command << (i ? " " : "") << argv[i];
     run.info.command_line = command.str();
