@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -44,12 +45,27 @@ private:
     bool monotone_;
 };
 
-// A [0,1) sampler of 32 bits with its first-preimage inverse.
+// A case description; members are assigned one by one so that WarpCaseInfo can
+// grow without touching this file.
+WarpCaseInfo case_info(std::string family, std::vector<Parameter> params, std::string description, InputKind input,
+                       chi2::Domain domain) {
+    WarpCaseInfo info;
+    info.family = std::move(family);
+    info.params = std::move(params);
+    info.description = std::move(description);
+    info.input = input;
+    info.domain = domain;
+    return info;
+}
+
+// A [0,1) sampler of 32 bits with its first-preimage inverse. Pass lambdas, not
+// function names: a function pointer would not be inlined into the sweep's
+// vectorised loop.
 template <typename Sample, typename Invert>
 std::unique_ptr<WarpCase> unit_float_32_case(std::string family, std::string description, Sample sample,
                                              Invert invert) {
-    WarpCaseInfo info{std::move(family), {}, std::move(description), InputKind::Bits32,
-                      chi2::Domain::interval(0.0, 1.0)};
+    WarpCaseInfo info = case_info(std::move(family), {}, std::move(description), InputKind::Bits32,
+                                  chi2::Domain::interval(0.0, 1.0));
     info.exact_inverse = true;
     auto inner = make_warp_case(
         info, [sample](uint32_t u) { return sample(u); }, [](float x) { return x >= 0.0f && x < 1.0f ? 1.0f : 0.0f; },
@@ -93,22 +109,26 @@ void register_interval_cases(Registry& registry) {
     // --- [0,1) from 32 bits: exhaustively countable ---------------------------
     registry.add_case(unit_float_32_case(
         "unit_float_mul32", "u * 2^-32 in float, round to nearest; biased, and 1.0 for the 128 largest u",
-        u32_to_unit_float_mul, unit_float_mul_to_u32));
+        [](uint32_t u) { return u32_to_unit_float_mul(u); },
+        [](float x) { return unit_float_mul_to_u32(x); }));
     registry.add_case(unit_float_32_case(
         "unit_float_mul32_clamped", "u * 2^-32 clamped to 0x1.fffffep-1: in [0,1), but that float is hit 383 times",
-        u32_to_unit_float_mul_clamped, unit_float_mul_clamped_to_u32));
+        [](uint32_t u) { return u32_to_unit_float_mul_clamped(u); },
+        [](float x) { return unit_float_mul_clamped_to_u32(x); }));
     registry.add_case(unit_float_32_case("unit_float_24bit",
                                          "(u >> 8) * 2^-24: the 2^-24 grid, each value exactly 256 times",
-                                         u32_to_unit_float_24bit, unit_float_24bit_to_u32));
+                                         [](uint32_t u) { return u32_to_unit_float_24bit(u); },
+        [](float x) { return unit_float_24bit_to_u32(x); }));
     registry.add_case(unit_float_32_case("unit_float_bits",
                                          "23 bits as the significand of [1,2), minus 1: the 2^-23 grid",
-                                         u32_to_unit_float_bits, unit_float_bits_to_u32));
+                                         [](uint32_t u) { return u32_to_unit_float_bits(u); },
+        [](float x) { return unit_float_bits_to_u32(x); }));
 
     // --- [0,1) from 64 bits: every float with its measure ----------------------
     {
-        WarpCaseInfo info{"unit_float_reynolds", {},
+        WarpCaseInfo info = case_info("unit_float_reynolds", {},
                           "leading zeros of 41 bits pick the binade, 23 low bits the significand; exact above 2^-41",
-                          InputKind::Bits64, Domain::interval(0.0, 1.0)};
+                          InputKind::Bits64, Domain::interval(0.0, 1.0));
         info.exact_inverse = true;
         registry.add_case(make_warp_case(
             info, [](uint64_t bits) { return u64_to_unit_float_reynolds(bits); },
@@ -116,9 +136,9 @@ void register_interval_cases(Registry& registry) {
             [](float x) { return unit_float_reynolds_to_u64(x); }));
     }
     {
-        WarpCaseInfo info{"unit_float_walker", {},
+        WarpCaseInfo info = case_info("unit_float_walker", {},
                           "Walker: exponent from leading zeros of as many words as needed, down to the denormals",
-                          InputKind::Bits64, Domain::interval(0.0, 1.0)};
+                          InputKind::Bits64, Domain::interval(0.0, 1.0));
         info.exact_inverse = true;
         registry.add_case(make_warp_case(
             info,
@@ -137,10 +157,10 @@ void register_interval_cases(Registry& registry) {
         {0.0, 1.0}, {-3.0, 5.0}, {0.001, 1000.0}, {0.999, 1.001}, {-1.0, -0.75}, {-1e-30, 1.0}};
     for (const auto& [a, b] : exact_intervals) {
         const UniformFloatInterval sampler(static_cast<float>(a), static_cast<float>(b));
-        WarpCaseInfo info{"uniform_float_interval", {{"a", a}, {"b", b}},
+        WarpCaseInfo info = case_info("uniform_float_interval", {{"a", a}, {"b", b}},
                           fmt::format("every float of {} with probability (next float - x)/(b - a)",
                                       interval_text(a, b, ')')),
-                          InputKind::Bits64, Domain::interval(sampler.a(), sampler.b())};
+                          InputKind::Bits64, Domain::interval(sampler.a(), sampler.b()));
         info.exact_inverse = true;
         registry.add_case(make_warp_case(
             info,
@@ -159,10 +179,10 @@ void register_interval_cases(Registry& registry) {
         for (const auto& [a, b] : lerp_intervals) {
             const LerpInterval lerp(static_cast<float>(a), static_cast<float>(b), form);
             const bool offset = form == LerpInterval::Form::Offset;
-            WarpCaseInfo info{offset ? "lerp_offset" : "lerp_blend", {{"a", a}, {"b", b}},
+            WarpCaseInfo info = case_info(offset ? "lerp_offset" : "lerp_blend", {{"a", a}, {"b", b}},
                               fmt::format("{} over {}; pdf 1/(b - a)", offset ? "a + t (b - a)" : "(1 - t) a + t b",
                                           interval_text(a, b, ')')),
-                              InputKind::Uniform1D, Domain::interval(lerp.a, lerp.b)};
+                              InputKind::Uniform1D, Domain::interval(lerp.a, lerp.b));
             auto inner = make_warp_case(
                 info, [lerp](float t) { return lerp.sample(t); }, [lerp](float x) { return lerp.pdf(x); },
                 [lerp](float x) { return lerp.invert(x); });
