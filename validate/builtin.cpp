@@ -9,6 +9,9 @@ void register_builtin_cases(Registry& registry) {
     register_geometric_cases(registry);
     register_interval_cases(registry);
     register_linear_cases(registry);
+    register_exponential_cases(registry);
+    register_trowbridge_reitz_cases(registry);
+    register_piecewise_constant_cases(registry);
 }
 
 void register_builtin_checks(Registry& registry) {
@@ -18,6 +21,7 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(make_binade_check());
     registry.add_check(make_exhaustive_roundtrip_check());
     registry.add_check(make_chi2_check());
+    registry.add_check(make_tabulated_check());
 }
 
 }  // namespace warpcheck

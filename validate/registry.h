@@ -40,5 +40,8 @@ void register_builtin_checks(Registry& registry);
 void register_geometric_cases(Registry& registry);
 void register_interval_cases(Registry& registry);
 void register_linear_cases(Registry& registry);
+void register_exponential_cases(Registry& registry);
+void register_trowbridge_reitz_cases(Registry& registry);
+void register_piecewise_constant_cases(Registry& registry);
 
 }  // namespace warpcheck

@@ -5,7 +5,9 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <type_traits>
@@ -46,6 +48,26 @@ struct Parameter {
 /// -> "uniform_cone[cos_theta_max=0.3]".
 std::string case_name(const std::string& family, const std::vector<Parameter>& params);
 
+/// A monotone one-dimensional view of a warp, for the "tabulated" check: one
+/// coordinate of the output that depends on one input coordinate only, and
+/// monotonically, with its marginal density. The check tabulates the density
+/// into a PiecewiseConstant1D and compares the warp with the table's inversion
+/// method, sample by sample. A 1D warp on an interval is its own view and needs
+/// none; a 1D warp on a half-line needs one to say where to truncate (`hi`) and
+/// how much probability lies beyond (`tail_mass`, from the case's own CDF).
+struct MonotoneMarginal {
+    int input_coordinate = 0;   ///< which input drives the coordinate: 0 (u.x) or 1 (u.y)
+    bool increasing = true;     ///< whether the coordinate grows with that input
+    double lo = 0.0, hi = 1.0;  ///< range of the coordinate; for a half-line, hi is the truncation point
+    double tail_mass = 0.0;     ///< probability that the coordinate exceeds hi (0 on a bounded range)
+    std::string label;          ///< axis label, e.g. "cos theta"
+    /// The coordinate of an output; empty: x[0]. NaN where the output does not
+    /// determine it (the azimuth at a pole): such samples are skipped and counted.
+    std::function<double(const WarpOutput&)> coordinate;
+    /// Its marginal density on [lo, hi]; empty: the warp's own pdf (1D warps only).
+    std::function<double(double)> pdf;
+};
+
 struct WarpCaseInfo {
     std::string family;               ///< e.g. "uniform_cone"
     std::vector<Parameter> params;    ///< concrete values, in display order
@@ -61,6 +83,8 @@ struct WarpCaseInfo {
     bool exact_inverse = false;
     /// Cells of the chi-square test; zero fields take the domain's defaults (chi2/binning.h).
     chi2::BinResolution chi2_resolution{};
+    /// The case's monotone 1D view for the tabulated check, where it has one.
+    std::optional<MonotoneMarginal> marginal{};
 };
 
 class WarpCase {
