@@ -173,28 +173,39 @@ void to_keys(const float* x, std::size_t n, uint32_t* keys) {
     }
 }
 
-// Run borders of a block: bit j of masks[i] is set when the bits of x[16 i + j]
-// differ from those of the value before it (x[-1] must be readable). Equal keys
-// with different bits (-0 and +0, NaNs) are merged by the caller. n is a
-// multiple of 16.
-void borders_portable(const float* x, std::size_t n, uint16_t* masks) {
-    for (std::size_t i = 0; i < n; i += 16) {
-        uint32_t m = 0;
-        for (std::size_t j = 0; j < 16; ++j)
-            m |= static_cast<uint32_t>(float_to_bits(x[i + j]) != float_to_bits(x[i + j - 1])) << j;
-        masks[i / 16] = static_cast<uint16_t>(m);
+// Run borders of a block: writes the positions j in [0, n) where the bits of
+// x[j] differ from those of x[j - 1] (x[-1] must be readable), in increasing
+// order, and returns how many. positions needs n + 16 entries. Equal keys with
+// different bits (-0 and +0, NaNs) are merged by the caller. n is a multiple
+// of 16. One list per block, so the caller's loop over runs has no branch per
+// 16 values.
+std::size_t borders_portable(const float* x, std::size_t n, uint32_t* positions) {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        positions[count] = static_cast<uint32_t>(i);
+        count += float_to_bits(x[i]) != float_to_bits(x[i - 1]);
     }
+    return count;
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target("avx512f"))) void borders_avx512(const float* x, std::size_t n, uint16_t* masks) {
+__attribute__((target("avx512f"))) std::size_t borders_avx512(const float* x, std::size_t n, uint32_t* positions) {
     __m512i previous = _mm512_set1_epi32(static_cast<int>(float_to_bits(x[-1])));
+    __m512i index = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m512i sixteen = _mm512_set1_epi32(16);
+    std::size_t count = 0;
     for (std::size_t i = 0; i < n; i += 16) {
         const __m512i v = _mm512_loadu_si512(x + i);
         const __m512i before = _mm512_maskz_alignr_epi32(0xffff, v, previous, 15);  // [previous[15], v[0..14]]
-        masks[i / 16] = static_cast<uint16_t>(_mm512_cmpneq_epu32_mask(v, before));
+        const __mmask16 m = _mm512_cmpneq_epu32_mask(v, before);
+        // Compress in a register and store all 16 lanes: the store form of
+        // vpcompressd is slow on some cores.
+        _mm512_storeu_si512(positions + count, _mm512_maskz_compress_epi32(m, index));
+        count += static_cast<std::size_t>(std::popcount(static_cast<unsigned>(m)));
+        index = _mm512_add_epi32(index, sixteen);
         previous = v;
     }
+    return count;
 }
 bool have_avx512() {
     __builtin_cpu_init();
@@ -202,12 +213,12 @@ bool have_avx512() {
 }
 #endif
 
-void borders(const float* x, std::size_t n, uint16_t* masks) {
+std::size_t borders(const float* x, std::size_t n, uint32_t* positions) {
 #if defined(__x86_64__) && defined(__GNUC__)
     static const bool avx512 = have_avx512();
-    if (avx512) return borders_avx512(x, n, masks);
+    if (avx512) return borders_avx512(x, n, positions);
 #endif
-    borders_portable(x, n, masks);
+    return borders_portable(x, n, positions);
 }
 
 // Counts the runs of one chunk. The running binade's counters live in locals
@@ -221,7 +232,7 @@ public:
     ChunkEnds scan(const FloatBlockFn& f, uint64_t first, uint64_t n) {
         // values[0] holds the last value of the previous block.
         std::vector<float> buffer(kBlockSize + 16 + 1);
-        std::vector<uint16_t> masks(kBlockSize / 16 + 1);
+        std::vector<uint32_t> positions(kBlockSize + 32);
         float* values = buffer.data() + 1;
         ChunkEnds ends;
         uint32_t run_key = 0;
@@ -235,24 +246,22 @@ public:
                 values[-1] = values[0];
                 run_key = float_key(values[0]);
             }
-            borders(values, padded, masks.data());
-            for (std::size_t w = 0; w < padded / 16; ++w) {
-                for (uint32_t m = masks[w]; m != 0; m &= m - 1) {
-                    const std::size_t j = w * 16 + static_cast<std::size_t>(std::countr_zero(m));
-                    const uint32_t key = float_key(values[j]);
-                    if (key == run_key) continue;  // -0 after +0, or another NaN
-                    const uint64_t at = done + j;
-                    const uint64_t count = at - run_start;
-                    if (!have_head_) {
-                        ends.head = Run{run_key, count};
-                        have_head_ = true;
-                    } else {
-                        add(run_key, count);
-                    }
-                    ends.steps_down += key < run_key;
-                    run_key = key;
-                    run_start = at;
+            const std::size_t borders_here = borders(values, padded, positions.data());
+            for (std::size_t k = 0; k < borders_here; ++k) {
+                const std::size_t j = positions[k];
+                const uint32_t key = float_key(values[j]);
+                if (key == run_key) continue;  // -0 after +0, or another NaN
+                const uint64_t at = done + j;
+                const uint64_t count = at - run_start;
+                if (!have_head_) {
+                    ends.head = Run{run_key, count};
+                    have_head_ = true;
+                } else {
+                    add(run_key, count);
                 }
+                ends.steps_down += key < run_key;
+                run_key = key;
+                run_start = at;
             }
             values[-1] = values[len - 1];
             done += len;
@@ -269,18 +278,16 @@ public:
 private:
     void add(uint32_t key, uint64_t m) {
         if (key - fast_lo_ < fast_size_) {
-            ++c_.distinct;
-            c_.inputs += m;
-            const bool odd = ((key ^ parity_flip_) & 1u) != 0;
-            uint64_t& mn = odd ? c_.min_odd : c_.min_even;
-            uint64_t& mx = odd ? c_.max_odd : c_.max_even;
-            mn = m < mn ? m : mn;
-            mx = m > mx ? m : mx;
-            const bool ge = m >= ceiling_;
-            c_.n_ge += ge;
-            c_.s_ge += ge ? m : 0;
-            c_.n_lt += !ge;
-            c_.s_lt += ge ? 0 : m;
+            // Branch-free: parities and the side of the ideal alternate run by run.
+            ++distinct_;
+            inputs_ += m;
+            const uint32_t odd = (key ^ parity_flip_) & 1u;
+            min_[odd] = std::min(min_[odd], m);
+            max_[odd] = std::max(max_[odd], m);
+            const uint64_t ge = m >= ceiling_ ? 1 : 0;
+            n_ge_ += ge;
+            s_ge_ += m & (0 - ge);
+            s_all_ += m;
             return;
         }
         slow_add(key, m);
@@ -305,14 +312,30 @@ private:
 
     void flush() {
         if (group_ < 0) return;
-        out_.group_inputs_all[static_cast<std::size_t>(group_)] += c_.inputs;
-        out_.groups[static_cast<std::size_t>(group_)].merge(c_);
-        c_ = GroupCounts{};
+        GroupCounts c;
+        c.distinct = distinct_;
+        c.inputs = inputs_;
+        c.min_even = min_[0];
+        c.max_even = max_[0];
+        c.min_odd = min_[1];
+        c.max_odd = max_[1];
+        c.n_ge = n_ge_;
+        c.s_ge = s_ge_;
+        c.n_lt = distinct_ - n_ge_;
+        c.s_lt = s_all_ - s_ge_;
+        out_.group_inputs_all[static_cast<std::size_t>(group_)] += inputs_;
+        out_.groups[static_cast<std::size_t>(group_)].merge(c);
+        distinct_ = inputs_ = n_ge_ = s_ge_ = s_all_ = 0;
+        min_[0] = min_[1] = std::numeric_limits<uint64_t>::max();
+        max_[0] = max_[1] = 0;
     }
 
     const SweepFrame& frame_;
     RunCounter& out_;
-    GroupCounts c_;
+    // The running binade's counters (see GroupCounts); [0] even, [1] odd.
+    uint64_t distinct_ = 0, inputs_ = 0, n_ge_ = 0, s_ge_ = 0, s_all_ = 0;
+    uint64_t min_[2] = {std::numeric_limits<uint64_t>::max(), std::numeric_limits<uint64_t>::max()};
+    uint64_t max_[2] = {0, 0};
     int group_ = -1;
     uint32_t fast_lo_ = 0, fast_size_ = 0, parity_flip_ = 0;
     uint64_t ceiling_ = 0;

@@ -121,17 +121,20 @@ template <typename F>
 __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw"))) void u32_block_avx512(const F& f, uint64_t first,
                                                                                       std::size_t n, float* out) {
     const auto base = static_cast<uint32_t>(first);
-    for (std::size_t i = 0; i < n; ++i) out[i] = f(base + static_cast<uint32_t>(i));
+    const auto count = static_cast<uint32_t>(n);  // a 32-bit counter keeps the vector loop in 32-bit lanes
+    for (uint32_t i = 0; i < count; ++i) out[i] = f(base + i);
 }
 template <typename F>
 __attribute__((target("avx2"))) void u32_block_avx2(const F& f, uint64_t first, std::size_t n, float* out) {
     const auto base = static_cast<uint32_t>(first);
-    for (std::size_t i = 0; i < n; ++i) out[i] = f(base + static_cast<uint32_t>(i));
+    const auto count = static_cast<uint32_t>(n);  // a 32-bit counter keeps the vector loop in 32-bit lanes
+    for (uint32_t i = 0; i < count; ++i) out[i] = f(base + i);
 }
 template <typename F>
 void u32_block_baseline(const F& f, uint64_t first, std::size_t n, float* out) {
     const auto base = static_cast<uint32_t>(first);
-    for (std::size_t i = 0; i < n; ++i) out[i] = f(base + static_cast<uint32_t>(i));
+    const auto count = static_cast<uint32_t>(n);  // a 32-bit counter keeps the vector loop in 32-bit lanes
+    for (uint32_t i = 0; i < count; ++i) out[i] = f(base + i);
 }
 
 }  // namespace detail
