@@ -39,6 +39,10 @@ void register_builtin_checks(Registry& registry);
 
 void register_geometric_cases(Registry& registry);
 void register_interval_cases(Registry& registry);
+/// Renderer idioms that fail by the rules (u * 2^-32 reaching 1.0, lerps that
+/// reach b or step down). Not built in: every default check of every built-in
+/// case passes. Tests, and anyone who wants the evidence, add them.
+void register_flawed_interval_cases(Registry& registry);
 void register_linear_cases(Registry& registry);
 void register_exponential_cases(Registry& registry);
 void register_trowbridge_reitz_cases(Registry& registry);

@@ -237,6 +237,7 @@ const WarpCase& builtin_case(const std::string& name) {
     static const Registry registry = [] {
         Registry r;
         register_interval_cases(r);
+        register_flawed_interval_cases(r);
         return r;
     }();
     const WarpCase* c = registry.find_case(name);

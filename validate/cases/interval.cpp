@@ -1,6 +1,10 @@
 // Interval warps: floats in [0,1) from 32 or 64 random bits, lerps over [a,b),
 // and the exact sampler of every float of [a,b). The 32-bit samplers and the
 // lerps can be swept exhaustively (validate/exhaustive_sweep.h).
+// Built in: the samplers that pass by the rules (the biased-but-in-range ones
+// with their bias figures). register_flawed_interval_cases adds the idioms that
+// fail (u * 2^-32 reaching 1.0, lerps reaching b), kept out of the built-in
+// suite, whose every default check passes.
 #include <cmath>
 #include <memory>
 #include <string>
@@ -101,16 +105,31 @@ private:
 
 std::string interval_text(double a, double b, char close) { return fmt::format("[{}, {}{}", a, b, close); }
 
+// A lerp over [a,b) on the t grid the runner draws (t = k 2^-24), sweepable.
+std::unique_ptr<WarpCase> lerp_case(LerpInterval::Form form, double a, double b) {
+    const LerpInterval lerp(static_cast<float>(a), static_cast<float>(b), form);
+    const bool offset = form == LerpInterval::Form::Offset;
+    WarpCaseInfo info = case_info(offset ? "lerp_offset" : "lerp_blend", {{"a", a}, {"b", b}},
+                                  fmt::format("{} over {}; pdf 1/(b - a)", offset ? "a + t (b - a)" : "(1 - t) a + t b",
+                                              interval_text(a, b, ')')),
+                                  InputKind::Uniform1D, chi2::Domain::interval(lerp.a, lerp.b));
+    auto inner = make_warp_case(
+        info, [lerp](float t) { return lerp.sample(t); }, [lerp](float x) { return lerp.pdf(x); },
+        [lerp](float x) { return lerp.invert(x); });
+    FloatBlockFn fn = [lerp](uint64_t first, std::size_t n, float* out) {
+        for (std::size_t i = 0; i < n; ++i) out[i] = lerp.sample(static_cast<float>(first + i) * 0x1p-24f);  // exact
+    };
+    // Only the offset form claims monotonicity; the blend's steps down are reported.
+    return std::make_unique<SweepableWarpCase>(std::move(inner), std::move(fn), uint64_t{1} << 24,
+                                               "t = k 2^-24 for every k < 2^24", offset);
+}
+
 }  // namespace
 
 void register_interval_cases(Registry& registry) {
     using chi2::Domain;
 
     // --- [0,1) from 32 bits: exhaustively countable ---------------------------
-    registry.add_case(unit_float_32_case(
-        "unit_float_mul32", "u * 2^-32 in float, round to nearest; biased, and 1.0 for the 128 largest u",
-        [](uint32_t u) { return u32_to_unit_float_mul(u); },
-        [](float x) { return unit_float_mul_to_u32(x); }));
     registry.add_case(unit_float_32_case(
         "unit_float_mul32_clamped", "u * 2^-32 clamped to 0x1.fffffep-1: in [0,1), but that float is hit 383 times",
         [](uint32_t u) { return u32_to_unit_float_mul_clamped(u); },
@@ -171,29 +190,20 @@ void register_interval_cases(Registry& registry) {
             [sampler](float x) { return sampler.pdf(x); }, [sampler](float x) { return sampler.first_word(x); }));
     }
 
-    // --- lerps over [a,b) on the t grid the runner draws (k 2^-24) ------------
-    // Chosen to show the failures: [1,3) and [100,101) reach b, the blend steps
-    // down on [1,3) and [0.2,0.3); [-3,5) shows the coarse grid near 0.
-    const std::pair<double, double> lerp_intervals[] = {{1.0, 3.0}, {100.0, 101.0}, {0.2, 0.3}, {-3.0, 5.0}};
-    for (const auto form : {LerpInterval::Form::Offset, LerpInterval::Form::Blend}) {
-        for (const auto& [a, b] : lerp_intervals) {
-            const LerpInterval lerp(static_cast<float>(a), static_cast<float>(b), form);
-            const bool offset = form == LerpInterval::Form::Offset;
-            WarpCaseInfo info = case_info(offset ? "lerp_offset" : "lerp_blend", {{"a", a}, {"b", b}},
-                              fmt::format("{} over {}; pdf 1/(b - a)", offset ? "a + t (b - a)" : "(1 - t) a + t b",
-                                          interval_text(a, b, ')')),
-                              InputKind::Uniform1D, Domain::interval(lerp.a, lerp.b));
-            auto inner = make_warp_case(
-                info, [lerp](float t) { return lerp.sample(t); }, [lerp](float x) { return lerp.pdf(x); },
-                [lerp](float x) { return lerp.invert(x); });
-            FloatBlockFn fn = [lerp](uint64_t first, std::size_t n, float* out) {
-                for (std::size_t i = 0; i < n; ++i)
-                    out[i] = lerp.sample(static_cast<float>(first + i) * 0x1p-24f);  // exact: k < 2^24
-            };
-            registry.add_case(std::make_unique<SweepableWarpCase>(std::move(inner), std::move(fn), uint64_t{1} << 24,
-                                                                  "t = k 2^-24 for every k < 2^24", offset));
-        }
-    }
+    // Lerps that pass by the rules: monotone on the t grid, b never reached.
+    for (const auto form : {LerpInterval::Form::Offset, LerpInterval::Form::Blend})
+        registry.add_case(lerp_case(form, -3.0, 5.0));
+}
+
+void register_flawed_interval_cases(Registry& registry) {
+    registry.add_case(unit_float_32_case(
+        "unit_float_mul32", "u * 2^-32 in float, round to nearest; biased, and 1.0 for the 128 largest u",
+        [](uint32_t u) { return u32_to_unit_float_mul(u); }, [](float x) { return unit_float_mul_to_u32(x); }));
+    // a + t (b - a) reaches b on all three (1, 64 and 3 values of t); the blend
+    // steps down on all three and reaches b on the last two.
+    const std::pair<double, double> intervals[] = {{1.0, 3.0}, {100.0, 101.0}, {0.2, 0.3}};
+    for (const auto form : {LerpInterval::Form::Offset, LerpInterval::Form::Blend})
+        for (const auto& [a, b] : intervals) registry.add_case(lerp_case(form, a, b));
 }
 
 }  // namespace warpcheck
