@@ -160,6 +160,20 @@ TEST(UnitFloat64, WalkerUsesOneWordAndInvertsIt) {
     EXPECT_EQ(unit_float_walker_to_u64(0.75f), uint64_t{3} << 62);
 }
 
+TEST(UnitFloat64, RandomSourcesOf32BitsAreCalledTwicePerWord) {
+    Pcg32 a(2, 3), b(2, 3);
+    int calls = 0;
+    auto u32 = [&a, &calls]() -> uint32_t {
+        ++calls;
+        return a.next_u32();
+    };
+    auto u64 = [&b]() -> uint64_t { return b.next_u64(); };  // high half first, as the 32-bit pairs
+    for (int i = 0; i < 1000; ++i) ASSERT_EQ(unit_float_walker(u32), unit_float_walker(u64));
+    EXPECT_EQ(calls, 2000);
+    const UniformFloatInterval interval(-3.0f, 5.0f);
+    for (int i = 0; i < 1000; ++i) ASSERT_EQ(interval.sample(u32), interval.sample(u64));
+}
+
 TEST(UnitFloat64, WalkerBinadeMassesAreHalves) {
     CountingRng rng;
     constexpr int n = 1 << 20;
