@@ -92,7 +92,7 @@ public:
                      {"non_monotone_steps", static_cast<double>(s.non_monotone_steps)},
                      {"tv_distance", s.tv_distance},
                      {"max_relative_deviation", max_rel}};
-        if (!std::isnan(b)) r.figures.push_back({"inputs_to_b", static_cast<double>(s.outside_inputs_of(b))});
+        r.figures.push_back({"inputs_to_b", static_cast<double>(s.outside_inputs_of(b))});
         // The top binades' extremes as figures; all of them in the table and plot.
         const std::size_t shown = std::min<std::size_t>(s.binades.size(), 8);
         for (std::size_t k = s.binades.size() - shown; k < s.binades.size(); ++k) {
@@ -133,7 +133,7 @@ public:
         Plot p;
         p.kind = Plot::Kind::Lines;
         p.title = "Multiplicity per binade (" + grid + ")";
-        p.x_label = "binade exponent e ([2^e, 2^(e+1)); -127: denormals; negative side mirrored below)";
+        p.x_label = "binade exponent e: [2^e, 2^(e+1)), -127 the denormals (positive side; the table has both)";
         p.y_label = "inputs per float";
         p.log_y = true;
         Series mn{"min", {}, {}}, ideal{"ideal", {}, {}}, mx{"max", {}, {}};
