@@ -26,6 +26,7 @@ struct RunOptions {
     unsigned threads = 0;          ///< 0: all hardware threads
     double alpha = 0.01;           ///< family-wise significance level (Šidák-corrected per test)
     bool exhaustive = false;       ///< run the heavy optional sweeps too
+    bool include_flawed = false;   ///< also run the cases marked as known flaws (they are expected to fail)
     /// Seconds one check may take before it is reported as an error and
     /// abandoned (a sampler that never terminates must not hang the run).
     double check_time_budget = 60.0;

@@ -59,7 +59,10 @@ void list_cases(const Registry& registry, const std::vector<Job>& jobs, std::ost
     for (const Job& job : jobs) {
         if (job.warp != current) {
             current = job.warp;
-            out << fmt::format("  {}\n      {}\n      checks:", current->name(), current->info().description);
+            const std::string flaw = registry.known_flaw(*current);
+            out << fmt::format("  {}\n      {}\n", current->name(), current->info().description);
+            if (!flaw.empty()) out << fmt::format("      known flaw (runs with --include-flawed): {}\n", flaw);
+            out << "      checks:";
         }
         out << " " << job.check->name();
         if (&job == &jobs.back() || (&job + 1)->warp != current) out << "\n";
@@ -92,6 +95,8 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         ->check(CLI::Range(1e-12, 0.5))
         ->capture_default_str();
     app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
+    app.add_flag("--include-flawed", o.run.include_flawed,
+                 "Also run the cases that demonstrate known flaws (e.g. u * 2^-32 reaching 1.0); they fail");
     app.add_option("--report", o.report_path, "Write a self-contained HTML report")->type_name("FILE");
     app.add_option("--json", o.json_path, "Write the results as JSON")->type_name("FILE");
     app.add_option("--junit", o.junit_path, "Write the results as JUnit XML")->type_name("FILE");
@@ -144,11 +149,13 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         }
     }
 
-    const std::vector<Job> jobs = select_jobs(registry, o.filters, o.checks, o.run);
     if (o.list) {
-        list_cases(registry, jobs, std::cout);
+        RunOptions everything = o.run;  // list the known-flawed cases too, marked
+        everything.include_flawed = true;
+        list_cases(registry, select_jobs(registry, o.filters, o.checks, everything), std::cout);
         return kExitPass;
     }
+    const std::vector<Job> jobs = select_jobs(registry, o.filters, o.checks, o.run);
     if (jobs.empty()) {
         std::cerr << "validate: the selected checks apply to none of the selected cases\n";
         return kExitUsage;

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
     try {
         warpcheck::register_builtin_cases(registry);
         warpcheck::register_builtin_checks(registry);
+        warpcheck::register_flawed_interval_cases(registry);
     } catch (const std::exception& e) {
         std::cerr << "validate: could not register the built-in warps: " << e.what() << "\n";
         return warpcheck::kExitUsage;

@@ -22,6 +22,17 @@ const WarpCase* Registry::find_case(std::string_view name) const {
     return nullptr;
 }
 
+void Registry::mark_known_flaw(const std::string& case_name, std::string flaw) {
+    if (!find_case(case_name)) throw std::invalid_argument("registry: no case " + case_name + " to mark as flawed");
+    flaws_.emplace_back(case_name, std::move(flaw));
+}
+
+std::string Registry::known_flaw(const WarpCase& warp) const {
+    for (const auto& [name, flaw] : flaws_)
+        if (name == warp.name()) return flaw;
+    return {};
+}
+
 const Check* Registry::find_check(std::string_view name) const {
     for (const auto& c : checks_)
         if (c->name() == name) return c.get();

@@ -26,13 +26,15 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
                              const std::vector<std::string>& check_names, const RunOptions& options) {
     std::vector<Job> jobs;
     for (const auto& warp : registry.cases()) {
-        bool selected = case_patterns.empty();
+        bool selected = case_patterns.empty(), named = false;
         for (const auto& pattern : case_patterns) {
             // A pattern that is a case's full name selects only that case.
+            named = named || warp->name() == pattern;
             selected = selected || (registry.find_case(pattern) ? warp->name() == pattern
                                                                 : name_matches(warp->name(), pattern));
         }
         if (!selected) continue;
+        if (!registry.known_flaw(*warp).empty() && !options.include_flawed && !named) continue;
         for (const auto& check : registry.checks()) {
             const bool wanted = check_names.empty() ? check->runs_by_default(options)
                                                     : std::find(check_names.begin(), check_names.end(),

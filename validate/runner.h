@@ -27,7 +27,8 @@ StreamId job_stream(const WarpCase& warp, const Check& check, uint64_t seed);
 
 /// The jobs of a selection, in registry order (case by case, then check by check).
 /// Empty `case_patterns` selects every case; empty `check_names` every check that
-/// runs by default.
+/// runs by default. Cases marked as known flaws are left out unless
+/// options.include_flawed is set or a pattern is the case's full name.
 std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::string>& case_patterns,
                              const std::vector<std::string>& check_names, const RunOptions& options);
 

@@ -23,6 +23,20 @@ TEST(Cli, ExactCaseNameSelectsOneCase) {
     EXPECT_NE(r.output.find("1 checks: 1 passed"), std::string::npos) << r.output;
 }
 
+// Cases that demonstrate a known flaw stay out of --all, run when asked for,
+// and then fail with their numbers.
+TEST(Cli, KnownFlawsRunOnlyWhenAskedFor) {
+    const auto plain = run_validate("--filter unit_float_mul --check exhaustive");
+    EXPECT_EQ(plain.status, 0) << plain.output;
+    EXPECT_EQ(plain.output.find("unit_float_mul32 "), std::string::npos) << plain.output;
+    const auto named = run_validate("--filter unit_float_mul32 --check exhaustive");
+    EXPECT_EQ(named.status, 1) << named.output;
+    EXPECT_NE(named.output.find("83886081 distinct, 128 inputs -> 1"), std::string::npos) << named.output;
+    const auto flawed = run_validate("--filter lerp_offset --include-flawed --check exhaustive");
+    EXPECT_EQ(flawed.status, 1) << flawed.output;
+    EXPECT_NE(flawed.output.find("64 inputs -> 101"), std::string::npos) << flawed.output;
+}
+
 TEST(Cli, ListShowsCasesAndChecks) {
     const auto r = run_validate("--list");
     EXPECT_EQ(r.status, 0);
