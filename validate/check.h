@@ -96,6 +96,9 @@ public:
         (void)options;
         return true;
     }
+    /// Whether the result is the same for every seed (it enumerates instead of
+    /// drawing random inputs): such checks cannot give a false positive by chance.
+    virtual bool uses_seed() const { return true; }
     /// Runs the check. The runner fills in the names, stream, timing and rerun
     /// command, and turns an exception into an Error verdict.
     virtual CheckResult run(const WarpCase& warp, const CheckContext& ctx) const = 0;

@@ -49,6 +49,7 @@ std::string binade_label(const BinadeCount& b) {
 class ExhaustiveCheck final : public Check {
 public:
     std::string name() const override { return "exhaustive"; }
+    bool uses_seed() const override { return false; }  // every input, no random stream
     std::string description() const override {
         return "every input of a float sampler (all 2^32 for 32 bits; t = k 2^-24 for lerps), exact counts per "
                "output float against the uniform measure";

@@ -42,6 +42,7 @@ struct ChunkStats {
 class ExhaustiveRoundtripCheck final : public Check {
 public:
     std::string name() const override { return "exhaustive_roundtrip"; }
+    bool uses_seed() const override { return false; }  // every input, no random stream
     std::string description() const override {
         return "1D warps, every float u of [0,1): invert(sample(u)) vs u, monotone sample, finite positive pdf "
                "(--exhaustive)";
