@@ -10,7 +10,16 @@
 //     log1prel(y) = log1p(y) / y    (-> 1 as y -> 0)
 // which are well conditioned everywhere they are used, so the rate may go to 0
 // (the trimmed exponential becomes uniform) and u may be as small as a denormal.
-// Measured accuracy: see tests/sampling/test_exponential.cpp (AccuracyNearZero).
+//
+// Measured accuracy of sample(u) against a long double reference, in float ulps
+// of the result (denormal results: in units of 2^-149); tests/sampling/
+// test_exponential.cpp, *AccuracyNearZero, WARPCHECK_FULL_SWEEP=1 for every float:
+//   Exponential, every float u in [0, 2^-20] (897,581,056 inputs) and in [2^-20, 1):
+//     a = 0.1: 1.12 / 1.31 ulp;  a = 1: 0.50 / 0.83 ulp;  a = 10: 1.20 / 1.52 ulp.
+//     (-log(1 - u)/a returns 0 for every u below 2^-25: 80% of the floats in [0,1).)
+//   TrimmedExponential (x_max = 1), every float u in [0, 2^-20] and in [2^-20, 1):
+//     c = 1e-6: 0.86 / 2.37 ulp;  c = 1: 1.93 / 3.44 ulp;  c = 100: 2.28 / 3.03 ulp;
+//     c = 1e-30: exact (the product reduces to u x_max).
 #pragma once
 
 #include <algorithm>
