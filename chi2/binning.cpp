@@ -110,6 +110,17 @@ Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domai
     if (dims_ == 1 && resolution_.second > 1) throw std::invalid_argument("1D domains take one resolution value");
     if (cell_count() > (std::size_t{1} << 26)) throw std::invalid_argument("bin resolution too large");
     du_ = (bounds_.u1 - bounds_.u0) / cols_;
+    if (domain_.kind == DomainKind::Interval) {
+        interval_edges_.resize(static_cast<std::size_t>(cols_) + 1);
+        interval_edges_.front() = bounds_.u0;
+        interval_edges_.back() = bounds_.u1;
+        for (int j = 1; j < cols_; ++j) {
+            const double e = bounds_.u0 + (bounds_.u1 - bounds_.u0) * j / cols_;
+            float f = static_cast<float>(e);
+            if (static_cast<double>(f) < e) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+            interval_edges_[static_cast<std::size_t>(j)] = static_cast<double>(f);
+        }
+    }
     dv_ = (bounds_.v1 - bounds_.v0) / rows_;
     if (has_phi(domain_.kind) && cols_ % 8 == 0) {
         octant_cols_ = cols_ / 8;
@@ -148,9 +159,21 @@ Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domai
     return q + mirrored * (2 * quadrant_cols - 1 - 2 * q) + sy * 2 * quadrant_cols;
 }
 
+int Binning::interval_column(double x) const {
+    // The uniform guess is off by at most one cell near an edge; the snapped
+    // edges decide.
+    int col = clamp_index((x - bounds_.u0) * (1.0 / du_), cols_);
+    while (col > 0 && x < interval_edges_[static_cast<std::size_t>(col)]) --col;
+    while (col + 1 < cols_ && x >= interval_edges_[static_cast<std::size_t>(col) + 1]) ++col;
+    return col;
+}
+
 ParamRect Binning::cell_rect(std::size_t cell) const {
     const auto col = static_cast<int>(cell % static_cast<std::size_t>(cols_));
     const auto row = static_cast<int>(cell / static_cast<std::size_t>(cols_));
+    if (!interval_edges_.empty())
+        return {interval_edges_[static_cast<std::size_t>(col)], interval_edges_[static_cast<std::size_t>(col) + 1],
+                0.0, 1.0};
     // Edges from the index (not by accumulation), and exact at the domain's ends.
     auto edge = [](double lo, double hi, int i, int n) { return i == n ? hi : lo + (hi - lo) * i / n; };
     return {edge(bounds_.u0, bounds_.u1, col, cols_), edge(bounds_.u0, bounds_.u1, col + 1, cols_),
@@ -219,7 +242,7 @@ std::size_t Binning::cell_at_parameters(double u, double v) const {
         if (u < 0.0) u += kTwoPi;
     }
     // The same arithmetic as bin_impl, so both put a point in the same cell.
-    const int col = clamp_index((u - bounds_.u0) * (1.0 / du_), cols_);
+    const int col = !interval_edges_.empty() ? interval_column(u) : clamp_index((u - bounds_.u0) * (1.0 / du_), cols_);
     const int row = clamp_index((v - bounds_.v0) * (1.0 / dv_), rows_);
     return static_cast<std::size_t>(row) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(col);
 }
@@ -301,7 +324,7 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
                 const double x = p[0];
                 if (x != x) { ++hist.nan; continue; }
                 if (!(x >= lo && x <= hi)) { ++hist.outside; continue; }
-                add(static_cast<std::size_t>(clamp_index((x - bounds_.u0) * inv_du, cols_)), x, 0.5);
+                add(static_cast<std::size_t>(interval_column(x)), x, 0.5);
             }
             break;
         }

@@ -127,6 +127,14 @@ private:
     std::vector<int> edge_lookup_;     // edges <= m / lookup_scale_, for m = 0..lookup_scale_
     double lookup_scale_ = 0.0;
     int phi_column_by_table(double x, double y) const;
+    // Interval cells: interior edges rounded up to the next float. Samples are
+    // floats, and a float x satisfies x >= e exactly when x >= (e rounded up to a
+    // float), so the cells hold the same samples while their expected counts are
+    // integrated over the span that those samples actually cover. This makes the
+    // test exact for samplers whose outputs are discrete at the cell scale (every
+    // float of a narrow interval, drawn with the probability of its spacing).
+    std::vector<double> interval_edges_;
+    int interval_column(double x) const;
 };
 
 /// atan2(y, x) mapped to [0, 2 pi), within 3e-8 of the exact value: the

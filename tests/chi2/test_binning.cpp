@@ -231,5 +231,23 @@ TEST(FastPhi, WithinThreeTimesTenToTheMinusEightOfAtan2) {
     EXPECT_NEAR(fast_phi(-1.0, 0.0), std::numbers::pi, 3e-8);
 }
 
+// Interval cells hold exactly the floats between their float-rounded edges, so a
+// narrow interval (about 100 floats per cell) gets exact expected counts.
+TEST(IntervalBinning, EdgesAreFloatsAndSplitTheFloatsExactly) {
+    const Binning bins(Domain::interval(0.999, 1.001));
+    for (std::size_t c = 1; c < bins.cell_count(); ++c) {
+        const double edge = bins.cell_rect(c).u0;
+        ASSERT_EQ(edge, static_cast<double>(static_cast<float>(edge))) << "edge " << c << " is not a float";
+        ASSERT_EQ(edge, bins.cell_rect(c - 1).u1);
+    }
+    // Every float of the interval lands in the cell whose [u0, u1) holds it.
+    for (float x = 0.999f; x < 1.001f; x = std::nextafter(x, 2.0f)) {
+        const std::ptrdiff_t cell = bins.cell_of({x, 0, 0});
+        ASSERT_GE(cell, 0);
+        const ParamRect r = bins.cell_rect(static_cast<std::size_t>(cell));
+        ASSERT_TRUE(x >= r.u0 && (x < r.u1 || static_cast<std::size_t>(cell) + 1 == bins.cell_count())) << x;
+    }
+}
+
 }  // namespace
 }  // namespace warpcheck::chi2

@@ -241,10 +241,15 @@ TEST(Chi2Outcome, PerCellDataForPlots) {
     const Chi2Outcome o = run(Domain::interval(0, 1), [](Pcg32& r) { return SamplePoint{r.next_float(), 0, 0}; },
                               pointwise([](const DomainPoint&) { return 1.0; }), 100'000);
     ASSERT_EQ(o.expected.size(), 200u);
+    const Binning bins(Domain::interval(0, 1));
     for (std::size_t c = 0; c < 200; ++c) {
-        EXPECT_NEAR(o.expected[c], 500.0, 1e-9);
+        // Cells are 1/200 wide, with interior edges rounded up to floats (at most
+        // 2^-24 away): expected = N * cell width.
+        const double expected = 100'000 * bins.cell_measure(c);
+        EXPECT_NEAR(expected, 500.0, 100'000 * 0x1p-23);
+        EXPECT_NEAR(o.expected[c], expected, 1e-9);
         const double obs = static_cast<double>(o.histogram.counts[c]);
-        EXPECT_NEAR(o.residual[c], (obs - 500.0) / std::sqrt(500.0), 1e-9);
+        EXPECT_NEAR(o.residual[c], (obs - expected) / std::sqrt(expected), 1e-9);
     }
 }
 
