@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
     using namespace warpcheck;
     CLI::App app{"Measures the false-positive rate of warpcheck's default suite over many seeds", "warpcheck_fpr"};
     RunOptions options;
-    options.samples = 200'000;
+    options.samples = RunOptions{}.samples;  // the default suite: the same samples as validate
     options.alpha = 0.2;
     int runs = 100;
     uint64_t first_seed = 1000;
