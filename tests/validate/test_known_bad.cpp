@@ -15,6 +15,8 @@
 #include "sampling/hemisphere.h"
 #include "sampling/linear.h"
 #include "sampling/sphere.h"
+#include "sampling/unit_float.h"
+#include "support/wrong_variants.h"
 #include "validate/registry.h"
 #include "validate/runner.h"
 
@@ -178,6 +180,26 @@ std::vector<KnownBad> known_bad_warps() {
                      return make_warp_case(info(n, Domain::unit_square()), [=](Point2f u) { return patch.sample(u); },
                                            [=](Point2f p) { return swapped.pdf(p); },
                                            [=](Point2f p) { return patch.invert(p); });
+                 }});
+    v.push_back({"trowbridge_reitz_alpha_not_squared", "D with alpha in place of alpha^2",
+                 [](const std::string&) { return testing::tr_normals(0.3f, true); }});
+    v.push_back({"trimmed_exponential_untrimmed_norm", "trimmed exponential normalised as if untrimmed",
+                 [](const std::string&) { return testing::trimmed(1.0f, 1.0f, true); }});
+    v.push_back({"visible_normals_abs_dot", "visible-normal pdf with |wo.wm| instead of the mask",
+                 [](const std::string&) { return testing::visible(0.3f, 85.0, true); }});
+    v.push_back({"unit_float_returns_one", "u * 2^-32 in float: 1.0 for the 128 largest inputs",
+                 [](const std::string& n) {
+                     return make_warp_case(info(n, Domain::interval(0, 1), InputKind::Bits32),
+                                           [](uint32_t u) { return u32_to_unit_float_mul(u); },
+                                           [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
+                                           [](float x) { return unit_float_mul_to_u32(x); });
+                 }});
+    v.push_back({"unit_float_rounding_biased", "64 random bits, only 32 used, times 2^-32 with the clamp: 257/255 parity",
+                 [](const std::string& n) {
+                     return make_warp_case(info(n, Domain::interval(0, 1), InputKind::Bits64),
+                                           [](uint64_t u) { return u32_to_unit_float_mul_clamped(static_cast<uint32_t>(u >> 32)); },
+                                           [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
+                                           [](float x) { return uint64_t{unit_float_mul_clamped_to_u32(x)} << 32; });
                  }});
     v.push_back({"uniform_sphere_throws", "sampler throws for some inputs", [](const std::string& n) {
                      return make_warp_case(info(n, Domain::sphere()),
