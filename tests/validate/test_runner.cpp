@@ -5,6 +5,7 @@
 #include <limits>
 #include <cstring>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "chi2/multiple_testing.h"
@@ -71,17 +72,27 @@ TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
 }
 
 // Figures must be bit-identical for any thread count, and for a case run alone
-// or among others.
+// or among others. One case of each family, so every check type takes part:
+// consistency, roundtrip, chi2, tabulated, exhaustive, binade.
 TEST(Runner, ResultsDoNotDependOnThreadsOrSelection) {
     Registry registry;
-    register_geometric_cases(registry);
+    register_builtin_cases(registry);
     register_builtin_checks(registry);
+    const std::vector<std::string> subset = {"cosine_hemisphere",
+                                             "uniform_cone[cos_theta_max=0.3]",
+                                             "trowbridge_reitz_visible[ax=0.3,ay=0.05,theta_o=60]",
+                                             "trowbridge_reitz_normals[ax=0.3,ay=0.3]",
+                                             "exponential[a=1]",
+                                             "piecewise_constant_2d*",
+                                             "unit_float_24bit",
+                                             "unit_float_walker"};
     RunOptions options;
     options.samples = 150'000;
+    using Figures = std::map<std::string, std::vector<Figure>>;
     auto figures_of = [&](unsigned threads, const std::vector<std::string>& filter) {
         options.threads = threads;
         const RunResult run = run_jobs(select_jobs(registry, filter, {}, options), options);
-        std::map<std::string, std::vector<Figure>> out;
+        Figures out;
         for (const auto& r : run.results) {
             auto& v = out[r.case_name + "/" + r.check_name];
             v = r.figures;
@@ -89,33 +100,33 @@ TEST(Runner, ResultsDoNotDependOnThreadsOrSelection) {
         }
         return out;
     };
-    const auto one = figures_of(1, {});
-    const auto two = figures_of(2, {});
-    const auto eight = figures_of(8, {});
+    // memcmp-equal: bit for bit, NaN included. The corrected level depends on how
+    // many tests ran, so it is compared only between runs of the same selection.
+    auto expect_identical = [](const Figures& a, const Figures& b, bool same_selection) {
+        for (const auto& [key, values] : a) {
+            ASSERT_TRUE(b.count(key)) << key;
+            const auto& other = b.at(key);
+            ASSERT_EQ(values.size(), other.size()) << key;
+            for (std::size_t i = 0; i < values.size(); ++i) {
+                EXPECT_EQ(values[i].name, other[i].name) << key;
+                if (!same_selection && values[i].name == "level") continue;
+                EXPECT_EQ(std::memcmp(&values[i].value, &other[i].value, sizeof(double)), 0)
+                    << key << " " << values[i].name << ": " << values[i].value << " vs " << other[i].value;
+            }
+        }
+    };
+    const Figures one = figures_of(1, subset);
+    std::set<std::string> checks_seen;
+    for (const auto& [key, values] : one) checks_seen.insert(key.substr(key.rfind('/') + 1));
+    for (const char* check : {"consistency", "roundtrip", "chi2", "tabulated", "exhaustive", "binade"})
+        EXPECT_TRUE(checks_seen.count(check)) << check << " did not run";
+    const Figures two = figures_of(2, subset);
     EXPECT_EQ(one.size(), two.size());
-    for (const auto& [key, values] : one) {
-        ASSERT_TRUE(two.count(key)) << key;
-        ASSERT_EQ(values.size(), two.at(key).size()) << key;
-        for (std::size_t i = 0; i < values.size(); ++i) {
-            // memcmp-equal: bit for bit, NaN included.
-            EXPECT_EQ(values[i].name, two.at(key)[i].name);
-            EXPECT_EQ(std::memcmp(&values[i].value, &two.at(key)[i].value, sizeof(double)), 0) << key << " " << values[i].name;
-            EXPECT_EQ(std::memcmp(&values[i].value, &eight.at(key)[i].value, sizeof(double)), 0) << key << " " << values[i].name;
-        }
-    }
-    const auto alone = figures_of(2, {"uniform_cone[cos_theta_max=0.3]"});
+    expect_identical(one, two, true);
+    expect_identical(one, figures_of(8, subset), true);
+    const Figures alone = figures_of(2, {"trowbridge_reitz_visible[ax=0.3,ay=0.05,theta_o=60]"});
     ASSERT_FALSE(alone.empty());
-    for (const auto& [key, values] : alone) {
-        ASSERT_TRUE(one.count(key)) << key;
-        const auto& full = one.at(key);
-        ASSERT_EQ(values.size(), full.size());
-        for (std::size_t i = 0; i < values.size(); ++i) {
-            // The corrected level depends on how many tests ran; nothing else may.
-            EXPECT_EQ(values[i].name, full[i].name);
-            if (values[i].name == "level") continue;
-            EXPECT_EQ(std::memcmp(&values[i].value, &full[i].value, sizeof(double)), 0) << key << " " << values[i].name;
-        }
-    }
+    expect_identical(alone, one, false);
 }
 
 TEST(Registry, NamesAndMatching) {
