@@ -57,7 +57,12 @@ Plot heatmaps(const chi2::Binning& b, const chi2::Chi2Outcome& o, const std::str
     std::vector<double> observed(o.histogram.counts.begin(), o.histogram.counts.end());
     plot.heatmaps.push_back(map("observed", std::move(observed)));
     plot.heatmaps.push_back(map("expected", o.expected));
-    plot.heatmaps.push_back(map("residual (obs - exp) / sqrt(exp)", o.residual));
+    Heatmap residual = map("residual (obs - exp) / sqrt(exp)", o.residual);
+    // Diverging around 0 and at least +-4 wide: the noise of a passing test stays
+    // pale, so a real deviation stands out instead of filling the scale.
+    residual.color_scale = Heatmap::ColorScale::Diverging;
+    residual.min_color_limit = 4.0;
+    plot.heatmaps.push_back(std::move(residual));
     return plot;
 }
 
