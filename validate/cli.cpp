@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -100,6 +101,10 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     app.add_option("--report", o.report_path, "Write a self-contained HTML report")->type_name("FILE");
     app.add_option("--json", o.json_path, "Write the results as JSON")->type_name("FILE");
     app.add_option("--junit", o.junit_path, "Write the results as JUnit XML")->type_name("FILE");
+    app.add_option("--time-budget", o.run.check_time_budget,
+                   "Seconds one check may take before it is reported as an error and abandoned")
+        ->check(CLI::Range(0.1, 86400.0))
+        ->capture_default_str();
     app.add_flag("--failures-only", o.failures_only, "Print only the rows that did not pass");
     app.add_option("--color", o.color, "Colour the table: auto, always, never")
         ->check(CLI::IsMember({"auto", "always", "never"}))
@@ -180,7 +185,15 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         std::cerr << "validate: " << e.what() << "\n";
         return kExitUsage;
     }
-    return run.all_passed() ? kExitPass : kExitFail;
+    const int status = run.all_passed() ? kExitPass : kExitFail;
+    if (run.info.abandoned_checks > 0) {
+        // A thread is still stuck in a warp that never returned; it uses the
+        // registry, so leave without running destructors.
+        std::cout.flush();
+        std::cerr.flush();
+        std::_Exit(status);
+    }
+    return status;
 }
 
 }  // namespace warpcheck

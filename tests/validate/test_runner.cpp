@@ -71,6 +71,35 @@ TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
     EXPECT_NE(run.results[0].rerun_command.find("--filter 'thrower' --check roundtrip"), std::string::npos);
 }
 
+// A rejection loop that never accepts must not hang the run: the check is
+// reported as an error when its time budget runs out, and the others finish.
+TEST(Runner, SamplerThatNeverTerminatesIsAnErrorAfterItsBudget) {
+    // Leaked on purpose: the abandoned thread keeps spinning inside sample()
+    // until the process exits, so what it uses must never be destroyed.
+    static const WarpCase* stuck = make_warp_case(
+        {"never_accepts", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+        [](Point2f u) {
+            volatile float candidate = u.x;
+            while (candidate < 2.0f) candidate = candidate * 0.5f;  // rejection that never accepts
+            return square_to_uniform_hemisphere(u);
+        },
+        square_to_uniform_hemisphere_pdf, uniform_hemisphere_to_square).release();
+    static const Check* check = make_roundtrip_check().release();
+    auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+                               square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
+                               uniform_hemisphere_to_square);
+    RunOptions options;
+    options.samples = 100'000;
+    options.threads = 2;
+    options.check_time_budget = 1.0;
+    const RunResult run = run_jobs({{stuck, check}, {fine.get(), check}}, options);
+    ASSERT_EQ(run.results.size(), 2u);
+    EXPECT_EQ(run.results[0].verdict, Verdict::Error);
+    EXPECT_NE(run.results[0].message.find("time budget"), std::string::npos) << run.results[0].message;
+    EXPECT_EQ(run.results[1].verdict, Verdict::Pass) << run.results[1].message;
+    EXPECT_EQ(run.info.abandoned_checks, 1);
+}
+
 // Figures must be bit-identical for any thread count, and for a case run alone
 // or among others. One case of each family, so every check type takes part:
 // consistency, roundtrip, chi2, tabulated, exhaustive, binade.
