@@ -49,9 +49,15 @@ public:
 
     /// The (case, check) stream itself.
     Pcg32 rng() const { return Pcg32(stream_.sequence, stream_.seed); }
-    /// An independent stream for chunk `chunk` of this check's work: the same
-    /// chunk gets the same numbers whichever thread runs it.
-    Pcg32 chunk_rng(uint64_t chunk) const { return Pcg32(hash_combine(stream_.sequence, chunk), stream_.seed); }
+    /// The random numbers of chunk `chunk` of this check's work: the same chunk
+    /// gets the same numbers whichever thread runs it. Every chunk uses the
+    /// check's own PCG32 sequence, started at an offset hashed from the chunk
+    /// index. (Separate PCG32 sequences with a common seed, which this used
+    /// before, are not independent enough: runs of correct warps then failed
+    /// chi-square tests about 1.7 times as often as the significance level says.)
+    Pcg32 chunk_rng(uint64_t chunk) const {
+        return Pcg32(stream_.sequence, hash_combine(stream_.seed, chunk + 1));
+    }
 
     /// body(i) for i in [0, n) across the pool; see thread_pool.h for the rule
     /// that keeps the result independent of the thread count.
