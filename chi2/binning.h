@@ -42,6 +42,9 @@ struct Histogram {
     uint64_t outside = 0;  ///< beyond kDomainTolerance of the domain
     uint64_t nan = 0;      ///< a NaN coordinate
     uint64_t snapped = 0;  ///< moved (within tolerance) from a zero-expected cell to a neighbour
+    /// In a zero-expected cell and exactly on the domain's boundary, where a
+    /// density may vanish: set aside, not counted in any cell (see bin_impl).
+    uint64_t on_boundary = 0;
     uint64_t total() const;
     /// Adds another histogram of the same binning (integer sums: any order gives the same result).
     void merge(const Histogram& other);
@@ -108,6 +111,7 @@ public:
 private:
     template <typename Point>
     void bin_impl(std::span<const Point> points, Histogram& hist, std::span<const unsigned char> zero_cells) const;
+    bool on_parameter_boundary(double u, double v) const;
     std::size_t snap_from_zero_cell(double u, double v, std::size_t cell, std::span<const unsigned char> zero_cells,
                                     uint64_t& snapped) const;
 

@@ -104,6 +104,16 @@ Chi2Outcome evaluate_chi2(const Binning& binning, Histogram histogram, CellInteg
     if (out.zero_expected_hits > 0)
         out.failures.push_back(count_of(out.zero_expected_hits, "sample") +
                                " in cells where the density integrates to zero");
+    // Samples exactly on the boundary in zero-density cells (set aside by the
+    // binning): a float warp reaches the boundary from exact input edges, each
+    // with probability 2^-24 per sample, so a few are expected. Far more than
+    // 16 edges' worth means the warp puts real mass where its density has none.
+    out.boundary_hits = h.on_boundary;
+    const double boundary_cap = 10.0 + 16.0 * n * 0x1p-24;
+    if (static_cast<double>(h.on_boundary) > boundary_cap)
+        out.failures.push_back(count_of(h.on_boundary, "sample") +
+                               " on the domain's boundary where the density integrates to zero (more than the " +
+                               format_number(boundary_cap) + " that exact input edges can explain)");
 
     if (q.unconverged_cells > 0)
         out.errors.push_back("quadrature missed the accuracy rule in " + count_of(q.unconverged_cells, "cell") +

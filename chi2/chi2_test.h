@@ -64,6 +64,7 @@ struct Chi2Outcome {
     std::vector<double> residual;  ///< per cell: (O - E) / sqrt(E); NaN where E <= 0
     std::size_t zero_expected_cells = 0;  ///< cells where the density integrates to zero
     uint64_t zero_expected_hits = 0;      ///< samples that landed in them
+    uint64_t boundary_hits = 0;           ///< of those, exactly on the domain's boundary (accepted up to a cap)
     double integral_tolerance = 0.0;      ///< the tolerance applied to |integral - 1|
 
     /// Failures that need no significance level, one message each.

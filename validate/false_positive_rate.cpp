@@ -64,6 +64,8 @@ int main(int argc, char** argv) {
             if (r.verdict == Verdict::Pass) continue;
             any = true;
             failures_by_check[r.check_name + " " + r.case_name]++;
+            std::cerr << fmt::format("\nseed {}: {} {} {}: {}\n", options.seed, to_string(r.verdict), r.check_name,
+                                     r.case_name, r.message);
         }
         failed_runs += any;
         std::cerr << fmt::format("\rseed {}: {} of {} runs failed so far", options.seed, failed_runs, i + 1);

@@ -70,6 +70,42 @@ Chi2Outcome run(const Domain& d, const PointFn& f, const BatchPdf& pdf, uint64_t
     return run_chi2_test(Binning(d, res), n, sampler(f), pdf, opt);
 }
 
+// --- The domain's boundary, where a density may vanish ---------------------
+
+// cos^50(theta) on the hemisphere, sampled as z = u^(1/51): in floats, u = 0 gives
+// z = 0 exactly, on the rim, in cells whose expected count is 0. A few such
+// samples (what exact input edges produce) are set aside and counted; many are
+// a failure of their own.
+PointFn phong50(double rim_fraction) {
+    return [rim_fraction](Pcg32& r) {
+        const float u0 = r.next_float(), u1 = r.next_float();
+        const bool rim = r.next_double() < rim_fraction;
+        const float z = rim ? 0.0f : std::pow(u0, 1.0f / 51.0f);
+        const float s = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * static_cast<float>(kPi) * u1;
+        return SamplePoint{s * std::cos(phi), s * std::sin(phi), z};
+    };
+}
+// In float, as the warp computes it: z^50 underflows to 0 below z ~ 0.17, so the
+// cells near the rim integrate to exactly 0.
+const BatchPdf kPhong50Pdf = pointwise([](const DomainPoint& p) {
+    const float z = static_cast<float>(p[2]);
+    return z > 0 ? 51.0 / (2 * kPi) * static_cast<double>(std::pow(z, 50.0f)) : 0.0;
+});
+
+TEST(Chi2Boundary, AFewRimSamplesOfAVanishingDensityAreSetAside) {
+    const Chi2Outcome o = run(Domain::hemisphere(), phong50(3e-6), kPhong50Pdf);
+    EXPECT_GT(o.boundary_hits, 0u);
+    EXPECT_EQ(o.zero_expected_hits, 0u);
+    EXPECT_TRUE(o.failures.empty()) << o.failures.front();
+}
+
+TEST(Chi2Boundary, RealMassOnTheRimFails) {
+    const Chi2Outcome o = run(Domain::hemisphere(), phong50(1e-3), kPhong50Pdf);
+    EXPECT_GT(o.boundary_hits, 100u);
+    ASSERT_FALSE(o.failures.empty());
+    EXPECT_NE(o.failures.front().find("on the domain's boundary"), std::string::npos) << o.failures.front();
+}
+
 // --- Null: correct samplers pass -------------------------------------------
 
 TEST(Chi2Null, UniformSpherePasses) {

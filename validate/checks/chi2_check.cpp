@@ -173,6 +173,7 @@ public:
             {"outside", static_cast<double>(h.outside)},
             {"nan", static_cast<double>(h.nan)},
             {"zero_expected_hits", static_cast<double>(o.zero_expected_hits)},
+            {"boundary_zero_density", static_cast<double>(o.boundary_hits)},
             {"zero_expected_cells", static_cast<double>(o.zero_expected_cells)},
             {"snapped_at_support_edge", static_cast<double>(h.snapped)},
             {"samples", static_cast<double>(samples)},
