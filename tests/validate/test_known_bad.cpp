@@ -31,6 +31,9 @@ struct KnownBad {
     std::function<std::unique_ptr<WarpCase>(const std::string& name)> make;
 };
 
+// How GoogleTest names a variant in its output (instead of the struct's bytes).
+void PrintTo(const KnownBad& bad, std::ostream* os) { *os << bad.name; }
+
 WarpCaseInfo info(const std::string& name, chi2::Domain domain, InputKind input = InputKind::Uniform2D) {
     return {name, {}, "known-bad variant", input, domain};
 }
