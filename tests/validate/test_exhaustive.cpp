@@ -302,6 +302,12 @@ TEST(ExhaustiveRoundtripCheck, RunsOnlyWhenAskedAndSeesANonMonotoneLerp) {
     EXPECT_FALSE(make_exhaustive_roundtrip_check()->runs_by_default(options));
     options.exhaustive = true;
     EXPECT_TRUE(make_exhaustive_roundtrip_check()->runs_by_default(options));
+#if defined(__SANITIZE_ADDRESS__)
+    // 2^30 floats through the warp take many minutes under AddressSanitizer;
+    // the release test build runs this sweep (the sweep engine is covered here
+    // by the exhaustive tests of the 32-bit samplers).
+    GTEST_SKIP() << "full sweep of every float in [0,1): run in the release test build";
+#endif
     const CheckResult r = testing::run_check(*make_exhaustive_roundtrip_check(), builtin_case("lerp_blend[a=1,b=3]"));
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_EQ(*r.figure("inputs"), 1'065'353'216.0);

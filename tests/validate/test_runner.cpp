@@ -117,6 +117,7 @@ TEST(Runner, ResultsDoNotDependOnThreadsOrSelection) {
                                              "unit_float_walker"};
     RunOptions options;
     options.samples = 150'000;
+    options.check_time_budget = testing::kTestTimeBudget;
     using Figures = std::map<std::string, std::vector<Figure>>;
     auto figures_of = [&](unsigned threads, const std::vector<std::string>& filter) {
         options.threads = threads;
