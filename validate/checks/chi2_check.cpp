@@ -16,10 +16,10 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "chi2/chi2_test.h"
 #include "validate/checks/checks.h"
+#include "validate/checks/evidence.h"
 
 namespace warpcheck {
 namespace {
@@ -117,6 +117,91 @@ Table worst_cells(const chi2::Binning& b, const chi2::Chi2Outcome& o) {
     return t;
 }
 
+/// The compute part: samples drawn chunk by chunk, binned, and the density
+/// integrated over the cells (chi2::run_chi2_test).
+chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const chi2::Binning& binning) {
+    chi2::Chi2Options options;
+    options.resolution = binning.resolution();
+    const InputKind kind = warp.input_kind();
+    const chi2::SampleChunk generate = [&](std::size_t chunk, std::span<chi2::SamplePoint> out) {
+        ctx.throw_if_cancelled();
+        std::vector<WarpInput> inputs(out.size());
+        Pcg32 rng = ctx.chunk_rng(chunk);
+        draw_inputs(rng, kind, inputs);
+        warp.sample(inputs, out);
+    };
+    const chi2::BatchPdf pdf = [&](std::span<const chi2::DomainPoint> points, std::span<double> density) {
+        std::vector<WarpOutput> x(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i)
+            x[i] = {static_cast<float>(points[i][0]), static_cast<float>(points[i][1]),
+                    static_cast<float>(points[i][2])};
+        warp.pdf(x, density);
+    };
+    const chi2::ParallelFor parallel = [&ctx](std::size_t n, const std::function<void(std::size_t)>& body) {
+        ctx.parallel_for(n, body);
+    };
+    return chi2::run_chi2_test(binning, ctx.options().samples, generate, pdf, options, parallel);
+}
+
+/// The judge part. The rules that need no significance level (NaN or outside
+/// samples, hits where the density integrates to zero, a density that does not
+/// integrate to 1 within the quadrature's error bound) are decided by the
+/// engine and fail here; the p-value is judged by the runner at the
+/// Sidak-corrected level of the whole run (its size: the family-wise alpha).
+void judge(CheckResult& r, const chi2::Chi2Outcome& o) {
+    if (o.dof() >= 1) r.p_value = o.p_value();
+    r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}", o.statistic(), o.dof(), o.p_value());
+    if (!o.errors.empty()) {
+        r.verdict = Verdict::Error;
+        r.message = join_reasons(o.errors);
+    } else if (!o.failures.empty()) {
+        r.verdict = Verdict::Fail;
+        r.summary = o.failures.front();
+        r.message = join_reasons(o.failures);
+    } else {
+        r.verdict = Verdict::Pass;
+    }
+}
+
+void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& binning, uint64_t samples) {
+    r.samples = samples;
+    const chi2::Histogram& h = o.histogram;
+    r.figures = {
+        {"statistic", o.statistic()},
+        {"dof", static_cast<double>(o.dof())},
+        {"p_value", o.p_value()},
+        {"integral", o.integrals.total},
+        {"integral_tolerance", o.integral_tolerance},
+        {"integration_error", o.integrals.error_total},
+        {"integration_error_ratio", o.integrals.worst_error_ratio},
+        {"quadrature_evaluations", static_cast<double>(o.integrals.evaluations)},
+        {"cells", static_cast<double>(binning.cell_count())},
+        {"cells_used", static_cast<double>(o.pearson.terms)},
+        {"pooled_cells", static_cast<double>(o.pearson.small_cells)},
+        {"pools", static_cast<double>(o.pearson.pools)},
+        {"outside", static_cast<double>(h.outside)},
+        {"nan", static_cast<double>(h.nan)},
+        {"zero_expected_hits", static_cast<double>(o.zero_expected_hits)},
+        {"boundary_zero_density", static_cast<double>(o.boundary_hits)},
+        {"zero_expected_cells", static_cast<double>(o.zero_expected_cells)},
+        {"snapped_at_support_edge", static_cast<double>(h.snapped)},
+        {"samples", static_cast<double>(samples)},
+    };
+    if (binning.domain().kind == chi2::DomainKind::HalfLine)
+        r.figures.push_back({"half_line_scale", binning.resolution().half_line_scale});
+}
+
+/// The evidence part: heatmaps (2D) or count and residual curves (1D), and the
+/// cells that deviate most.
+void add_plots(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& binning, const std::string& name) {
+    if (binning.parameter_dimension() == 2) {
+        r.plots.push_back(heatmaps(binning, o, name));
+    } else {
+        for (Plot& p : line_plots(binning, o, name)) r.plots.push_back(std::move(p));
+    }
+    r.tables.push_back(worst_cells(binning, o));
+}
+
 class Chi2Check final : public Check {
 public:
     std::string name() const override { return "chi2"; }
@@ -130,76 +215,11 @@ public:
         if (warp.domain().kind == chi2::DomainKind::HalfLine && resolution.half_line_scale == 0.0)
             resolution.half_line_scale = half_line_scale(warp);
         const chi2::Binning binning(warp.domain(), resolution);
-        chi2::Chi2Options options;
-        options.resolution = resolution;
-        const uint64_t samples = ctx.options().samples;
-        const InputKind kind = warp.input_kind();
-
-        const chi2::SampleChunk generate = [&](std::size_t chunk, std::span<chi2::SamplePoint> out) {
-            ctx.throw_if_cancelled();
-            std::vector<WarpInput> inputs(out.size());
-            Pcg32 rng = ctx.chunk_rng(chunk);
-            draw_inputs(rng, kind, inputs);
-            warp.sample(inputs, out);
-        };
-        const chi2::BatchPdf pdf = [&](std::span<const chi2::DomainPoint> points, std::span<double> density) {
-            std::vector<WarpOutput> x(points.size());
-            for (std::size_t i = 0; i < points.size(); ++i)
-                x[i] = {static_cast<float>(points[i][0]), static_cast<float>(points[i][1]),
-                        static_cast<float>(points[i][2])};
-            warp.pdf(x, density);
-        };
-        const chi2::ParallelFor parallel = [&ctx](std::size_t n, const std::function<void(std::size_t)>& body) {
-            ctx.parallel_for(n, body);
-        };
-        const chi2::Chi2Outcome o = chi2::run_chi2_test(binning, samples, generate, pdf, options, parallel);
-
+        const chi2::Chi2Outcome outcome = compute(warp, ctx, binning);
         CheckResult r;
-        r.samples = samples;
-        const chi2::Histogram& h = o.histogram;
-        r.figures = {
-            {"statistic", o.statistic()},
-            {"dof", static_cast<double>(o.dof())},
-            {"p_value", o.p_value()},
-            {"integral", o.integrals.total},
-            {"integral_tolerance", o.integral_tolerance},
-            {"integration_error", o.integrals.error_total},
-            {"integration_error_ratio", o.integrals.worst_error_ratio},
-            {"quadrature_evaluations", static_cast<double>(o.integrals.evaluations)},
-            {"cells", static_cast<double>(binning.cell_count())},
-            {"cells_used", static_cast<double>(o.pearson.terms)},
-            {"pooled_cells", static_cast<double>(o.pearson.small_cells)},
-            {"pools", static_cast<double>(o.pearson.pools)},
-            {"outside", static_cast<double>(h.outside)},
-            {"nan", static_cast<double>(h.nan)},
-            {"zero_expected_hits", static_cast<double>(o.zero_expected_hits)},
-            {"boundary_zero_density", static_cast<double>(o.boundary_hits)},
-            {"zero_expected_cells", static_cast<double>(o.zero_expected_cells)},
-            {"snapped_at_support_edge", static_cast<double>(h.snapped)},
-            {"samples", static_cast<double>(samples)},
-        };
-        if (binning.domain().kind == chi2::DomainKind::HalfLine)
-            r.figures.push_back({"half_line_scale", binning.resolution().half_line_scale});
-        if (o.dof() >= 1) r.p_value = o.p_value();
-
-        r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}", o.statistic(), o.dof(), o.p_value());
-        if (!o.errors.empty()) {
-            r.verdict = Verdict::Error;
-            r.message = fmt::format("{}", fmt::join(o.errors, "; "));
-        } else if (!o.failures.empty()) {
-            r.verdict = Verdict::Fail;
-            r.summary = o.failures.front();
-            r.message = fmt::format("{}", fmt::join(o.failures, "; "));
-        } else {
-            r.verdict = Verdict::Pass;
-        }
-
-        if (binning.parameter_dimension() == 2) {
-            r.plots.push_back(heatmaps(binning, o, warp.name()));
-        } else {
-            for (Plot& p : line_plots(binning, o, warp.name())) r.plots.push_back(std::move(p));
-        }
-        r.tables.push_back(worst_cells(binning, o));
+        add_figures(r, outcome, binning, ctx.options().samples);
+        judge(r, outcome);
+        add_plots(r, outcome, binning, warp.name());
         return r;
     }
 };
