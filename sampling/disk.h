@@ -70,7 +70,10 @@ inline Point2f uniform_disk_concentric_to_square(Point2f p) {
         b = -r;
         a = (phi - 3.0f * kPiOver2) * kFourOverPi * r;
     }
-    return {std::min(0.5f * (a + 1.0f), kOneMinusEpsilon), std::min(0.5f * (b + 1.0f), kOneMinusEpsilon)};
+    // Clamped on both sides: a point a rounding error outside the unit circle
+    // (as callers that build d from other float math pass) must still give a
+    // valid input of [0,1)^2.
+    return {std::clamp(0.5f * (a + 1.0f), 0.0f, kOneMinusEpsilon), std::clamp(0.5f * (b + 1.0f), 0.0f, kOneMinusEpsilon)};
 }
 
 }  // namespace warpcheck

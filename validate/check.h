@@ -80,8 +80,12 @@ private:
     const std::atomic<bool>* cancelled_;
 };
 
-/// Fills `out` with fresh inputs of the given kind from `rng`: uniform floats on
-/// the 2^-24 grid, or raw bits.
+/// w * 2^-64 rounded down to a float: a uniform float of [0, 1) in which every
+/// float of [2^-40, 1) has its true probability (its spacing).
+float uniform_float_from_bits(uint64_t w);
+
+/// Fills `out` with fresh inputs of the given kind from `rng`: uniform floats at
+/// 64-bit resolution (uniform_float_from_bits), or raw bits.
 void draw_inputs(Pcg32& rng, InputKind kind, std::span<WarpInput> out);
 
 /// The coordinates of a warp output as a domain point (float -> double).

@@ -14,7 +14,9 @@ struct LinearWarp {
         return u * (a + b) / (a + std::sqrt(lerp_sq));
     }
     float pdf(float x) const { return x < 0 || x > 1 ? 0 : 2 * ((1 - x) * a + x * b) / (a + b); }
-    float invert(float x) const { return x * (a * (2 - x) + b * x) / (a + b); }
+    // The CDF; kept below 1, since sample rounds its largest inputs up to x = 1
+    // and an inverse must return a valid input u of [0,1).
+    float invert(float x) const { return std::fmin(x * (a * (2 - x) + b * x) / (a + b), 0x1.fffffep-1f); }
 };
 
 void warpcheck_register(warpcheck::Registry& registry) {

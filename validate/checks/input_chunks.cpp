@@ -1,21 +1,45 @@
 #include "validate/checks/input_chunks.h"
 
+#include <cmath>
 #include <limits>
 
 #include "sampling/float_bits.h"
 
 namespace warpcheck {
 
+std::vector<float> edge_values() {
+    // 0, every power of two 2^-k of [0, 1) down to the smallest denormal 2^-149
+    // with its float neighbours (so every binade is entered at both ends), the
+    // largest float below 1, and the smallest step of a 32-bit generator 2^-32
+    // (a power of two, so in the list already).
+    std::vector<float> values = {0.0f};
+    for (int k = 1; k <= 149; ++k) {
+        const float p = std::ldexp(1.0f, -k);
+        values.push_back(p);
+        values.push_back(next_float_up(p));
+        if (k < 149) values.push_back(next_float_down(p));  // below 2^-149 is 0, already listed
+    }
+    values.push_back(kOneMinusEpsilon);
+    return values;
+}
+
 std::vector<WarpInput> edge_inputs(InputKind kind) {
-    static constexpr float kEdges[] = {0.0f, 0x1p-24f, 0.5f, kOneMinusEpsilon};
+    // The corners every 2D warp is tried at in both coordinates; the full edge
+    // list runs along each coordinate with the other at one of these.
+    static constexpr float kCorners[] = {0.0f, 0x1p-24f, 0.5f, kOneMinusEpsilon};
     std::vector<WarpInput> inputs;
     switch (kind) {
         case InputKind::Uniform1D:
-            for (float a : kEdges) inputs.push_back({{a, 0.0f}, 0});
+            for (float a : edge_values()) inputs.push_back({{a, 0.0f}, 0});
             break;
         case InputKind::Uniform2D:
-            for (float a : kEdges)
-                for (float b : kEdges) inputs.push_back({{a, b}, 0});
+            for (float a : kCorners)
+                for (float b : kCorners) inputs.push_back({{a, b}, 0});
+            for (float a : edge_values())
+                for (float b : kCorners) {
+                    inputs.push_back({{a, b}, 0});
+                    inputs.push_back({{b, a}, 0});
+                }
             break;
         case InputKind::Bits32: {
             constexpr uint64_t m = std::numeric_limits<uint32_t>::max();

@@ -15,9 +15,14 @@ namespace warpcheck {
 
 inline constexpr std::size_t kInputChunkSize = std::size_t{1} << 16;
 
-/// The inputs at the edges of the input space: {0, 2^-24, 0.5, 1 - 2^-24} in
-/// each coordinate (all combinations), or for raw bits 0, 1, the middle, and
-/// the two largest values.
+/// The edge values of one uniform coordinate: 0, every power of two 2^-k down to
+/// the smallest denormal with its float neighbours, and the largest float below 1.
+std::vector<float> edge_values();
+
+/// The inputs at the edges of the input space: the edge values in 1D; in 2D
+/// all pairs of {0, 2^-24, 0.5, 1 - 2^-24} and each edge value in one
+/// coordinate with one of those in the other. For raw bits: 0, 1, the middle,
+/// and the two largest values.
 std::vector<WarpInput> edge_inputs(InputKind kind);
 
 /// Calls f(chunk_index, inputs) for every chunk and returns the results in chunk
