@@ -12,7 +12,9 @@
 // - Another preimage (sample(back) within the tolerance of x, back far from u)
 //   is accepted only as a set of measure zero: a warp is not injective only on
 //   poles, centres and seams, lines u_k = c that a random input hits with
-//   probability at most 2^-24 each (the largest float spacing of [0,1)). So the
+//   probability at most 2^-24 each (the largest float spacing of [0,1)). Such a
+//   line joins the two preimages, so every point of the segment from u to back
+//   must map within the tolerance of x too (probed at 1/5 .. 4/5), and the
 //   random inputs accepted that way may number at most the 1e-9 upper quantile
 //   of a Poisson count with mean N 2^-24 * 8 (eight such lines); edge inputs,
 //   which sit on such lines by construction, are counted and reported apart.
@@ -142,10 +144,10 @@ Trip judge_trip(const Rule& rule, const WarpInput& in, const WarpOutput& x, cons
                 const WarpOutput& x2, double pdf) {
     Trip t{0.0, Outcome::Within, in, x, back};
     if (!in_input_domain(back, rule)) {
-        t.error = rule.bits() ? static_cast<double>(back.bits) : std::numeric_limits<double>::quiet_NaN();
+        t.error = rule.bits() ? static_cast<double>(back.bits) : 0.0;
         if (!rule.bits())
             for (int k = 0; k < rule.in_dims; ++k)
-                if (!std::isnan(back.u[k])) t.error = std::abs(static_cast<double>(back.u[k]) - in.u[k]);
+                t.error = max_nan_wins(t.error, std::abs(static_cast<double>(back.u[k]) - in.u[k]));
         t.outcome = Outcome::OutsideInputs;
         return t;
     }
@@ -198,6 +200,21 @@ void count_trip(Stats& s, const Rule& rule, Trip trip, bool edge, uint64_t index
     if (s.worst.wants(key)) s.worst.offer(key, index, std::move(trip));
 }
 
+/// Whether the segment from the input to the other preimage maps onto x: the
+/// points 1/5 .. 4/5 of the way all land within the tolerance of x.
+bool segment_maps_to_x(const WarpCase& warp, const Rule& rule, const Trip& t) {
+    std::array<WarpInput, 4> probes{};
+    for (std::size_t j = 0; j < probes.size(); ++j) {
+        const float s = static_cast<float>(j + 1) / 5.0f;
+        for (int k = 0; k < rule.in_dims; ++k) probes[j].u[k] = t.input.u[k] + s * (t.back.u[k] - t.input.u[k]);
+    }
+    std::array<WarpOutput, 4> out{};
+    warp.sample(probes, out);
+    for (const WarpOutput& o : out)
+        if (!(max_abs_diff(o, t.output, rule.out_dims) <= rule.tolerance)) return false;
+    return true;
+}
+
 Stats compute(const WarpCase& warp, const CheckContext& ctx, const Rule& rule) {
     auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, true,
                                          [&](std::size_t chunk, std::span<const WarpInput> inputs) {
@@ -210,8 +227,12 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx, const Rule& rule) {
         warp.sample(back, x2);
         if (rule.one_dimensional()) warp.pdf(x, pdf);
         const uint64_t base = chunk * kInputChunkSize;  // edge inputs first, then the random stream
-        for (std::size_t i = 0; i < inputs.size(); ++i)
-            count_trip(s, rule, judge_trip(rule, inputs[i], x[i], back[i], x2[i], pdf[i]), chunk == 0, base + i);
+        for (std::size_t i = 0; i < inputs.size(); ++i) {
+            Trip trip = judge_trip(rule, inputs[i], x[i], back[i], x2[i], pdf[i]);
+            if (trip.outcome == Outcome::OtherPreimage && !segment_maps_to_x(warp, rule, trip))
+                trip.outcome = Outcome::Failed;
+            count_trip(s, rule, std::move(trip), chunk == 0, base + i);
+        }
         return s;
     });
     return merge_in_order(parts);

@@ -1,0 +1,105 @@
+// Verdict rules on code nobody here wrote: each wrong variant that an earlier
+// rule let through fails the check meant to catch it, its correct twin passes
+// every default check, and correct warps that merely look different pass.
+#include <algorithm>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "support/check_harness.h"
+#include "support/verdict_twins.h"
+#include "validate/checks/checks.h"
+#include "validate/checks/input_chunks.h"
+#include "validate/registry.h"
+#include "validate/runner.h"
+
+namespace warpcheck {
+namespace {
+
+using testing::VerdictTwin;
+
+/// Every default check that applies, as `validate` runs them (Sidak over the case).
+RunResult run_default_suite(std::unique_ptr<WarpCase> warp) {
+    Registry registry;
+    register_builtin_checks(registry);
+    registry.add_case(std::move(warp));
+    RunOptions options;
+    options.threads = 2;
+    options.check_time_budget = testing::kTestTimeBudget;
+    return run_jobs(select_jobs(registry, {}, {}, options), options);
+}
+
+class VerdictTwinTest : public ::testing::TestWithParam<VerdictTwin> {};
+
+TEST_P(VerdictTwinTest, WrongFailsItsCheckAndTwinPassesEverything) {
+    const VerdictTwin& twin = GetParam();
+    const RunResult wrong = run_default_suite(twin.wrong(twin.name));
+    const auto it = std::find_if(wrong.results.begin(), wrong.results.end(),
+                                 [&](const CheckResult& r) { return r.check_name == twin.caught_by; });
+    ASSERT_NE(it, wrong.results.end()) << twin.caught_by << " did not run";
+    EXPECT_EQ(it->verdict, Verdict::Fail) << twin.name << " (" << twin.bug << "): " << it->summary;
+
+    const RunResult correct = run_default_suite(twin.correct(twin.name + "_twin"));
+    for (const auto& r : correct.results) EXPECT_EQ(r.verdict, Verdict::Pass) << r.check_name << ": " << r.message;
+}
+
+INSTANTIATE_TEST_SUITE_P(Twins, VerdictTwinTest, ::testing::ValuesIn(testing::verdict_twins()),
+                         [](const ::testing::TestParamInfo<VerdictTwin>& p) {
+                             std::string n = p.param.name;
+                             std::replace_if(n.begin(), n.end(), [](char c) { return !std::isalnum(c); }, '_');
+                             return n;
+                         });
+
+TEST(EquivalentWarps, PassEveryDefaultCheck) {
+    for (const auto& [name, make] : testing::equivalent_warps()) {
+        const RunResult run = run_default_suite(make(name));
+        for (const auto& r : run.results)
+            EXPECT_EQ(r.verdict, Verdict::Pass) << name << " " << r.check_name << ": " << r.message;
+    }
+}
+
+TEST(RoundtripRule, NaNInverseIsNeverExcused) {
+    const auto warp = testing::twins::sphere("sphere_nan", true);
+    const CheckResult r = testing::run_check(*make_roundtrip_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_GT(*r.figure("outside_input_domain"), 0.0);
+    EXPECT_TRUE(std::isnan(*r.figure("max_error")) || std::isnan(*r.figure("max_edge_error")));
+}
+
+TEST(RoundtripRule, OtherPreimagesOfAPositiveMeasureSetFail) {
+    const auto warp = testing::twins::steep_exponential("steep", true);
+    const CheckResult r = testing::run_check(*make_roundtrip_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_GT(*r.figure("other_preimage_random_inputs"), *r.figure("other_preimage_bound"));
+    EXPECT_NE(r.message.find("another preimage"), std::string::npos) << r.message;
+}
+
+TEST(Inputs, EdgesEnterEveryBinadeDownToTheSmallestDenormal) {
+    const std::vector<float> e = edge_values();
+    for (int k = 1; k <= 149; ++k)
+        EXPECT_NE(std::find(e.begin(), e.end(), std::ldexp(1.0f, -k)), e.end()) << "2^-" << k;
+    EXPECT_NE(std::find(e.begin(), e.end(), 0x1p-32f), e.end());
+    EXPECT_NE(std::find(e.begin(), e.end(), 0x1.fffffep-1f), e.end());
+    EXPECT_NE(std::find(e.begin(), e.end(), 0.0f), e.end());
+    for (float v : e) EXPECT_TRUE(v >= 0.0f && v < 1.0f) << v;
+}
+
+TEST(Inputs, RandomUniformsReachBelowTheTwoToTheMinus24Grid) {
+    // Every float of [2^-40, 1) has its true probability: 2^-24 is not a floor.
+    EXPECT_EQ(uniform_float_from_bits(0), 0.0f);
+    EXPECT_EQ(uniform_float_from_bits(~uint64_t{0}), 0x1.fffffep-1f);
+    EXPECT_EQ(uniform_float_from_bits(uint64_t{1} << 32), 0x1p-32f);
+    EXPECT_EQ(uniform_float_from_bits((uint64_t{1} << 40) + 1), 0x1p-24f);  // rounded down
+    Pcg32 rng(1, 54);
+    std::vector<WarpInput> in(1 << 16);
+    draw_inputs(rng, InputKind::Uniform1D, in);
+    const auto below = std::count_if(in.begin(), in.end(), [](const WarpInput& w) { return w.u[0] < 0x1p-10f; });
+    const auto off_grid = std::count_if(in.begin(), in.end(), [](const WarpInput& w) {
+        return w.u[0] != std::ldexp(std::floor(std::ldexp(w.u[0], 24)), -24);
+    });
+    EXPECT_GT(below, 30);     // 64 expected
+    EXPECT_GT(off_grid, 500);  // inputs below 2^-1 have more bits than the 2^-24 grid
+}
+
+}  // namespace
+}  // namespace warpcheck
