@@ -59,8 +59,9 @@ inline std::unique_ptr<WarpCase> polar(const std::string& n, float turn, bool wr
                           });
 }
 
-/// The uniform sphere with z = 2 u.x - 1 (the mirror of pbrt's 1 - 2 u.x).
-inline std::unique_ptr<WarpCase> sphere(const std::string& n, bool nan_near_pole) {
+/// The uniform sphere with z = 2 u.x - 1 (the mirror of pbrt's 1 - 2 u.x), its
+/// density scaled by `scale`.
+inline std::unique_ptr<WarpCase> sphere(const std::string& n, bool nan_near_pole, float scale = 1.0f) {
     return make_warp_case(
         info(n, chi2::Domain::sphere(), InputKind::Uniform2D),
         [](Point2f u) {
@@ -68,22 +69,23 @@ inline std::unique_ptr<WarpCase> sphere(const std::string& n, bool nan_near_pole
             const float phi = kTwoPi * u.y;
             return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
         },
-        [](Vector3f) { return 0.25f * kInvPi; },
+        [scale](Vector3f) { return scale * 0.25f * kInvPi; },
         [nan_near_pole](Vector3f w) {
             if (nan_near_pole && w.z > 0.999f) return Point2f{std::numeric_limits<float>::quiet_NaN(), 0.0f};
             return Point2f{std::fmin(0.5f * (w.z + 1.0f), kBelowOne), azimuth(w.x, w.y)};
         });
 }
 
-/// Malley's method on the polar disk: a cosine-weighted hemisphere.
-inline std::unique_ptr<WarpCase> malley_polar(const std::string& n) {
+/// Malley's method on the polar disk: a cosine-weighted hemisphere, with 1/pi
+/// as given (0.318f: 1/pi typed by hand).
+inline std::unique_ptr<WarpCase> malley_polar(const std::string& n, float inv_pi = kInvPi) {
     return make_warp_case(
         info(n, chi2::Domain::hemisphere(), InputKind::Uniform2D),
         [](Point2f u) {
             const Point2f d = polar_disk(u, 1.0f);
             return Vector3f{d.x, d.y, std::sqrt(std::fmax(0.0f, 1.0f - u.x))};
         },
-        [](Vector3f w) { return w.z >= 0.0f ? w.z * kInvPi : 0.0f; },
+        [inv_pi](Vector3f w) { return w.z >= 0.0f ? w.z * inv_pi : 0.0f; },
         [](Vector3f w) { return Point2f{std::fmin(w.x * w.x + w.y * w.y, kBelowOne), azimuth(w.x, w.y)}; });
 }
 
@@ -137,6 +139,12 @@ inline std::vector<VerdictTwin> verdict_twins() {
         {"steep_exponential_survival_inverse", "inverse 1 - CDF of a warp that squeezes all u below 2e-6", "roundtrip",
          [](const std::string& n) { return steep_exponential(n, true); },
          [](const std::string& n) { return steep_exponential(n, false); }},
+        {"cosine_hemisphere_pdf_0318", "1/pi typed as 0.318f: the pdf is 9.7e-4 low", "chi2",
+         [](const std::string& n) { return malley_polar(n, 0.318f); },
+         [](const std::string& n) { return malley_polar(n); }},
+        {"sphere_pdf_5e-5_high", "density 5e-5 too high", "chi2",
+         [](const std::string& n) { return sphere(n, false, 1.00005f); },
+         [](const std::string& n) { return sphere(n, false); }},
         {"ramp_wrong_below_2^-26", "sampler returns 0.5 for u in (0, 2^-26]", "roundtrip",
          [](const std::string& n) { return ramp(n, true); }, [](const std::string& n) { return ramp(n, false); }},
     };
