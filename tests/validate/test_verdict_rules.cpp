@@ -74,6 +74,17 @@ TEST(RoundtripRule, OtherPreimagesOfAPositiveMeasureSetFail) {
     EXPECT_NE(r.message.find("another preimage"), std::string::npos) << r.message;
 }
 
+TEST(TabulatedRule, MassBeyondTheSamplesReachFails) {
+    const auto warp = testing::twins::ramp("short_ramp", false, 0.99976f);
+    const CheckResult r = testing::run_check(*make_tabulated_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_NEAR(*r.figure("mass_outside_reach"), 1.0 - 0.99976 * 0.99976, 1e-6);
+    EXPECT_NE(r.message.find("reach only"), std::string::npos) << r.message;
+    const auto twin = testing::twins::ramp("ramp", false);
+    const CheckResult ok = testing::run_check(*make_tabulated_check(), *twin);
+    EXPECT_LE(*ok.figure("mass_outside_reach"), *ok.figure("mass_outside_reach_tolerance"));
+}
+
 TEST(Inputs, EdgesEnterEveryBinadeDownToTheSmallestDenormal) {
     const std::vector<float> e = edge_values();
     for (int k = 1; k <= 149; ++k)

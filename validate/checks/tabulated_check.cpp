@@ -121,6 +121,8 @@ struct Extreme {
 struct Stats {
     uint64_t count = 0, x_failures = 0, pdf_failures = 0, tail_samples = 0, tail_failures = 0, undetermined = 0;
     Extreme x, pdf;
+    /// The range the warp's samples reached (edge inputs included).
+    double reach_lo = std::numeric_limits<double>::infinity(), reach_hi = -std::numeric_limits<double>::infinity();
     WorstK<Point> worst{kWorstKept};  // keyed by max(x error / tolerance, pdf error / tolerance)
 
     void merge(const Stats& s) {
@@ -132,6 +134,8 @@ struct Stats {
         undetermined += s.undetermined;
         x.merge(s.x);
         pdf.merge(s.pdf);
+        reach_lo = std::min(reach_lo, s.reach_lo);
+        reach_hi = std::max(reach_hi, s.reach_hi);
         worst.merge(s.worst);
     }
 };
@@ -163,6 +167,10 @@ struct Comparison {
         p.pdf_table = env.table_pdf;
         const double reference = std::max(p.pdf_warp, p.pdf_table);  // 0 for both: NaN, a failure
         p.pdf_tol = ref.pdf_tolerance(env, reference);
+        if (std::isfinite(p.x_warp)) {
+            s.reach_lo = std::min(s.reach_lo, p.x_warp);
+            s.reach_hi = std::max(s.reach_hi, p.x_warp);
+        }
         const double dx = std::abs(p.x_warp - p.x_table);
         const double dp = std::abs(p.pdf_warp - p.pdf_table) / reference;
         const double rx = dx / p.x_tol, rp = dp / p.pdf_tol;
@@ -205,6 +213,21 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx, const Comparison& c
     return merge_in_order(parts);
 }
 
+/// The mass of the view that the samples never reached, and what one input's
+/// resolution explains: the probability 2^-24 of the largest input float below
+/// 1 (the mass beyond the last sample at either end) plus the table CDF's own
+/// uncertainty. A truncated half-line's upper end is its tail, checked apart.
+struct Reach {
+    double outside = 0.0, tolerance = 0.0;
+};
+
+Reach reach_of(const Stats& s, const MonotoneMarginal& m, const TabulatedReference& ref) {
+    if (!(s.reach_lo <= s.reach_hi)) return {0.0, 0.0};  // no body sample: nothing reached, nothing to say
+    const double body_mass = 1.0 - m.tail_mass;
+    const double below = ref.cdf(s.reach_lo), above = m.tail_mass > 0.0 ? 0.0 : 1.0 - ref.cdf(s.reach_hi);
+    return {(below + above) * body_mass, 0x1p-24 + 2.0 * ref.cdf_uncertainty()};
+}
+
 /// The verdict: the density integrates to the body's mass within the midpoint
 /// rule's error bound; every sample and density lies within the bucket bounds
 /// of TabulatedReference (each justified there); every tail input lands beyond
@@ -228,6 +251,11 @@ void judge(CheckResult& r, const Stats& s, const MonotoneMarginal& m, const Tabu
         problems.push_back(fmt::format("{} of {} densities differ from the table's by more than the bucket "
                                        "bound (worst {:.3g} x tolerance, at {} = {:.6g})",
                                        s.pdf_failures, s.count, s.pdf.ratio, m.label, s.pdf.where));
+    const Reach reach = reach_of(s, m, ref);
+    if (!(reach.outside <= reach.tolerance))
+        problems.push_back(fmt::format("the samples reach only [{:.9g}, {:.9g}] of [{:.6g}, {:.6g}]: {:.3g} of the "
+                                       "mass lies where no input float can land (tolerance {:.2g})",
+                                       s.reach_lo, s.reach_hi, m.lo, m.hi, reach.outside, reach.tolerance));
     if (s.tail_failures > 0)
         problems.push_back(fmt::format("{} of {} inputs in the tail (u >= {:.6g}) land below the truncation "
                                        "point {:.6g}",
@@ -255,6 +283,10 @@ void add_figures(CheckResult& r, const Stats& s, const MonotoneMarginal& m, cons
                  {"integral_tolerance", ref.integral_tolerance()},
                  {"cdf_uncertainty", ref.cdf_uncertainty()},
                  {"tail_mass", m.tail_mass},
+                 {"reach_lo", s.reach_lo},
+                 {"reach_hi", s.reach_hi},
+                 {"mass_outside_reach", reach_of(s, m, ref).outside},
+                 {"mass_outside_reach_tolerance", reach_of(s, m, ref).tolerance},
                  {"tail_samples", static_cast<double>(s.tail_samples)},
                  {"x_failures", static_cast<double>(s.x_failures)},
                  {"pdf_failures", static_cast<double>(s.pdf_failures)},

@@ -59,6 +59,14 @@ double TabulatedReference::table_pdf(double x) const {
     return static_cast<double>(table_.pdf(static_cast<float>(x))) * body_mass_;
 }
 
+double TabulatedReference::cdf(double x) const {
+    if (!(x > lo_)) return 0.0;
+    if (!(x < hi_)) return 1.0;
+    const double t = (x - lo_) / width_;
+    const auto o = std::min(static_cast<std::size_t>(t), buckets_.size() - 1);
+    return cdf_[o] + (t - static_cast<double>(o)) * (cdf_[o + 1] - cdf_[o]);
+}
+
 double TabulatedReference::inverse_cdf(double v) const {
     v = std::clamp(v, 0.0, 1.0);
     const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), v);

@@ -68,6 +68,10 @@ public:
     /// `reference` (the larger of the two).
     double pdf_tolerance(const Envelope& e, double reference) const;
 
+    /// The table's CDF at x (in double, linear within a bucket), 0 below the
+    /// range and 1 above it.
+    double cdf(double x) const;
+
     double integral() const { return integral_; }
     double integral_tolerance() const { return integral_tol_; }
     double cdf_uncertainty() const { return cdf_delta_; }
