@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "validate/result.h"
+#include "reports/result.h"
 
-namespace warpcheck::report {
+namespace warpcheck {
 
 struct SvgOptions {
     /// Prefix for the ids of gradients and patterns: unique per plot within
@@ -24,4 +24,4 @@ struct SvgOptions {
 /// is skipped or marked, never a crash.
 std::string render_svg(const Plot& plot, const SvgOptions& options = {});
 
-}  // namespace warpcheck::report
+}  // namespace warpcheck
