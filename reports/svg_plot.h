@@ -1,4 +1,4 @@
-// Plots of the result model (validate/result.h) as inline SVG, for the HTML
+// Plots of the result model (reports/result.h) as inline SVG, for the HTML
 // report: line, bar and point plots with axes, ticks, legends and log scales;
 // heatmaps side by side with shared colour scales and a legend.
 #pragma once
