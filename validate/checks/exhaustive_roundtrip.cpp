@@ -55,6 +55,7 @@ public:
         const std::size_t chunks = (kUnitFloats + kChunk - 1) / kChunk;
         std::vector<ChunkStats> stats(chunks);
         ctx.parallel_for(chunks, [&](std::size_t c) {
+            ctx.throw_if_cancelled();  // a cancelled or over-budget run stops at the next chunk
             ChunkStats s;
             std::vector<WarpInput> in(kBatch), back(kBatch);
             std::vector<WarpOutput> x(kBatch);
