@@ -25,14 +25,14 @@
 #include <string>
 #include <vector>
 
+#include "chi2/parallel.h"
 #include "sampling/float_bits.h"
 
 namespace warpcheck {
 
 /// out[i] = f(first + i) for i in [0, n).
 using FloatBlockFn = std::function<void(uint64_t first, std::size_t n, float* out)>;
-/// Calls body(i) for every i in [0, n), on any threads (e.g. ThreadPool::parallel_for).
-using ParallelFor = std::function<void(std::size_t n, const std::function<void(std::size_t)>& body)>;
+using chi2::ParallelFor;  // the project's one parallel-loop type
 
 /// Counts for one binade of the interval.
 struct BinadeCount {

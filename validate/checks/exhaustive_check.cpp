@@ -68,9 +68,7 @@ public:
         const auto a = static_cast<float>(warp.domain().a);
         const auto b = static_cast<float>(warp.domain().b);
 
-        const SweepSummary s = exhaustive_sweep(fn, inputs, a, b, [&ctx](std::size_t n, const auto& body) {
-            ctx.parallel_for(n, body);
-        });
+        const SweepSummary s = exhaustive_sweep(fn, inputs, a, b, ctx.executor());
 
         CheckResult r;
         r.samples = s.inputs;
