@@ -31,9 +31,9 @@ std::unique_ptr<WarpCase> cosine_hemisphere_case() {
     info.input = InputKind::Uniform2D;
     info.domain = chi2::Domain::hemisphere();
     return make_warp_case(
-        info, [](Point2f u) { return square_to_cosine_hemisphere(u); },
-        [](Vector3f v) { return square_to_cosine_hemisphere_pdf(v); },
-        [](Vector3f v) { return cosine_hemisphere_to_square(v); });
+        info, [](Point2f u) { return CosineHemisphere{}.sample(u); },
+        [](Vector3f v) { return CosineHemisphere{}.pdf(v); },
+        [](Vector3f v) { return CosineHemisphere{}.invert(v); });
 }
 
 struct Fixture {

@@ -34,9 +34,9 @@ inline std::unique_ptr<WarpCase> tr_normals(float alpha, bool wrong) {
     info.marginal = m;
     const TrowbridgeReitz tr(alpha);
     return make_warp_case(
-        info, [tr](Point2f u) { return tr.sample_normal(u); },
+        info, [tr](Point2f u) { return tr.normals().sample(u); },
         [alpha, wrong](Vector3f w) { return w.z > 0.0f ? isotropic_D(alpha, w.z, wrong) * w.z : 0.0; },
-        [tr](Vector3f w) { return tr.invert_normal(w); });
+        [tr](Vector3f w) { return tr.normals().invert(w); });
 }
 
 inline std::unique_ptr<WarpCase> trimmed(float c, float x_max, bool wrong) {

@@ -51,16 +51,16 @@ WarpCaseInfo info(std::string family, chi2::Domain domain, InputKind input = Inp
 
 std::unique_ptr<WarpCase> cosine_hemisphere() {
     return make_warp_case(
-        info("cosine_hemisphere", chi2::Domain::hemisphere()), [](Point2f u) { return square_to_cosine_hemisphere(u); },
-        [](Vector3f v) { return square_to_cosine_hemisphere_pdf(v); },
-        [](Vector3f v) { return cosine_hemisphere_to_square(v); });
+        info("cosine_hemisphere", chi2::Domain::hemisphere()), [](Point2f u) { return CosineHemisphere{}.sample(u); },
+        [](Vector3f v) { return CosineHemisphere{}.pdf(v); },
+        [](Vector3f v) { return CosineHemisphere{}.invert(v); });
 }
 
 std::unique_ptr<WarpCase> uniform_sphere() {
     return make_warp_case(
-        info("uniform_sphere", chi2::Domain::sphere()), [](Point2f u) { return square_to_uniform_sphere(u); },
-        [](Vector3f v) { return square_to_uniform_sphere_pdf(v); },
-        [](Vector3f v) { return uniform_sphere_to_square(v); });
+        info("uniform_sphere", chi2::Domain::sphere()), [](Point2f u) { return UniformSphere{}.sample(u); },
+        [](Vector3f v) { return UniformSphere{}.pdf(v); },
+        [](Vector3f v) { return UniformSphere{}.invert(v); });
 }
 
 void expect_statistical_pass(const CheckResult& r) {
@@ -87,7 +87,7 @@ TEST(Chi2Check, PeakedTrowbridgeReitzPasses) {
     const TrowbridgeReitz tr(0.05f);
     auto warp = make_warp_case(
         info("trowbridge_reitz_normals", chi2::Domain::hemisphere()),
-        [tr](Point2f u) { return tr.sample_normal(u); }, [tr](Vector3f m) { return tr.D(m) * std::max(0.0f, m.z); },
+        [tr](Point2f u) { return tr.normals().sample(u); }, [tr](Vector3f m) { return tr.D(m) * std::max(0.0f, m.z); },
         [](Vector3f) { return Point2f{}; });
     const CheckResult r = run_chi2(*warp);
     expect_statistical_pass(r);
@@ -117,9 +117,9 @@ TEST(Chi2Check, DensityOffByTwoPercentOverPartOfTheDomainFails) {
     // normalised): the samples of the correct warp disagree with it.
     auto warp = make_warp_case(
         info("cosine_hemisphere_tilted_pdf", chi2::Domain::hemisphere()),
-        [](Point2f u) { return square_to_cosine_hemisphere(u); },
-        [](Vector3f v) { return (v.x > 0 ? 1.02f : 0.98f) * square_to_cosine_hemisphere_pdf(v); },
-        [](Vector3f v) { return cosine_hemisphere_to_square(v); });
+        [](Point2f u) { return CosineHemisphere{}.sample(u); },
+        [](Vector3f v) { return (v.x > 0 ? 1.02f : 0.98f) * CosineHemisphere{}.pdf(v); },
+        [](Vector3f v) { return CosineHemisphere{}.invert(v); });
     const CheckResult r = run_chi2(*warp);
     EXPECT_EQ(r.verdict, Verdict::Pass) << "no non-statistical failure: " << r.message;
     ASSERT_TRUE(r.p_value.has_value());
@@ -148,8 +148,8 @@ TEST(Chi2Check, MirroredSamplesFail) {
 
 TEST(Chi2Check, DensityIntegratingToLessThanOneFailsOnItsOwn) {
     auto warp = make_warp_case(
-        info("uniform_sphere_low_pdf", chi2::Domain::sphere()), [](Point2f u) { return square_to_uniform_sphere(u); },
-        [](Vector3f) { return 0.99f / (4 * kPi); }, [](Vector3f v) { return uniform_sphere_to_square(v); });
+        info("uniform_sphere_low_pdf", chi2::Domain::sphere()), [](Point2f u) { return UniformSphere{}.sample(u); },
+        [](Vector3f) { return 0.99f / (4 * kPi); }, [](Vector3f v) { return UniformSphere{}.invert(v); });
     const CheckResult r = run_chi2(*warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_NE(r.message.find("integrates to 0.99"), std::string::npos) << r.message;
@@ -159,12 +159,12 @@ TEST(Chi2Check, NaNAndOutsideSamplesFailOnTheirOwn) {
     auto warp = make_warp_case(
         info("broken_sphere", chi2::Domain::sphere()),
         [](Point2f u) {
-            Vector3f v = square_to_uniform_sphere(u);
+            Vector3f v = UniformSphere{}.sample(u);
             if (u.x < 1e-4f) v.x = std::nanf("");
             if (u.x > 0.9999f) v = 2.0f * v;
             return v;
         },
-        [](Vector3f v) { return square_to_uniform_sphere_pdf(v); }, [](Vector3f v) { return uniform_sphere_to_square(v); });
+        [](Vector3f v) { return UniformSphere{}.pdf(v); }, [](Vector3f v) { return UniformSphere{}.invert(v); });
     const CheckResult r = run_chi2(*warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_GT(*r.figure("nan"), 0.0);

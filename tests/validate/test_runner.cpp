@@ -52,12 +52,12 @@ TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
     auto thrower = make_warp_case({"thrower", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
                                   [](Point2f u) {
                                       if (u.x > 0.99f) throw std::runtime_error("boom");
-                                      return square_to_uniform_hemisphere(u);
+                                      return UniformHemisphere{}.sample(u);
                                   },
-                                  square_to_uniform_hemisphere_pdf, uniform_hemisphere_to_square);
+                                  [](Vector3f x) { return UniformHemisphere{}.pdf(x); }, [](Vector3f x) { return UniformHemisphere{}.invert(x); });
     auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                               square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
-                               uniform_hemisphere_to_square);
+                               [](Point2f u) { return UniformHemisphere{}.sample(u); }, [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
+                               [](Vector3f x) { return UniformHemisphere{}.invert(x); });
     const auto check = make_roundtrip_check();
     RunOptions options;
     options.samples = 100'000;
@@ -81,13 +81,13 @@ TEST(Runner, SamplerThatNeverTerminatesIsAnErrorAfterItsBudget) {
         [](Point2f u) {
             volatile float candidate = u.x;
             while (candidate < 2.0f) candidate = candidate * 0.5f;  // rejection that never accepts
-            return square_to_uniform_hemisphere(u);
+            return UniformHemisphere{}.sample(u);
         },
-        square_to_uniform_hemisphere_pdf, uniform_hemisphere_to_square).release();
+        [](Vector3f x) { return UniformHemisphere{}.pdf(x); }, [](Vector3f x) { return UniformHemisphere{}.invert(x); }).release();
     static const Check* check = make_roundtrip_check().release();
     auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                               square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
-                               uniform_hemisphere_to_square);
+                               [](Point2f u) { return UniformHemisphere{}.sample(u); }, [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
+                               [](Vector3f x) { return UniformHemisphere{}.invert(x); });
     RunOptions options;
     options.samples = 100'000;
     options.threads = 2;
@@ -114,7 +114,7 @@ TEST(Runner, ResultsDoNotDependOnThreadsOrSelection) {
                                              "exponential[a=1]",
                                              "piecewise_constant_2d*",
                                              "unit_float_24bit",
-                                             "unit_float_walker"};
+                                             "[](uint32_t u) { return UnitFloatWalker{}.sample(u); }"};
     RunOptions options;
     options.samples = 150'000;
     options.check_time_budget = testing::kTestTimeBudget;
@@ -170,11 +170,11 @@ TEST(Registry, NamesAndMatching) {
     EXPECT_FALSE(name_matches("abc", "sphere"));
     Registry r;
     r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                              square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
-                              uniform_hemisphere_to_square));
+                              [](Point2f u) { return UniformHemisphere{}.sample(u); }, [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
+                              [](Vector3f x) { return UniformHemisphere{}.invert(x); }));
     EXPECT_THROW(r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                                           square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
-                                           uniform_hemisphere_to_square)),
+                                           [](Point2f u) { return UniformHemisphere{}.sample(u); }, [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
+                                           [](Vector3f x) { return UniformHemisphere{}.invert(x); })),
                  std::invalid_argument);
 }
 

@@ -55,8 +55,8 @@ std::unique_ptr<WarpCase> tr_normal_case(float alpha, bool increasing) {
     m.pdf = [alpha](double z) { return TrowbridgeReitz::isotropic_cos_theta_pdf(alpha, z); };
     info.marginal = m;
     const TrowbridgeReitz tr(alpha);
-    return make_warp_case(info, [tr](Point2f u) { return tr.sample_normal(u); },
-                          [tr](Vector3f w) { return tr.normal_pdf(w); }, [tr](Vector3f w) { return tr.invert_normal(w); });
+    return make_warp_case(info, [tr](Point2f u) { return tr.normals().sample(u); },
+                          [tr](Vector3f w) { return tr.normals().pdf(w); }, [tr](Vector3f w) { return tr.normals().invert(w); });
 }
 
 TEST(TabulatedCheck, AppliesTo1DWarpsAndDeclaredMarginals) {
@@ -78,9 +78,9 @@ TEST(TabulatedCheck, AppliesTo1DWarpsAndDeclaredMarginals) {
     plain.family = "plain";
     plain.domain = chi2::Domain::hemisphere();
     const TrowbridgeReitz tr(0.3f);
-    auto no_marginal = make_warp_case(plain, [tr](Point2f u) { return tr.sample_normal(u); },
-                                      [tr](Vector3f w) { return tr.normal_pdf(w); },
-                                      [tr](Vector3f w) { return tr.invert_normal(w); });
+    auto no_marginal = make_warp_case(plain, [tr](Point2f u) { return tr.normals().sample(u); },
+                                      [tr](Vector3f w) { return tr.normals().pdf(w); },
+                                      [tr](Vector3f w) { return tr.normals().invert(w); });
     EXPECT_FALSE(check->applies_to(*no_marginal));
 }
 
