@@ -52,6 +52,7 @@ public:
         if (!valid) throw std::invalid_argument("bilinear: weights must be finite, >= 0 and not all 0");
     }
 
+    /// y from its marginal, linear in y; then x from the line of the patch at that y.
     Point2f sample(Point2f u) const {
         const float y = Linear(w00_ + w10_, w01_ + w11_).sample(u.y);
         return {Linear(lerp(y, w00_, w01_), lerp(y, w10_, w11_)).sample(u.x), y};
@@ -64,6 +65,7 @@ public:
         return 4.0f * bilerp / (w00_ + w10_ + w01_ + w11_);
     }
 
+    /// Inverse of sample: the conditional CDF of x at p.y, and the marginal CDF of y.
     Point2f invert(Point2f p) const {
         return {Linear(lerp(p.y, w00_, w01_), lerp(p.y, w10_, w11_)).invert(p.x),
                 Linear(w00_ + w10_, w01_ + w11_).invert(p.y)};

@@ -31,9 +31,7 @@ std::unique_ptr<WarpCase> cosine_hemisphere_case() {
     info.input = InputKind::Uniform2D;
     info.domain = chi2::Domain::hemisphere();
     return make_warp_case(
-        info, [](Point2f u) { return CosineHemisphere{}.sample(u); },
-        [](Vector3f v) { return CosineHemisphere{}.pdf(v); },
-        [](Vector3f v) { return CosineHemisphere{}.invert(v); });
+        info, CosineHemisphere{});
 }
 
 struct Fixture {

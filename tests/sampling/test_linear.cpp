@@ -22,10 +22,10 @@ TEST(Linear, InverseAndDensityAgree) {
     for (auto [a, b] : {std::pair{1.0f, 3.0f}, std::pair{0.0f, 1.0f}, std::pair{5.0f, 0.0f}}) {
         double integral = 0.0;
         const int n = 10000;
-        for (int i = 0; i < n; ++i) integral += linear_pdf((i + 0.5f) / n, a, b) / n;
+        for (int i = 0; i < n; ++i) integral += Linear(a, b).pdf((i + 0.5f) / n) / n;
         EXPECT_NEAR(integral, 1.0, 1e-6) << a << " " << b;
         for (float u : {0x1p-24f, 0.1f, 0.5f, 0.9f, kOneMinusEpsilon}) {
-            const float back = invert_linear(Linear(a, b).sample(u), a, b);
+            const float back = Linear(a, b).invert(Linear(a, b).sample(u));
             EXPECT_NEAR(back, u, 1e-6) << a << " " << b << " u=" << u;
         }
     }

@@ -20,8 +20,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 WarpCaseInfo disk_info(const char* family) { return {family, {}, "test warp", InputKind::Uniform2D, chi2::Domain::unit_disk()}; }
 
 TEST(RoundtripCheck, CorrectWarpPasses) {
-    auto warp = make_warp_case(disk_info("polar"), [](Point2f u) { return UniformDiskPolar{}.sample(u); }, [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
-                               [](Point2f x) { return UniformDiskPolar{}.invert(x); });
+    auto warp = make_warp_case(disk_info("polar"), UniformDiskPolar{});
     const CheckResult r = run_check(*make_roundtrip_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     EXPECT_LT(*r.figure("max_error"), 1e-6);
@@ -82,8 +81,7 @@ TEST(RoundtripCheck, RawBitInversesMustBeExact) {
 
 TEST(ConsistencyCheck, CorrectWarpsPass) {
     auto cosine = make_warp_case({"cos", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                                 [](Point2f u) { return CosineHemisphere{}.sample(u); }, [](Vector3f x) { return CosineHemisphere{}.pdf(x); },
-                                 [](Vector3f x) { return CosineHemisphere{}.invert(x); });
+                                 CosineHemisphere{});
     const CheckResult r = run_check(*make_consistency_check(), *cosine);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     // u.x = 0 reaches the rim, where cos(theta)/pi is 0: accepted, and counted.

@@ -20,6 +20,7 @@
 #include "validate/checks/checks.h"
 #include "validate/thread_pool.h"
 #include "validate/warp_case.h"
+#include "support/builtin_case.h"
 
 namespace warpcheck {
 namespace {
@@ -49,19 +50,9 @@ WarpCaseInfo info(std::string family, chi2::Domain domain, InputKind input = Inp
     return i;
 }
 
-std::unique_ptr<WarpCase> cosine_hemisphere() {
-    return make_warp_case(
-        info("cosine_hemisphere", chi2::Domain::hemisphere()), [](Point2f u) { return CosineHemisphere{}.sample(u); },
-        [](Vector3f v) { return CosineHemisphere{}.pdf(v); },
-        [](Vector3f v) { return CosineHemisphere{}.invert(v); });
-}
-
-std::unique_ptr<WarpCase> uniform_sphere() {
-    return make_warp_case(
-        info("uniform_sphere", chi2::Domain::sphere()), [](Point2f u) { return UniformSphere{}.sample(u); },
-        [](Vector3f v) { return UniformSphere{}.pdf(v); },
-        [](Vector3f v) { return UniformSphere{}.invert(v); });
-}
+// The production cases, by name.
+const WarpCase& cosine_hemisphere() { return testing::builtin_case("cosine_hemisphere"); }
+const WarpCase& uniform_sphere() { return testing::builtin_case("uniform_sphere"); }
 
 void expect_statistical_pass(const CheckResult& r) {
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
@@ -72,13 +63,9 @@ void expect_statistical_pass(const CheckResult& r) {
 // --- Null: correct warps pass ---------------------------------------------------
 
 TEST(Chi2Check, CorrectGeometricWarpsPass) {
-    expect_statistical_pass(run_chi2(*cosine_hemisphere()));
-    expect_statistical_pass(run_chi2(*uniform_sphere()));
-    const UniformCone cone(0.3f);
-    auto cone_case = make_warp_case(
-        info("uniform_cone", chi2::Domain::spherical_cap(0.3)), [cone](Point2f u) { return cone.sample(u); },
-        [cone](Vector3f v) { return cone.pdf(v); }, [cone](Vector3f v) { return cone.invert(v); });
-    expect_statistical_pass(run_chi2(*cone_case));
+    expect_statistical_pass(run_chi2(cosine_hemisphere()));
+    expect_statistical_pass(run_chi2(uniform_sphere()));
+    expect_statistical_pass(run_chi2(testing::builtin_case("uniform_cone[cos_theta_max=0.3]")));
 }
 
 TEST(Chi2Check, PeakedTrowbridgeReitzPasses) {
@@ -101,7 +88,7 @@ TEST(Chi2Check, ExponentialOnTheHalfLinePassesWhateverItsRate) {
         const Exponential e(rate);
         auto warp = make_warp_case(
             info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D),
-            [e](float u) { return e.sample(u); }, [e](float x) { return e.pdf(x); }, [e](float x) { return e.invert(x); });
+            e);
         const CheckResult r = run_chi2(*warp);
         expect_statistical_pass(r);
         // The cells follow the distribution's scale (1 / pdf(0) = 1 / rate).
@@ -176,7 +163,7 @@ TEST(Chi2Check, NaNAndOutsideSamplesFailOnTheirOwn) {
 // --- Result content and determinism ------------------------------------------------
 
 TEST(Chi2Check, ResultCarriesFiguresSummaryAndPlots) {
-    const CheckResult r = run_chi2(*cosine_hemisphere(), 2, 200'000);
+    const CheckResult r = run_chi2(cosine_hemisphere(), 2, 200'000);
     for (const char* name : {"statistic", "dof", "p_value", "integral", "cells", "pooled_cells", "outside", "nan",
                              "zero_expected_hits"})
         EXPECT_TRUE(r.figure(name).has_value()) << name;
@@ -203,8 +190,7 @@ TEST(Chi2Check, ResultCarriesFiguresSummaryAndPlots) {
 TEST(Chi2Check, OneDimensionalCasesGetLinePlots) {
     const Exponential e(1.0f);
     auto warp = make_warp_case(
-        info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D), [e](float u) { return e.sample(u); },
-        [e](float x) { return e.pdf(x); }, [e](float x) { return e.invert(x); });
+        info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D), e);
     const CheckResult r = run_chi2(*warp, 1, 100'000);
     ASSERT_EQ(r.plots.size(), 2u);
     EXPECT_EQ(r.plots[0].series.size(), 2u);  // observed, expected
@@ -212,10 +198,10 @@ TEST(Chi2Check, OneDimensionalCasesGetLinePlots) {
 }
 
 TEST(Chi2Check, BitIdenticalForAnyThreadCount) {
-    const auto warp = cosine_hemisphere();
-    const CheckResult one = run_chi2(*warp, 1, 500'000);
+    const WarpCase& warp = cosine_hemisphere();
+    const CheckResult one = run_chi2(warp, 1, 500'000);
     for (unsigned threads : {2u, 3u}) {
-        const CheckResult many = run_chi2(*warp, threads, 500'000);
+        const CheckResult many = run_chi2(warp, threads, 500'000);
         ASSERT_EQ(one.figures.size(), many.figures.size());
         for (std::size_t i = 0; i < one.figures.size(); ++i) {
             EXPECT_EQ(one.figures[i].name, many.figures[i].name);

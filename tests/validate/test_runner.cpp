@@ -56,8 +56,7 @@ TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
                                   },
                                   [](Vector3f x) { return UniformHemisphere{}.pdf(x); }, [](Vector3f x) { return UniformHemisphere{}.invert(x); });
     auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                               [](Point2f u) { return UniformHemisphere{}.sample(u); }, [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
-                               [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+                               UniformHemisphere{});
     const auto check = make_roundtrip_check();
     RunOptions options;
     options.samples = 100'000;
@@ -86,8 +85,7 @@ TEST(Runner, SamplerThatNeverTerminatesIsAnErrorAfterItsBudget) {
         [](Vector3f x) { return UniformHemisphere{}.pdf(x); }, [](Vector3f x) { return UniformHemisphere{}.invert(x); }).release();
     static const Check* check = make_roundtrip_check().release();
     auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                               [](Point2f u) { return UniformHemisphere{}.sample(u); }, [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
-                               [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+                               UniformHemisphere{});
     RunOptions options;
     options.samples = 100'000;
     options.threads = 2;
@@ -170,11 +168,9 @@ TEST(Registry, NamesAndMatching) {
     EXPECT_FALSE(name_matches("abc", "sphere"));
     Registry r;
     r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                              [](Point2f u) { return UniformHemisphere{}.sample(u); }, [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
-                              [](Vector3f x) { return UniformHemisphere{}.invert(x); }));
+                              UniformHemisphere{}));
     EXPECT_THROW(r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                                           [](Point2f u) { return UniformHemisphere{}.sample(u); }, [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
-                                           [](Vector3f x) { return UniformHemisphere{}.invert(x); })),
+                                           UniformHemisphere{})),
                  std::invalid_argument);
 }
 
