@@ -208,8 +208,9 @@ struct UnitFloatReynolds : UnitIntervalDensity {
         const uint64_t exponent_bits = bits >> 23;  // 41 bits
         const auto significand = static_cast<uint32_t>(bits) & kFloatSignificandMask;
         if (exponent_bits == 0) return static_cast<float>(significand) * 0x1p-64f;  // exact: < 2^23
-        const int zeros = std::countl_zero(exponent_bits) - 23;                    // 0..40
-        return bits_to_float(static_cast<uint32_t>(kFloatExponentBias - 1 - zeros) << kFloatSignificandBits | significand);
+        const int zeros = std::countl_zero(exponent_bits) - 23;                     // 0..40
+        return bits_to_float(static_cast<uint32_t>(kFloatExponentBias - 1 - zeros) << kFloatSignificandBits |
+                             significand);
     }
 
     /// The smallest 64-bit input with UnitFloatReynolds{}.sample(bits) == x, for a

@@ -35,8 +35,9 @@ bool detail::add_builtin_cases(int rank, const char* name, RegisterCasesFn fn) {
 void register_builtin_cases(Registry& registry) {
     // Static initialisation order across files is unspecified: sort.
     std::vector<BuiltinFamily> families = builtin_families();
-    std::sort(families.begin(), families.end(),
-              [](const BuiltinFamily& l, const BuiltinFamily& r) { return std::tie(l.rank, l.name) < std::tie(r.rank, r.name); });
+    std::sort(families.begin(), families.end(), [](const BuiltinFamily& l, const BuiltinFamily& r) {
+        return std::tie(l.rank, l.name) < std::tie(r.rank, r.name);
+    });
     for (const BuiltinFamily& family : families) family.fn(registry);
 }
 

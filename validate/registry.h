@@ -65,6 +65,6 @@ bool add_builtin_cases(int rank, const char* name, RegisterCasesFn fn);
 ///   WARPCHECK_BUILTIN_CASES(30, register_linear_cases);
 /// `rank` orders the families in register_builtin_cases (and so in the output):
 /// the ranks 10..60 keep the historical order; a new family takes the next free one.
-#define WARPCHECK_BUILTIN_CASES(rank, fn)                                                \
+#define WARPCHECK_BUILTIN_CASES(rank, fn)                                        \
     [[maybe_unused]] static const bool warpcheck_builtin_cases_registered_##fn = \
         ::warpcheck::detail::add_builtin_cases(rank, #fn, fn)

@@ -30,8 +30,7 @@ std::unique_ptr<WarpCase> cosine_hemisphere_case() {
     info.family = "cosine_hemisphere";
     info.input = InputKind::Uniform2D;
     info.domain = chi2::Domain::hemisphere();
-    return make_warp_case(
-        info, CosineHemisphere{});
+    return make_warp_case(info, CosineHemisphere{});
 }
 
 struct Fixture {

@@ -95,8 +95,10 @@ void expect_round_trip(Sample sample, Invert invert, double tol, bool periodic_y
 }
 
 TEST(Disk, RoundTrips) {
-    expect_round_trip([](Point2f u) { return UniformDiskPolar{}.sample(u); }, [](Point2f x) { return UniformDiskPolar{}.invert(x); }, 1e-5);
-    expect_round_trip([](Point2f u) { return UniformDiskConcentric{}.sample(u); }, [](Point2f x) { return UniformDiskConcentric{}.invert(x); }, 1e-5, false);
+    expect_round_trip([](Point2f u) { return UniformDiskPolar{}.sample(u); },
+                      [](Point2f x) { return UniformDiskPolar{}.invert(x); }, 1e-5);
+    expect_round_trip([](Point2f u) { return UniformDiskConcentric{}.sample(u); },
+                      [](Point2f x) { return UniformDiskConcentric{}.invert(x); }, 1e-5, false);
 }
 
 TEST(Hemisphere, KnownValues) {
@@ -130,8 +132,10 @@ TEST(Hemisphere, CosinePowerMatchesItsSpecialCases) {
 }
 
 TEST(Hemisphere, RoundTrips) {
-    expect_round_trip([](Point2f u) { return UniformHemisphere{}.sample(u); }, [](Vector3f x) { return UniformHemisphere{}.invert(x); }, 1e-5);
-    expect_round_trip([](Point2f u) { return CosineHemisphere{}.sample(u); }, [](Vector3f x) { return CosineHemisphere{}.invert(x); }, 1e-5, false);
+    expect_round_trip([](Point2f u) { return UniformHemisphere{}.sample(u); },
+                      [](Vector3f x) { return UniformHemisphere{}.invert(x); }, 1e-5);
+    expect_round_trip([](Point2f u) { return CosineHemisphere{}.sample(u); },
+                      [](Vector3f x) { return CosineHemisphere{}.invert(x); }, 1e-5, false);
     const CosinePowerHemisphere lobe(4.0f);
     expect_round_trip([&](Point2f u) { return lobe.sample(u); }, [&](Vector3f v) { return lobe.invert(v); }, 1e-5);
 }
@@ -150,7 +154,8 @@ TEST(Hemisphere, SamplesAreUnitLengthAndUpward) {
 
 TEST(Sphere, DensityAndRoundTrip) {
     EXPECT_TRUE(near(integrate_spherical([](Vector3f x) { return UniformSphere{}.pdf(x); }, -1.0), 1.0, 1e-4));
-    expect_round_trip([](Point2f u) { return UniformSphere{}.sample(u); }, [](Vector3f x) { return UniformSphere{}.invert(x); }, 1e-5);
+    expect_round_trip([](Point2f u) { return UniformSphere{}.sample(u); },
+                      [](Vector3f x) { return UniformSphere{}.invert(x); }, 1e-5);
     EXPECT_EQ(UniformSphere{}.sample({0.0f, 0.3f}).z, 1.0f);
     EXPECT_EQ(UniformSphere{}.sample({0.5f, 0.3f}).z, 0.0f);
 }

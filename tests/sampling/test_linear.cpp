@@ -10,7 +10,7 @@ namespace warpcheck {
 namespace {
 
 TEST(Linear, KnownValues) {
-    EXPECT_EQ(Linear(0.0f, 1.0f).sample(0.0f), 0.0f);          // 0/0 in the naive formula
+    EXPECT_EQ(Linear(0.0f, 1.0f).sample(0.0f), 0.0f);           // 0/0 in the naive formula
     EXPECT_NEAR(Linear(0.0f, 1.0f).sample(0.25f), 0.5f, 1e-7);  // density 2x: CDF x^2
     EXPECT_NEAR(Linear(1.0f, 1.0f).sample(0.5f), 0.5f, 1e-7);   // constant density
     EXPECT_FLOAT_EQ(Linear(1.0f, 3.0f).pdf(1.0f), 1.5f);

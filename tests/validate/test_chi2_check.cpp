@@ -3,24 +3,24 @@
 // samples) fail, non-statistical problems fail with their own message, and the
 // result is bit-identical for any thread count. Seeds are fixed, so every test
 // here is deterministic.
+#include <gtest/gtest.h>
+
 #include <bit>
 #include <cmath>
 #include <memory>
 #include <numbers>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "chi2/domain.h"
 #include "sampling/exponential.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sphere.h"
 #include "sampling/trowbridge_reitz.h"
+#include "support/builtin_case.h"
 #include "validate/check.h"
 #include "validate/checks/checks.h"
 #include "validate/thread_pool.h"
 #include "validate/warp_case.h"
-#include "support/builtin_case.h"
 
 namespace warpcheck {
 namespace {
@@ -86,9 +86,7 @@ TEST(Chi2Check, PeakedTrowbridgeReitzPasses) {
 TEST(Chi2Check, ExponentialOnTheHalfLinePassesWhateverItsRate) {
     for (float rate : {1.0f, 250.0f, 0.002f}) {
         const Exponential e(rate);
-        auto warp = make_warp_case(
-            info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D),
-            e);
+        auto warp = make_warp_case(info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D), e);
         const CheckResult r = run_chi2(*warp);
         expect_statistical_pass(r);
         // The cells follow the distribution's scale (1 / pdf(0) = 1 / rate).
@@ -189,8 +187,7 @@ TEST(Chi2Check, ResultCarriesFiguresSummaryAndPlots) {
 
 TEST(Chi2Check, OneDimensionalCasesGetLinePlots) {
     const Exponential e(1.0f);
-    auto warp = make_warp_case(
-        info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D), e);
+    auto warp = make_warp_case(info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D), e);
     const CheckResult r = run_chi2(*warp, 1, 100'000);
     ASSERT_EQ(r.plots.size(), 2u);
     EXPECT_EQ(r.plots[0].series.size(), 2u);  // observed, expected

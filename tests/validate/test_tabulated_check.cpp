@@ -61,15 +61,13 @@ std::unique_ptr<WarpCase> tr_normal_case(float alpha, bool increasing) {
 TEST(TabulatedCheck, AppliesTo1DWarpsAndDeclaredMarginals) {
     const auto check = make_tabulated_check();
     const TrimmedExponential t(1.0f, 1.0f);
-    auto interval = make_warp_case(info_1d("trimmed", chi2::Domain::interval(0.0, 1.0)),
-                                   t);
+    auto interval = make_warp_case(info_1d("trimmed", chi2::Domain::interval(0.0, 1.0)), t);
     EXPECT_TRUE(check->applies_to(*interval));
     EXPECT_TRUE(check->applies_to(*exponential_case(1.0f)));
     EXPECT_TRUE(check->applies_to(*tr_normal_case(0.3f, false)));
     // A half-line without a declared truncation, and a 2D warp without a marginal: no.
     const Exponential e(1.0f);
-    auto half_line = make_warp_case(info_1d("exponential", chi2::Domain::half_line(0.0)),
-                                    e);
+    auto half_line = make_warp_case(info_1d("exponential", chi2::Domain::half_line(0.0)), e);
     EXPECT_FALSE(check->applies_to(*half_line));
     WarpCaseInfo plain;
     plain.family = "plain";

@@ -33,11 +33,12 @@ void register_exponential_cases(Registry& registry) {
     // c = 100: exp(-c xmax) is below float precision; all mass within ~0.1.
     for (auto [c, x_max] : {std::pair{1e-6, 1.0}, {1.0, 1.0}, {0.5, 4.0}, {100.0, 1.0}}) {
         const TrimmedExponential t(static_cast<float>(c), static_cast<float>(x_max));
-        WarpCaseInfo info{.family = "trimmed_exponential",
-                          .params = {{"c", c}, {"x_max", x_max}},
-                          .description = "exponential with rate c trimmed to [0, x_max]: pdf c exp(-c x) / (1 - exp(-c x_max))",
-                          .input = InputKind::Uniform1D,
-                          .domain = Domain::interval(0.0, x_max)};
+        WarpCaseInfo info{
+            .family = "trimmed_exponential",
+            .params = {{"c", c}, {"x_max", x_max}},
+            .description = "exponential with rate c trimmed to [0, x_max]: pdf c exp(-c x) / (1 - exp(-c x_max))",
+            .input = InputKind::Uniform1D,
+            .domain = Domain::interval(0.0, x_max)};
         // Uniform chi-square cells over [0, x_max] put c = 100's mass (scale 0.01)
         // into a handful of cells; 20 cells per 1/c keep ~150 cells with counts.
         if (c * x_max > 10.0) info.chi2_resolution.first = static_cast<int>(20.0 * c * x_max);

@@ -26,11 +26,11 @@ MonotoneMarginal cos_theta_marginal(bool increasing, double z_min, std::function
 
 void register_geometric_cases(Registry& registry) {
     using chi2::Domain;
-    registry.add_case(make_warp_case(
-        {.family = "uniform_disk_concentric",
-         .description = "uniform on the unit disk, Shirley-Chiu concentric map; pdf 1/pi per area",
-         .domain = Domain::unit_disk()},
-        UniformDiskConcentric{}));
+    registry.add_case(
+        make_warp_case({.family = "uniform_disk_concentric",
+                        .description = "uniform on the unit disk, Shirley-Chiu concentric map; pdf 1/pi per area",
+                        .domain = Domain::unit_disk()},
+                       UniformDiskConcentric{}));
     MonotoneMarginal radius;
     radius.label = "r";
     radius.coordinate = [](const WarpOutput& o) { return std::hypot(static_cast<double>(o[0]), static_cast<double>(o[1])); };
@@ -45,11 +45,11 @@ void register_geometric_cases(Registry& registry) {
                                       .domain = Domain::hemisphere(),
                                       .marginal = cos_theta_marginal(true, 0.0, [](double) { return 1.0; })},
                                      UniformHemisphere{}));
-    registry.add_case(make_warp_case(
-        {.family = "cosine_hemisphere",
-         .description = "cosine-weighted hemisphere via the concentric disk; pdf cos(theta)/pi",
-         .domain = Domain::hemisphere()},
-        CosineHemisphere{}));
+    registry.add_case(
+        make_warp_case({.family = "cosine_hemisphere",
+                        .description = "cosine-weighted hemisphere via the concentric disk; pdf cos(theta)/pi",
+                        .domain = Domain::hemisphere()},
+                       CosineHemisphere{}));
     for (double n : {0.5, 4.0, 50.0}) {
         registry.add_case(make_warp_case(
             {.family = "cosine_power_hemisphere",

@@ -60,8 +60,18 @@ std::unique_ptr<WarpCase> unit_float_32_case(std::string family, std::string des
                                  .domain = chi2::Domain::interval(0.0, 1.0),
                                  .exact_inverse = true},
                                 warp);
-    return std::make_unique<SweepableWarpCase>(std::move(inner), u32_block_fn([warp](uint32_t u) { return warp.sample(u); }),
+    return std::make_unique<SweepableWarpCase>(std::move(inner),
+                                               u32_block_fn([warp](uint32_t u) { return warp.sample(u); }),
                                                uint64_t{1} << 32, "all 2^32 inputs", true);
+}
+
+// A [0,1) sampler of 64 bits, whose inverse returns the first input exactly.
+WarpCaseInfo unit_float_64_info(std::string family, std::string description) {
+    return {.family = std::move(family),
+            .description = std::move(description),
+            .input = InputKind::Bits64,
+            .domain = chi2::Domain::interval(0.0, 1.0),
+            .exact_inverse = true};
 }
 
 // The random source of a 64-bit case: the input bits first, then (for the rare
@@ -125,21 +135,15 @@ void register_interval_cases(Registry& registry) {
 
     // --- [0,1) from 64 bits: every float with its measure ----------------------
     registry.add_case(make_warp_case(
-        {.family = "unit_float_reynolds",
-         .description = "leading zeros of 41 bits pick the binade, 23 low bits the significand; exact above 2^-41",
-         .input = InputKind::Bits64,
-         .domain = Domain::interval(0.0, 1.0),
-         .exact_inverse = true},
+        unit_float_64_info("unit_float_reynolds",
+                           "leading zeros of 41 bits pick the binade, 23 low bits the significand; exact above 2^-41"),
         UnitFloatReynolds{}));
     // Walker's sampler draws further words in rare cases: it reads them from a
     // stream seeded by the input bits, so that sample(bits) is a function.
     const UnitFloatWalker walker;
     registry.add_case(make_warp_case(
-        {.family = "unit_float_walker",
-         .description = "Walker: exponent from leading zeros of as many words as needed, down to the denormals",
-         .input = InputKind::Bits64,
-         .domain = Domain::interval(0.0, 1.0),
-         .exact_inverse = true},
+        unit_float_64_info("unit_float_walker",
+                           "Walker: exponent from leading zeros of as many words as needed, down to the denormals"),
         [walker](uint64_t bits) {
             FirstThenStream rng(bits);
             return walker.sample(rng);
@@ -156,8 +160,8 @@ void register_interval_cases(Registry& registry) {
         registry.add_case(make_warp_case(
             {.family = "uniform_float_interval",
              .params = {{"a", a}, {"b", b}},
-             .description = fmt::format("every float of {} with probability (next float - x)/(b - a)",
-                                        interval_text(a, b, ')')),
+             .description =
+                 fmt::format("every float of {} with probability (next float - x)/(b - a)", interval_text(a, b, ')')),
              .input = InputKind::Bits64,
              .domain = Domain::interval(sampler.a(), sampler.b()),
              .exact_inverse = true},
