@@ -115,7 +115,7 @@ TEST(Runner, ResultsDoNotDependOnThreadsOrSelection) {
                                              "exponential[a=1]",
                                              "piecewise_constant_2d*",
                                              "unit_float_24bit",
-                                             "[](uint32_t u) { return UnitFloatWalker{}.sample(u); }"};
+                                             "unit_float_walker"};
     RunOptions options;
     options.samples = 150'000;
     options.check_time_budget = testing::kTestTimeBudget;
