@@ -1,6 +1,12 @@
 #include "validate/cli.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cmath>
+#include <cstdio>
 
 #include <cstdlib>
 #include <filesystem>
@@ -53,6 +59,29 @@ bool output_path_usable(const std::string& path, std::string& why) {
     return true;
 }
 
+// CLI::Range lets NaN through (every comparison with NaN is false): a value
+// meant to be a finite number is checked for that first.
+const CLI::Validator kFinite(
+    [](std::string& text) {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v)) return "'" + text + "' is not a finite number";
+        return std::string();
+    },
+    "FINITE");
+
+// CLI11 reads an empty string as 0 and saturates out-of-range integers; the
+// seed must be written out in full, 0 to 2^64-1.
+const CLI::Validator kSeed(
+    [](std::string& text) {
+        const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        errno = 0;
+        if (digits) (void)std::strtoull(text.c_str(), nullptr, 10);
+        if (!digits || errno == ERANGE)
+            return "'" + text + "' is not a seed: an integer from 0 to 18446744073709551615";
+        return std::string();
+    },
+    "SEED");
+
 void list_cases(const Registry& registry, const std::vector<Job>& jobs, std::ostream& out) {
     out << "Checks:\n";
     for (const auto& c : registry.checks()) out << fmt::format("  {:<22} {}\n", c->name(), c->description());
@@ -74,6 +103,9 @@ void list_cases(const Registry& registry, const std::vector<Job>& jobs, std::ost
 }  // namespace
 
 int run_cli(int argc, char** argv, const Registry& registry) {
+    // A reader that closes early (`validate --all | head`) must not kill the run
+    // before the reports are written; a failed write to stdout is reported below.
+    std::signal(SIGPIPE, SIG_IGN);
     CliOptions o;
     CLI::App app{"warpcheck validate: statistical and exhaustive checks of sampling routines (warps).\n"
                  "Exit status: 0 all passed, 1 a check failed or errored, 2 bad usage.",
@@ -86,6 +118,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     app.add_option("--check", o.checks, "Run only this check (repeatable); see --list for names")->type_name("NAME");
     app.add_flag("--list", o.list, "List the checks and the warp cases (those selected by --filter), then exit");
     app.add_option("--seed", o.run.seed, "Global seed; every (case, check) stream derives from it")
+        ->check(kSeed)
         ->capture_default_str();
     app.add_option("--samples", o.run.samples, "Samples per statistical check")
         ->check(CLI::Range(uint64_t{1000}, uint64_t{10'000'000'000}))
@@ -94,7 +127,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         ->check(CLI::Range(0u, 1024u))
         ->capture_default_str();
     app.add_option("--alpha", o.run.alpha, "Family-wise significance level over all statistical tests of the run")
-        ->check(CLI::Range(1e-12, 0.5))
+        ->check(kFinite & CLI::Range(1e-12, 0.5))
         ->capture_default_str();
     app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
     app.add_flag("--include-flawed", o.run.include_flawed,
@@ -104,7 +137,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     app.add_option("--junit", o.junit_path, "Write the results as JUnit XML")->type_name("FILE");
     app.add_option("--time-budget", o.run.check_time_budget,
                    "Seconds one check may take before it is reported as an error and abandoned")
-        ->check(CLI::Range(0.1, 86400.0))
+        ->check(kFinite & CLI::Range(0.1, 86400.0))
         ->capture_default_str();
     app.add_flag("--failures-only", o.failures_only, "Print only the rows that did not pass");
     app.add_option("--color", o.color, "Colour the table: auto, always, never")
@@ -184,6 +217,15 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         if (!o.junit_path.empty()) write_junit_report(run, o.junit_path);
     } catch (const std::exception& e) {
         std::cerr << "validate: " << e.what() << "\n";
+        return kExitUsage;
+    }
+    // A pipe whose reader left early (`| head`) is the reader's choice, not an
+    // error: the exit status then still says what the checks said.
+    std::cout.flush();
+    struct stat out_stat {};
+    const bool to_pipe = fstat(STDOUT_FILENO, &out_stat) == 0 && S_ISFIFO(out_stat.st_mode);
+    if (!to_pipe && (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout))) {
+        std::cerr << "validate: could not write the table to standard output\n";
         return kExitUsage;
     }
     const int status = run.all_passed() ? kExitPass : kExitFail;

@@ -13,6 +13,9 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         std::cerr << "validate: could not register the warps: " << e.what() << "\n";
         return warpcheck::kExitUsage;
+    } catch (...) {  // registration is foreign code: anything it throws is a clear error, not std::terminate
+        std::cerr << "validate: could not register the warps: an exception that is not a std::exception\n";
+        return warpcheck::kExitUsage;
     }
     return warpcheck::run_cli(argc, argv, registry);
 }
