@@ -55,12 +55,14 @@ TEST(Unbinned, AsymptoticTailsMatchPublishedPercentagePoints) {
         // Rounding the point by 5e-4 moves the tail by at most density * 5e-4 < 3e-4.
         EXPECT_NEAR(kolmogorov_q(p.ks), p.level, 4e-4);
         EXPECT_NEAR(kuiper_q(p.kuiper), p.level, 4e-4);
-        if (p.level == 0.10 || p.level == 0.05)
+        if (p.level == 0.10 || p.level == 0.05) {
             EXPECT_NEAR(1.0 - anderson_darling_asymptotic_cdf(p.ad), p.level, 4e-4);
+        }
         EXPECT_NEAR(asymptotic_critical_value(UnbinnedTest::KolmogorovSmirnov, p.level), p.ks, 1e-3);
         EXPECT_NEAR(asymptotic_critical_value(UnbinnedTest::Kuiper, p.level), p.kuiper, 1e-3);
-        if (p.level == 0.10 || p.level == 0.05)
+        if (p.level == 0.10 || p.level == 0.05) {
             EXPECT_NEAR(asymptotic_critical_value(UnbinnedTest::AndersonDarling, p.level), p.ad, 2e-3);
+        }
     }
     // The Kolmogorov tail's two series meet continuously at 1.18, and its
     // 0.001 point is 1.9495 (Smirnov's table, Ann. Math. Statist. 19 (1948) 279).
