@@ -7,8 +7,9 @@
 //
 // Accuracy: two error sources, both reported. The cubature's own error bound
 // (summed over strips: the worst case for the CDF at any point), and the linear
-// interpolation between strip edges, estimated by h^2 |F''| / 8 with h^2 F''
-// taken as the second difference of the tabulated values. Both are set far
+// interpolation between strip edges, estimated from the interpolation error of
+// the grid with every other edge (measured exactly at the left-out edges) by
+// the h^2 law of linear interpolation. Both are set far
 // below the 1/sqrt(N) resolution of the unbinned tests (see unbinned_check).
 #pragma once
 
@@ -29,7 +30,7 @@ struct MarginalCdf {
     std::vector<double> cdf;         ///< the normalised CDF at the edges: 0 ... 1
     double total = 0.0;              ///< the density's integral over the domain (before normalising)
     double quadrature_error = 0.0;   ///< sum of the strips' error estimates, relative to total
-    double interpolation_error = 0.0;  ///< max over strips of |second difference| / 8
+    double interpolation_error = 0.0;  ///< estimated max error of the linear interpolation
     std::size_t unconverged_strips = 0;
     uint64_t evaluations = 0;
     uint64_t bad_values = 0;         ///< negative or non-finite density values met

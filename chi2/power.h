@@ -28,9 +28,10 @@ double pearson_tilt_for_noncentrality(double lambda, uint64_t n);
 /// The smallest tilt eps that `test` detects with probability `power` at
 /// `level` with n samples. Under the tilt, sqrt(n) (F_n - F) tends to the
 /// Brownian bridge plus the drift -sqrt(n) eps u (1 - u); the power at a drift
-/// is measured on 2000 simulated bridges on a 1024-point grid (a fixed stream,
+/// is measured on 1000 simulated bridges on a 512-point grid (a fixed stream,
 /// so the figure is the same on every run), and the drift bisected for the
-/// target power. The grid's sup falls short of the true sup by ~0.5/sqrt(1024),
+/// target power (1000 bridges: the power is known to +-0.01, the drift to
+/// about +-1.5%). The grid's sup falls short of the true sup by ~0.58/sqrt(512),
 /// which makes the figure slightly conservative (larger). Results are cached
 /// per (test, level, power): a run evaluates each once.
 double unbinned_tilt_for_power(UnbinnedTest test, double level, uint64_t n, double power = 0.9);

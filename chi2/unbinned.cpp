@@ -105,18 +105,28 @@ double UnbinnedStatistics::p_value(UnbinnedTest test) const {
 
 void sort_unit_values(std::vector<double>& values) {
     const std::size_t n = values.size();
-    if (n < 2) return;
-    auto bucket = [n](double u) {
-        const double b = std::floor(u * static_cast<double>(n));
-        return static_cast<std::size_t>(std::clamp(b, 0.0, static_cast<double>(n - 1)));
-    };
-    std::vector<std::size_t> start(n + 1, 0);
-    for (double u : values) ++start[bucket(u) + 1];
-    for (std::size_t b = 0; b < n; ++b) start[b + 1] += start[b];
+    if (n < 64) {
+        std::sort(values.begin(), values.end());
+        return;
+    }
+    // ~16 values per bucket: few enough buckets that their counters and write
+    // fronts stay in cache during the scatter, few enough values per bucket
+    // that sorting each is cheap.
+    const std::size_t buckets = n / 16;
+    const double scale = static_cast<double>(buckets);
+    std::vector<uint32_t> bucket(n);
+    std::vector<std::size_t> start(buckets + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        bucket[i] = static_cast<uint32_t>(std::clamp(std::floor(values[i] * scale), 0.0, scale - 1.0));
+        ++start[bucket[i] + 1];
+    }
+    for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
     std::vector<double> sorted(n);
-    std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (double u : values) sorted[next[bucket(u)]++] = u;
-    for (std::size_t b = 0; b < n; ++b)
+    {
+        std::vector<std::size_t> next(start.begin(), start.end() - 1);
+        for (std::size_t i = 0; i < n; ++i) sorted[next[bucket[i]]++] = values[i];
+    }
+    for (std::size_t b = 0; b < buckets; ++b)
         std::sort(sorted.begin() + static_cast<std::ptrdiff_t>(start[b]),
                   sorted.begin() + static_cast<std::ptrdiff_t>(start[b + 1]));
     values.swap(sorted);
