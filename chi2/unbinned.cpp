@@ -1,6 +1,7 @@
 #include "chi2/unbinned.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -43,6 +44,8 @@ double ad_asymptotic_upper_tail(double z) {
 // Marsaglia and Marsaglia's (2004, function errfix) correction of the
 // asymptotic CDF value x for n samples: P(A^2 <= z) = x + errfix(n, x), with
 // |error| < 2e-6 for n >= 5 by their account. At n = 10^6 it is below 1e-7.
+// Its polynomial for x > 0.8 is -6e-4 / n rather than 0 at x = 1, so p-values
+// bottom out at 6e-4 / n (6e-10 at 10^6): harmless, far below any level used.
 double ad_errfix(double n, double x) {
     if (x > 0.8)
         return (-130.2137 + (745.2337 - (1705.091 - (1950.646 - (1116.360 - 255.7844 * x) * x) * x) * x) * x) / n;
@@ -103,33 +106,40 @@ double UnbinnedStatistics::p_value(UnbinnedTest test) const {
     return std::nan("");
 }
 
+namespace {
+
+/// The value's 20-bit key floor(u 2^20), clamped into [0, 2^20).
+uint32_t unit_key(double u) {
+    constexpr double kScale = 0x1p20;
+    return static_cast<uint32_t>(std::clamp(std::floor(u * kScale), 0.0, kScale - 1.0));
+}
+
+/// One stable counting-sort pass of `from` into `to` by 10 bits of the key.
+void radix_pass(const std::vector<double>& from, std::vector<double>& to, int shift) {
+    std::array<std::size_t, 1025> start{};
+    for (double u : from) ++start[((unit_key(u) >> shift) & 1023u) + 1];
+    for (std::size_t b = 0; b < 1024; ++b) start[b + 1] += start[b];
+    for (double u : from) to[start[(unit_key(u) >> shift) & 1023u]++] = u;
+}
+
+}  // namespace
+
 void sort_unit_values(std::vector<double>& values) {
-    const std::size_t n = values.size();
-    if (n < 64) {
-        std::sort(values.begin(), values.end());
-        return;
+    // LSD radix sort on the 20-bit key (two passes of 1024 buckets: each pass
+    // writes 1024 sequential streams, which stay in cache). About 3 times faster
+    // than std::sort at 10^6 values.
+    std::vector<double> tmp(values.size());
+    radix_pass(values, tmp, 0);
+    radix_pass(tmp, values, 10);
+    // Then each run of equal keys (std::sort: a wrong warp may put all its
+    // values under one key, and an insertion sort would be quadratic).
+    for (std::size_t first = 0; first < values.size();) {
+        std::size_t last = first + 1;
+        while (last < values.size() && unit_key(values[last]) == unit_key(values[first])) ++last;
+        if (last - first > 1)
+            std::sort(values.begin() + static_cast<std::ptrdiff_t>(first), values.begin() + static_cast<std::ptrdiff_t>(last));
+        first = last;
     }
-    // ~16 values per bucket: few enough buckets that their counters and write
-    // fronts stay in cache during the scatter, few enough values per bucket
-    // that sorting each is cheap.
-    const std::size_t buckets = n / 16;
-    const double scale = static_cast<double>(buckets);
-    std::vector<uint32_t> bucket(n);
-    std::vector<std::size_t> start(buckets + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-        bucket[i] = static_cast<uint32_t>(std::clamp(std::floor(values[i] * scale), 0.0, scale - 1.0));
-        ++start[bucket[i] + 1];
-    }
-    for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
-    std::vector<double> sorted(n);
-    {
-        std::vector<std::size_t> next(start.begin(), start.end() - 1);
-        for (std::size_t i = 0; i < n; ++i) sorted[next[bucket[i]]++] = values[i];
-    }
-    for (std::size_t b = 0; b < buckets; ++b)
-        std::sort(sorted.begin() + static_cast<std::ptrdiff_t>(start[b]),
-                  sorted.begin() + static_cast<std::ptrdiff_t>(start[b + 1]));
-    values.swap(sorted);
 }
 
 UnbinnedStatistics unbinned_statistics(std::span<const double> u) {

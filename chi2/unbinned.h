@@ -43,9 +43,9 @@ struct UnbinnedStatistics {
     double p_value(UnbinnedTest test) const;
 };
 
-/// Sorts values of [0, 1] ascending in O(n) for uniform values: a counting
-/// pass into n / 16 buckets, then a sort within each. NaN values are not
-/// allowed (callers drop them first).
+/// Sorts values of [0, 1] ascending, in O(n) for values spread over [0, 1]
+/// (radix passes on floor(u 2^20), then a sort of each run of equal keys).
+/// NaN values are not allowed (callers drop them first).
 void sort_unit_values(std::vector<double>& values);
 
 /// The three statistics of sorted transforms u_(1) <= ... <= u_(n) in [0, 1].
