@@ -1,13 +1,15 @@
 # Installs warpcheck as a CMake package: find_package(warpcheck) gives
 # warpcheck::validate (the library), warpcheck::main (a ready main() for
-# programs that validate their own warps) and warpcheck::sampling (the warps).
+# programs that validate their own warps), warpcheck::sampling (the warps),
+# warpcheck::reports (the report writers) and warpcheck::results (the result model).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(warpcheck_targets warpcheck_options warpcheck_sampling warpcheck_chi2 warpcheck_reports warpcheck_validate
-    warpcheck_main)
+set(warpcheck_targets warpcheck_options warpcheck_sampling warpcheck_chi2 warpcheck_results warpcheck_reports
+    warpcheck_validate warpcheck_main)
 set_target_properties(warpcheck_sampling PROPERTIES EXPORT_NAME sampling)
 set_target_properties(warpcheck_chi2 PROPERTIES EXPORT_NAME chi2)
+set_target_properties(warpcheck_results PROPERTIES EXPORT_NAME results)
 set_target_properties(warpcheck_reports PROPERTIES EXPORT_NAME reports)
 set_target_properties(warpcheck_validate PROPERTIES EXPORT_NAME validate)
 set_target_properties(warpcheck_main PROPERTIES EXPORT_NAME main)
@@ -22,6 +24,8 @@ install(TARGETS ${warpcheck_targets}
 install(DIRECTORY sampling chi2 validate reports
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/warpcheck
   FILES_MATCHING PATTERN "*.h")
+install(FILES "${WARPCHECK_GENERATED_INCLUDE_DIR}/warpcheck/version.h"
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/warpcheck/warpcheck)
 install(EXPORT warpcheckTargets NAMESPACE warpcheck:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/warpcheck)
 
 configure_package_config_file(cmake/warpcheckConfig.cmake.in

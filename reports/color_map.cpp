@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-namespace warpcheck::report {
+namespace warpcheck {
 namespace {
 
 struct Rgb {
@@ -65,4 +65,4 @@ std::string series_color(std::size_t i) {
     return colors[i % colors.size()];
 }
 
-}  // namespace warpcheck::report
+}  // namespace warpcheck

@@ -9,7 +9,7 @@
 
 #include "reports/png.h"
 
-namespace warpcheck::report {
+namespace warpcheck {
 
 enum class ColorMap { Sequential, Diverging };
 
@@ -23,4 +23,4 @@ std::string hex(Rgba color);
 /// the colour-blind and in print.
 std::string series_color(std::size_t i);
 
-}  // namespace warpcheck::report
+}  // namespace warpcheck

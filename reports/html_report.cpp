@@ -17,7 +17,6 @@
 #include "reports/text.h"
 
 namespace warpcheck {
-namespace report {
 namespace {
 
 // The style sheet. Colours: red for failures, amber for errors, green for passes;
@@ -388,10 +387,8 @@ std::string render_html(const RunResult& run) {
     return html;
 }
 
-}  // namespace report
-
 void write_html_report(const RunResult& run, const std::string& path) {
-    write_file_atomically(path, report::render_html(run));
+    write_file_atomically(path, render_html(run));
 }
 
 }  // namespace warpcheck

@@ -11,7 +11,6 @@
 #include "reports/render.h"
 
 namespace warpcheck {
-namespace report {
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -135,10 +134,8 @@ std::string render_json(const RunResult& run) {
     return document.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
-}  // namespace report
-
 void write_json_report(const RunResult& run, const std::string& path) {
-    write_file_atomically(path, report::render_json(run));
+    write_file_atomically(path, render_json(run));
 }
 
 }  // namespace warpcheck

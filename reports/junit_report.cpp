@@ -15,7 +15,6 @@
 #include "reports/text.h"
 
 namespace warpcheck {
-namespace report {
 namespace {
 
 std::string attr(std::string_view text) { return escaped(text); }
@@ -102,10 +101,8 @@ std::string render_junit(const RunResult& run) {
     return xml;
 }
 
-}  // namespace report
-
 void write_junit_report(const RunResult& run, const std::string& path) {
-    write_file_atomically(path, report::render_junit(run));
+    write_file_atomically(path, render_junit(run));
 }
 
 }  // namespace warpcheck

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "validate/result.h"
+#include "reports/result.h"
 
 namespace warpcheck {
 

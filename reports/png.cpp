@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-namespace warpcheck::report {
+namespace warpcheck {
 namespace {
 
 std::uint32_t crc32(std::string_view bytes) {
@@ -129,4 +129,4 @@ std::string base64(std::string_view bytes) {
     return out;
 }
 
-}  // namespace warpcheck::report
+}  // namespace warpcheck

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-namespace warpcheck::report {
+namespace warpcheck {
 
 struct Rgba {
     std::uint8_t r = 0, g = 0, b = 0, a = 255;
@@ -24,4 +24,4 @@ std::string encode_palette_png(int width, int height, const std::vector<std::uin
 /// Standard base64 (RFC 4648) with padding, for data: URLs.
 std::string base64(std::string_view bytes);
 
-}  // namespace warpcheck::report
+}  // namespace warpcheck

@@ -6,17 +6,14 @@
 
 #include <chrono>
 #include <cstddef>
-#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <mutex>
 #include <string>
 
-namespace warpcheck {
+#include "reports/progress_callback.h"
 
-/// What the runner calls after each step: `done` of `total` steps are finished,
-/// `what` names the current one (e.g. "chi2 uniform_disk[]").
-using ProgressCallback = std::function<void(std::size_t done, std::size_t total, const std::string& what)>;
+namespace warpcheck {
 
 class ProgressLine {
 public:

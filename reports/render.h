@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "validate/result.h"
+#include "reports/result.h"
 
-namespace warpcheck::report {
+namespace warpcheck {
 
 /// The version of the JSON schema (reports/schema/warpcheck-results.schema.json):
 /// it goes up when a field is removed or changes meaning; added fields keep it.
@@ -20,4 +20,4 @@ std::string render_json(const RunResult& run);
 /// The JUnit XML document.
 std::string render_junit(const RunResult& run);
 
-}  // namespace warpcheck::report
+}  // namespace warpcheck

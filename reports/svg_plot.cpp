@@ -16,7 +16,7 @@
 #include "reports/png.h"
 #include "reports/text.h"
 
-namespace warpcheck::report {
+namespace warpcheck {
 namespace {
 
 constexpr double kFontSize = 11.0;
@@ -759,4 +759,4 @@ std::string render_svg(const Plot& plot, const SvgOptions& options) {
     return render_xy(plot, options);
 }
 
-}  // namespace warpcheck::report
+}  // namespace warpcheck

@@ -1,13 +1,13 @@
-// Plots of the result model (validate/result.h) as inline SVG, for the HTML
+// Plots of the result model (reports/result.h) as inline SVG, for the HTML
 // report: line, bar and point plots with axes, ticks, legends and log scales;
 // heatmaps side by side with shared colour scales and a legend.
 #pragma once
 
 #include <string>
 
-#include "validate/result.h"
+#include "reports/result.h"
 
-namespace warpcheck::report {
+namespace warpcheck {
 
 struct SvgOptions {
     /// Prefix for the ids of gradients and patterns: unique per plot within
@@ -24,4 +24,4 @@ struct SvgOptions {
 /// is skipped or marked, never a crash.
 std::string render_svg(const Plot& plot, const SvgOptions& options = {});
 
-}  // namespace warpcheck::report
+}  // namespace warpcheck

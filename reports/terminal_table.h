@@ -3,7 +3,7 @@
 
 #include <iosfwd>
 
-#include "validate/result.h"
+#include "reports/result.h"
 
 namespace warpcheck {
 

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-namespace warpcheck::report {
+namespace warpcheck {
 namespace {
 
 constexpr std::string_view kReplacement = "\xEF\xBF\xBD";  // U+FFFD in UTF-8
@@ -114,4 +114,4 @@ std::string format_seconds(double seconds) {
     return fmt::format("{} h {} min", whole / 3600, whole / 60 % 60);
 }
 
-}  // namespace warpcheck::report
+}  // namespace warpcheck

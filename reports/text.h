@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-namespace warpcheck::report {
+namespace warpcheck {
 
 /// Appends `text` escaped for XML and HTML, in element content and in quoted
 /// attribute values alike: & < > " ' become character references. Bytes that
@@ -31,4 +31,4 @@ std::string format_probability(double p);
 /// A duration: "850 ms", "3.2 s", "4 min 12 s".
 std::string format_seconds(double seconds);
 
-}  // namespace warpcheck::report
+}  // namespace warpcheck

@@ -13,7 +13,7 @@
 
 #include "sampling/hash.h"
 #include "sampling/pcg32.h"
-#include "validate/result.h"
+#include "reports/result.h"
 #include "validate/thread_pool.h"
 #include "validate/warp_case.h"
 

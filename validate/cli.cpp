@@ -15,6 +15,7 @@
 #include "reports/progress.h"
 #include "reports/terminal_table.h"
 #include "validate/runner.h"
+#include "warpcheck/version.h"
 
 namespace warpcheck {
 namespace {
@@ -109,7 +110,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     app.add_option("--color", o.color, "Colour the table: auto, always, never")
         ->check(CLI::IsMember({"auto", "always", "never"}))
         ->capture_default_str();
-    app.set_version_flag("--version", "warpcheck validate 0.1.0");
+    app.set_version_flag("--version", "warpcheck validate " WARPCHECK_VERSION);
 
     try {
         app.parse(argc, argv);
@@ -170,7 +171,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     std::ostringstream command;
     for (int i = 0; i < argc; ++i) command << (i ? " " : "") << argv[i];
     run.info.command_line = command.str();
-    run.info.tool_version = "0.1.0";
+    run.info.tool_version = WARPCHECK_VERSION;
 
     TableStyle style;
     style.color = o.color == "always" || (o.color == "auto" && isatty(STDOUT_FILENO));

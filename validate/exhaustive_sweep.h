@@ -116,7 +116,10 @@ namespace detail {
 
 // The block loop, compiled for AVX-512, AVX2 or the baseline and chosen at run
 // time. The sampler is inlined into each; IEEE operations give the same results
-// on every instruction set (no FMA is enabled, so nothing is contracted).
+// on every instruction set (no FMA is enabled, so nothing is contracted). The
+// x86 versions exist only where the compiler knows x86 targets; elsewhere the
+// baseline loop is the only one.
+#if defined(__x86_64__) && defined(__GNUC__)
 template <typename F>
 __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw"))) void u32_block_avx512(const F& f, uint64_t first,
                                                                                       std::size_t n, float* out) {
@@ -130,6 +133,7 @@ __attribute__((target("avx2"))) void u32_block_avx2(const F& f, uint64_t first, 
     const auto count = static_cast<uint32_t>(n);  // a 32-bit counter keeps the vector loop in 32-bit lanes
     for (uint32_t i = 0; i < count; ++i) out[i] = f(base + i);
 }
+#endif
 template <typename F>
 void u32_block_baseline(const F& f, uint64_t first, std::size_t n, float* out) {
     const auto base = static_cast<uint32_t>(first);

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "chi2/multiple_testing.h"
+#include "warpcheck/version.h"
 
 namespace warpcheck {
 
@@ -180,7 +181,7 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
     run.info.seed = options.seed;
     run.info.threads = threads;
     run.info.samples = options.samples;
-    run.info.compiler = fmt::format("g++ {}", __VERSION__);
+    run.info.compiler = WARPCHECK_COMPILER;
     run.info.machine = machine_description();
     run.info.started_at = utc_now();
 

@@ -10,7 +10,8 @@
 
 #include "validate/check.h"
 #include "validate/registry.h"
-#include "validate/result.h"
+#include "reports/progress_callback.h"
+#include "reports/result.h"
 
 namespace warpcheck {
 
@@ -18,9 +19,6 @@ struct Job {
     const WarpCase* warp = nullptr;
     const Check* check = nullptr;
 };
-
-/// Called after each finished job: (jobs done, jobs in all, what just finished).
-using ProgressCallback = std::function<void(std::size_t done, std::size_t total, const std::string& what)>;
 
 /// The stream of one (case, check) job: a function of the names and the seed only.
 StreamId job_stream(const WarpCase& warp, const Check& check, uint64_t seed);

@@ -115,7 +115,7 @@ TEST_F(ReportFiles, HtmlIsSelfContainedAndWellFormed) {
 
 TEST_F(ReportFiles, JsonHasBothResultsAndAgreesWithTheSchema) {
     const auto doc = nlohmann::json::parse(json);
-    EXPECT_EQ(doc["schema_version"], report::kJsonSchemaVersion);
+    EXPECT_EQ(doc["schema_version"], kJsonSchemaVersion);
     ASSERT_EQ(doc["results"].size(), 2u);
     EXPECT_EQ(doc["results"][0]["case"], "uniform_cone[cos_theta_max=0.3]");
     EXPECT_EQ(doc["results"][0]["verdict"], "pass");
@@ -140,7 +140,7 @@ TEST_F(ReportFiles, JsonHasBothResultsAndAgreesWithTheSchema) {
 TEST(JsonSchema, TheValidatorRejectsWhatTheSchemaForbids) {
     // The schema test is worth something only if it can fail.
     const SchemaValidator validator(load_schema());
-    const auto good = nlohmann::json::parse(report::render_json(sample_pass_and_fail()));
+    const auto good = nlohmann::json::parse(render_json(sample_pass_and_fail()));
     ASSERT_THAT(validator.validate(good), IsEmpty());
     auto missing = good;
     missing["results"][1].erase("verdict");
@@ -162,7 +162,7 @@ TEST(JsonSchema, TheValidatorRejectsWhatTheSchemaForbids) {
 TEST(JsonReport, NonFiniteNumbersAndHostileTextSurvive) {
     RunResult run = sample_everything();
     run.results.back().message += std::string("\xff\xfe bad utf-8");
-    const auto doc = nlohmann::json::parse(report::render_json(run));
+    const auto doc = nlohmann::json::parse(render_json(run));
     const auto& error = doc["results"][4];
     EXPECT_EQ(error["verdict"], "error");
     EXPECT_EQ(error["figures"]["nan_figure"], "NaN");
@@ -191,8 +191,8 @@ TEST_F(ReportFiles, JunitHasOneTestcasePerRowAndParses) {
 TEST(HostileText, IsEscapedInHtmlAndJunit) {
     RunResult run = sample_everything();
     run.results.back().message += std::string("\x01\xff control and bad bytes");
-    const std::string html = report::render_html(run);
-    const std::string junit = report::render_junit(run);
+    const std::string html = render_html(run);
+    const std::string junit = render_junit(run);
     EXPECT_THAT(xml_problem(html), IsEmpty());
     EXPECT_THAT(xml_problem(junit), IsEmpty());
     EXPECT_THAT(html, Not(HasSubstr("<script>alert")));
@@ -204,9 +204,9 @@ TEST(HostileText, IsEscapedInHtmlAndJunit) {
 TEST(EmptyRun, StillMakesValidReports) {
     RunResult run;
     run.info = sample_info();
-    EXPECT_THAT(xml_problem(report::render_html(run)), IsEmpty());
-    EXPECT_THAT(xml_problem(report::render_junit(run)), IsEmpty());
-    EXPECT_THAT(SchemaValidator(load_schema()).validate(nlohmann::json::parse(report::render_json(run))), IsEmpty());
+    EXPECT_THAT(xml_problem(render_html(run)), IsEmpty());
+    EXPECT_THAT(xml_problem(render_junit(run)), IsEmpty());
+    EXPECT_THAT(SchemaValidator(load_schema()).validate(nlohmann::json::parse(render_json(run))), IsEmpty());
 }
 
 TEST(ReportWriters, UnwritablePathIsAReportError) {

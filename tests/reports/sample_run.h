@@ -9,7 +9,7 @@
 #include <numbers>
 #include <string>
 
-#include "validate/result.h"
+#include "reports/result.h"
 
 namespace warpcheck::testing {
 

@@ -12,7 +12,7 @@
 #include "tests/reports/temp_dir.h"
 #include "tests/reports/xml_check.h"
 
-namespace warpcheck::report {
+namespace warpcheck {
 namespace {
 
 using ::testing::HasSubstr;
@@ -188,4 +188,4 @@ TEST(SvgPlot, FullSizeHeatmapsStaySmall) {
 }
 
 }  // namespace
-}  // namespace warpcheck::report
+}  // namespace warpcheck

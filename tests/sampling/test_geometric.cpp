@@ -179,11 +179,11 @@ TEST(Parameters, InvalidValuesAreRejected) {
     EXPECT_THROW(UniformCone(1.0f), std::invalid_argument);
     EXPECT_THROW(UniformCone(1.5f), std::invalid_argument);
     EXPECT_THROW(UniformCone(-1.01f), std::invalid_argument);
-    EXPECT_THROW(UniformCone(std::numeric_limits<float>::quiet_NaN()), std::invalid_argument);
+    EXPECT_THROW(UniformCone{std::numeric_limits<float>::quiet_NaN()}, std::invalid_argument);
     EXPECT_NO_THROW(UniformCone(-1.0f));
     EXPECT_THROW(CosinePowerHemisphere(-0.5f), std::invalid_argument);
-    EXPECT_THROW(CosinePowerHemisphere(std::numeric_limits<float>::infinity()), std::invalid_argument);
-    EXPECT_THROW(CosinePowerHemisphere(std::numeric_limits<float>::quiet_NaN()), std::invalid_argument);
+    EXPECT_THROW(CosinePowerHemisphere{std::numeric_limits<float>::infinity()}, std::invalid_argument);
+    EXPECT_THROW(CosinePowerHemisphere{std::numeric_limits<float>::quiet_NaN()}, std::invalid_argument);
 }
 
 }  // namespace

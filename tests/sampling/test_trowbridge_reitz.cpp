@@ -88,7 +88,7 @@ TEST(TrowbridgeReitz, RejectsBadParameters) {
     const TrowbridgeReitz tr(0.3f);
     EXPECT_THROW(tr.visible_normals({0.0f, 0.0f, 0.0f}), std::invalid_argument);
     EXPECT_THROW(tr.visible_normals({std::nanf(""), 0.0f, 1.0f}), std::invalid_argument);
-    EXPECT_NO_THROW(TrowbridgeReitz(TrowbridgeReitz::kMinAlpha));
+    EXPECT_NO_THROW(TrowbridgeReitz{TrowbridgeReitz::kMinAlpha});
 }
 
 TEST(TrowbridgeReitz, KnownValues) {
@@ -140,7 +140,7 @@ TEST(TrowbridgeReitz, MarginalDensitiesIntegrateToOne) {
     }
     for (auto [ax, ay] : kAlphas) {
         const double i = gauss_kronrod<double, 31>::integrate(
-            [ax, ay](double p) { return TrowbridgeReitz::azimuth_pdf(ax, ay, p); }, 0.0, 2.0 * kPiD, 15, 1e-12);
+            [ax = ax, ay = ay](double p) { return TrowbridgeReitz::azimuth_pdf(ax, ay, p); }, 0.0, 2.0 * kPiD, 15, 1e-12);
         EXPECT_NEAR(i, 1.0, 1e-9) << ax << " " << ay;
     }
 }

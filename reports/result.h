@@ -88,7 +88,9 @@ struct CheckResult {
     std::string check_name;  ///< e.g. "roundtrip", "chi2"
     Verdict verdict = Verdict::Error;
     std::string summary;  ///< the key figure, short, for the table: "max |du| 3.0e-08"
-    std::string message;  ///< why it failed or errored (empty on pass)
+    /// Why it failed or errored. On a pass, empty or a note worth reading that is
+    /// not a failure (e.g. the bias an exhaustive sweep reports without failing it).
+    std::string message;
 
     std::vector<Figure> figures;  ///< every number worth keeping, by name
     /// Set by statistical checks. The runner turns it into the verdict with the
