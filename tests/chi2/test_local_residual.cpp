@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "chi2/local_residual.h"
+#include "chi2/min_p.h"
 
 namespace warpcheck::chi2 {
 namespace {
@@ -31,6 +32,16 @@ TEST(LocalResidual, ExactCountsPassAndEmptyCellsAreSkipped) {
     const LocalResidual r = largest_cell_residual(counts, expected, 1000);
     EXPECT_EQ(r.cells_tested, 2u);
     EXPECT_EQ(r.p_value, 1.0);
+}
+
+TEST(MinP, SidakAndWeightedBonferroni) {
+    const std::vector<double> p = {0.5, 0.01, 0.2};
+    EXPECT_NEAR(sidak_min_p(p), 1.0 - std::pow(0.99, 3), 1e-15);
+    EXPECT_TRUE(std::isnan(sidak_min_p(std::vector<double>{0.5, std::nan("")})));
+    EXPECT_TRUE(std::isnan(sidak_min_p(std::vector<double>{})));
+    EXPECT_NEAR(weighted_min_p({0.4, 0.01}, {0.8, 0.2}), 0.05, 1e-15);
+    EXPECT_EQ(weighted_min_p({0.9, 0.5}, {0.8, 0.2}), 1.0);
+    EXPECT_TRUE(std::isnan(weighted_min_p({std::nan(""), 0.5}, {0.8, 0.2})));
 }
 
 }  // namespace

@@ -155,7 +155,8 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
 void judge(CheckResult& r, const chi2::Chi2Outcome& o) {
     // Pearson's statistic and the largest cell residual, one p-value (chi2/min_p.h).
     const double local_p = chi2::largest_cell_residual(o.histogram.counts, o.expected, r.samples).p_value;
-    if (o.dof() >= 1) r.p_value = chi2::sidak_min_p({o.p_value(), local_p});
+    if (o.dof() >= 1)
+        r.p_value = chi2::weighted_min_p({o.p_value(), local_p}, {1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare});
     r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}", o.statistic(), o.dof(), o.p_value());
     if (!o.errors.empty()) {
         r.verdict = Verdict::Error;
@@ -199,7 +200,7 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning
     // noncentrality, and the tilt of a marginal (chi2/power.h), that Pearson's
     // statistic detects 90% of the time at the planned level (power_level.h).
     const chi2::LocalResidual local = chi2::largest_cell_residual(h.counts, o.expected, samples);
-    const double level = power_level(RunOptions{}, 2);  // at the default family-wise alpha
+    const double level = (1.0 - chi2::kLocalLevelShare) * power_level(RunOptions{}, 1);  // default alpha
     const double lambda = chi2::pearson_noncentrality_for_power(o.dof(), level);
     r.figures.insert(r.figures.end(), {{"local_max_residual", local.residual},
                                        {"local_cell", static_cast<double>(local.cell)},
