@@ -110,8 +110,8 @@ namespace {
 
 /// The value's 20-bit key floor(u 2^20), clamped into [0, 2^20).
 uint32_t unit_key(double u) {
-    constexpr double kScale = 0x1p20;
-    return static_cast<uint32_t>(std::clamp(std::floor(u * kScale), 0.0, kScale - 1.0));
+    // Truncation is floor for u >= 0; values are in [0, 1], so only u = 1 needs the clamp.
+    return std::min(static_cast<uint32_t>(u * 0x1p20), (uint32_t{1} << 20) - 1);
 }
 
 /// One stable counting-sort pass of `from` into `to` by 10 bits of the key.
@@ -131,15 +131,14 @@ void sort_unit_values(std::vector<double>& values) {
     std::vector<double> tmp(values.size());
     radix_pass(values, tmp, 0);
     radix_pass(tmp, values, 10);
-    // Then each run of equal keys (std::sort: a wrong warp may put all its
-    // values under one key, and an insertion sort would be quadratic).
-    for (std::size_t first = 0; first < values.size();) {
-        std::size_t last = first + 1;
-        while (last < values.size() && unit_key(values[last]) == unit_key(values[first])) ++last;
-        if (last - first > 1)
-            std::sort(values.begin() + static_cast<std::ptrdiff_t>(first), values.begin() + static_cast<std::ptrdiff_t>(last));
-        first = last;
-    }
+    // Then insertion sort, which only has to order values that share a key
+    // (~1 per key for values spread over [0, 1]). A wrong warp may put most of
+    // its values under one key: past 8 moves per value, std::sort finishes.
+    const std::size_t budget = 8 * values.size();
+    std::size_t moves = 0;
+    for (std::size_t i = 1; i < values.size() && moves <= budget; ++i)
+        for (std::size_t j = i; j > 0 && values[j] < values[j - 1]; --j, ++moves) std::swap(values[j], values[j - 1]);
+    if (moves > budget) std::sort(values.begin(), values.end());
 }
 
 UnbinnedStatistics unbinned_statistics(std::span<const double> u) {

@@ -37,11 +37,11 @@ namespace warpcheck {
 namespace {
 
 /// Strips per marginal CDF. The linear interpolation's error ~h^2 |F''| / 8 is
-/// ~3e-8 |F''| at 2048 strips, far below the tests' 1/sqrt(N) = 1e-3 where the
-/// marginal density is smooth on the strips' scale.
-constexpr int kStrips = 2048;
+/// ~1e-7 |F''| at 1024 strips, far below the tests' 1/sqrt(N) = 1e-3 where the
+/// marginal density is smooth on the strips' scale (and measured: cdf_error).
+constexpr int kStrips = 1024;
 /// The cubature's accuracy fraction (chi2/quadrature.h) for the strips: the
-/// summed error allowance f sqrt(strips / N) is then 4.5% of 1/sqrt(N) at worst.
+/// summed error allowance f sqrt(strips / N) is then 3% of 1/sqrt(N) at worst.
 constexpr double kCdfAccuracyFraction = 1e-3;
 /// A CDF error e moves sqrt(N) D by sqrt(N) e. Allowing 0.1 of that scale
 /// moves a p-value near the tests' critical values (~2 to 3) by a few percent
