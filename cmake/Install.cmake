@@ -6,13 +6,14 @@ include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(warpcheck_targets warpcheck_options warpcheck_sampling warpcheck_chi2 warpcheck_results warpcheck_reports
-    warpcheck_validate warpcheck_main)
+    warpcheck_validate warpcheck_cases warpcheck_main)
 set_target_properties(warpcheck_sampling PROPERTIES EXPORT_NAME sampling)
 set_target_properties(warpcheck_chi2 PROPERTIES EXPORT_NAME chi2)
 set_target_properties(warpcheck_results PROPERTIES EXPORT_NAME results)
 set_target_properties(warpcheck_reports PROPERTIES EXPORT_NAME reports)
 set_target_properties(warpcheck_validate PROPERTIES EXPORT_NAME validate)
 set_target_properties(warpcheck_main PROPERTIES EXPORT_NAME main)
+set_target_properties(warpcheck_cases PROPERTIES EXPORT_NAME cases)
 set_target_properties(warpcheck_options PROPERTIES EXPORT_NAME options)
 
 install(TARGETS validate RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
@@ -20,7 +21,8 @@ install(TARGETS ${warpcheck_targets}
   EXPORT warpcheckTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+  OBJECTS DESTINATION ${CMAKE_INSTALL_LIBDIR}/warpcheck)
 install(DIRECTORY sampling chi2 validate reports
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/warpcheck
   FILES_MATCHING PATTERN "*.h")

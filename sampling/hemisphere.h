@@ -12,36 +12,42 @@
 
 namespace warpcheck {
 
-/// Uniform over the hemisphere: z = cos(theta) = u.x, phi = 2 pi u.y (the area of
-/// a band of the sphere is proportional to its height, so uniform z is uniform area).
-inline Vector3f square_to_uniform_hemisphere(Point2f u) {
-    const float z = u.x;
-    const float r = sin_from_cos(z);
-    const float phi = kTwoPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
+/// Uniform over the hemisphere.
+struct UniformHemisphere {
+    /// Uniform over the hemisphere: z = cos(theta) = u.x, phi = 2 pi u.y (the area of
+    /// a band of the sphere is proportional to its height, so uniform z is uniform area).
+    Vector3f sample(Point2f u) const {
+        const float z = u.x;
+        const float r = sin_from_cos(z);
+        const float phi = kTwoPi * u.y;
+        return {r * std::cos(phi), r * std::sin(phi), z};
+    }
 
-/// Density of square_to_uniform_hemisphere: 1/(2 pi) for z >= 0, else 0.
-inline float square_to_uniform_hemisphere_pdf(Vector3f v) { return v.z >= 0.0f ? kInvTwoPi : 0.0f; }
+    /// Density of sample: 1/(2 pi) for z >= 0, else 0.
+    float pdf(Vector3f v) const { return v.z >= 0.0f ? kInvTwoPi : 0.0f; }
 
-/// Inverse of square_to_uniform_hemisphere.
-inline Point2f uniform_hemisphere_to_square(Vector3f v) { return {v.z, azimuth_to_unit(v.x, v.y)}; }
+    /// Inverse of sample.
+    Point2f invert(Vector3f v) const { return {v.z, azimuth_to_unit(v.x, v.y)}; }
+};
 
-/// Cosine-weighted hemisphere (Malley's method): a uniform point of the disk,
-/// from the concentric map, lifted to the hemisphere. Projection to the disk
-/// divides area by cos(theta), so uniform on the disk is cos(theta)/pi on the
-/// hemisphere. The rim z = 0 (density 0) is reached only from u.x = 0 or u.y = 0.
-inline Vector3f square_to_cosine_hemisphere(Point2f u) {
-    const Point2f d = square_to_uniform_disk_concentric(u);
-    const float z = safe_sqrt(1.0f - d.x * d.x - d.y * d.y);
-    return {d.x, d.y, z};
-}
+/// Cosine-weighted hemisphere.
+struct CosineHemisphere {
+    /// Cosine-weighted hemisphere (Malley's method): a uniform point of the disk,
+    /// from the concentric map, lifted to the hemisphere. Projection to the disk
+    /// divides area by cos(theta), so uniform on the disk is cos(theta)/pi on the
+    /// hemisphere. The rim z = 0 (density 0) is reached only from u.x = 0 or u.y = 0.
+    Vector3f sample(Point2f u) const {
+        const Point2f d = UniformDiskConcentric{}.sample(u);
+        const float z = safe_sqrt(1.0f - d.x * d.x - d.y * d.y);
+        return {d.x, d.y, z};
+    }
 
-/// Density of square_to_cosine_hemisphere: cos(theta)/pi for z >= 0, else 0.
-inline float square_to_cosine_hemisphere_pdf(Vector3f v) { return v.z >= 0.0f ? v.z * kInvPi : 0.0f; }
+    /// Density of sample: cos(theta)/pi for z >= 0, else 0.
+    float pdf(Vector3f v) const { return v.z >= 0.0f ? v.z * kInvPi : 0.0f; }
 
-/// Inverse of square_to_cosine_hemisphere: project to the disk, invert the concentric map.
-inline Point2f cosine_hemisphere_to_square(Vector3f v) { return uniform_disk_concentric_to_square({v.x, v.y}); }
+    /// Inverse of sample: project to the disk, invert the concentric map.
+    Point2f invert(Vector3f v) const { return UniformDiskConcentric{}.invert({v.x, v.y}); }
+};
 
 /// Cosine-power lobe around the normal, density (n+1)/(2 pi) cos^n(theta): the
 /// Phong lobe, which is the uniform hemisphere for n = 0 and the cosine

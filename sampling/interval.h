@@ -75,7 +75,7 @@ struct LerpInterval {
 ///   The interval then covers at least 17 binades of the range, so the
 ///   acceptance is above 1/2 (1/4 when it spans zero).
 /// Both paths map the first word monotonically to x, rotated so that every
-/// rejected first word lies above every accepted one; `first_word(x)` gives
+/// rejected first word lies above every accepted one; `invert(x)` gives
 /// the smallest first word that produces x.
 ///
 /// Termination: at most kMaxAttempts = 256 rejections (probability below
@@ -145,7 +145,7 @@ public:
     /// Exact everywhere on the narrow path; on the wide path exact for
     /// magnitudes above 2^(E-39) (E: the top binade of the range), below which
     /// further words decide as well (probability 2^-40).
-    uint64_t first_word(float x) const {
+    uint64_t invert(float x) const {
         if (degenerate_) return 0;
         if (narrow_) {
             const int64_t units = float_in_units(x);

@@ -12,26 +12,34 @@
 
 namespace warpcheck {
 
-/// Samples x in [0,1] with density proportional to (1 - x) a + x b (a, b >= 0,
-/// not both 0). Solves the quadratic CDF with the root written as
-/// u (a + b) / (a + sqrt(lerp(u, a^2, b^2))), which has no cancellation; it is
-/// 0/0 only at u = 0 with a = 0, where the answer is 0.
-inline float sample_linear(float u, float a, float b) {
-    if (u == 0.0f) return 0.0f;
-    const float x = u * (a + b) / (a + std::sqrt((1.0f - u) * a * a + u * b * b));
-    return std::min(x, kOneMinusEpsilon);
-}
+/// The density proportional to the line (1 - x) a + x b on [0,1], with a, b >= 0
+/// and not both 0. The caller vouches for a and b: Bilinear builds one per sample
+/// from weights it has validated, so the constructor does not check them again.
+class Linear {
+public:
+    Linear(float a, float b) : a_(a), b_(b) {}
 
-/// Density of sample_linear on [0,1] with respect to length: 2 lerp(x, a, b) / (a + b).
-inline float linear_pdf(float x, float a, float b) {
-    if (x < 0.0f || x > 1.0f) return 0.0f;
-    return 2.0f * ((1.0f - x) * a + x * b) / (a + b);
-}
+    /// Samples x in [0,1] with density proportional to (1 - x) a + x b. Solves the
+    /// quadratic CDF with the root written as u (a + b) / (a + sqrt(lerp(u, a^2, b^2))),
+    /// which has no cancellation; it is 0/0 only at u = 0 with a = 0, where the answer is 0.
+    float sample(float u) const {
+        if (u == 0.0f) return 0.0f;
+        const float x = u * (a_ + b_) / (a_ + std::sqrt((1.0f - u) * a_ * a_ + u * b_ * b_));
+        return std::min(x, kOneMinusEpsilon);
+    }
 
-/// Inverse of sample_linear: the CDF, x (a (2 - x) + b x) / (a + b).
-inline float invert_linear(float x, float a, float b) {
-    return std::min(x * (a * (2.0f - x) + b * x) / (a + b), kOneMinusEpsilon);
-}
+    /// Density of sample on [0,1] with respect to length: 2 lerp(x, a, b) / (a + b).
+    float pdf(float x) const {
+        if (x < 0.0f || x > 1.0f) return 0.0f;
+        return 2.0f * ((1.0f - x) * a_ + x * b_) / (a_ + b_);
+    }
+
+    /// Inverse of sample: the CDF, x (a (2 - x) + b x) / (a + b).
+    float invert(float x) const { return std::min(x * (a_ * (2.0f - x) + b_ * x) / (a_ + b_), kOneMinusEpsilon); }
+
+private:
+    float a_, b_;
+};
 
 /// Samples the unit square with density proportional to the bilinear
 /// interpolation of four corner weights w00, w10, w01, w11 (at (0,0), (1,0),
@@ -44,9 +52,10 @@ public:
         if (!valid) throw std::invalid_argument("bilinear: weights must be finite, >= 0 and not all 0");
     }
 
+    /// y from its marginal, linear in y; then x from the line of the patch at that y.
     Point2f sample(Point2f u) const {
-        const float y = sample_linear(u.y, w00_ + w10_, w01_ + w11_);
-        return {sample_linear(u.x, lerp(y, w00_, w01_), lerp(y, w10_, w11_)), y};
+        const float y = Linear(w00_ + w10_, w01_ + w11_).sample(u.y);
+        return {Linear(lerp(y, w00_, w01_), lerp(y, w10_, w11_)).sample(u.x), y};
     }
 
     /// Density with respect to area on [0,1]^2: 4 bilerp(p) / (w00 + w10 + w01 + w11).
@@ -56,9 +65,10 @@ public:
         return 4.0f * bilerp / (w00_ + w10_ + w01_ + w11_);
     }
 
+    /// Inverse of sample: the conditional CDF of x at p.y, and the marginal CDF of y.
     Point2f invert(Point2f p) const {
-        return {invert_linear(p.x, lerp(p.y, w00_, w01_), lerp(p.y, w10_, w11_)),
-                invert_linear(p.y, w00_ + w10_, w01_ + w11_)};
+        return {Linear(lerp(p.y, w00_, w01_), lerp(p.y, w10_, w11_)).invert(p.x),
+                Linear(w00_ + w10_, w01_ + w11_).invert(p.y)};
     }
 
 private:

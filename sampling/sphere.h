@@ -11,23 +11,26 @@
 
 namespace warpcheck {
 
-/// Uniform over the sphere: z = 1 - 2 u.x, phi = 2 pi u.y (Archimedes: equal
-/// heights cut equal areas).
-inline Vector3f square_to_uniform_sphere(Point2f u) {
-    const float z = 1.0f - 2.0f * u.x;
-    const float r = sin_from_cos(z);
-    const float phi = kTwoPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
+/// Uniform over the whole sphere.
+struct UniformSphere {
+    /// Uniform over the sphere: z = 1 - 2 u.x, phi = 2 pi u.y (Archimedes: equal
+    /// heights cut equal areas).
+    Vector3f sample(Point2f u) const {
+        const float z = 1.0f - 2.0f * u.x;
+        const float r = sin_from_cos(z);
+        const float phi = kTwoPi * u.y;
+        return {r * std::cos(phi), r * std::sin(phi), z};
+    }
 
-/// Density of square_to_uniform_sphere: 1/(4 pi) everywhere.
-inline float square_to_uniform_sphere_pdf(Vector3f) { return kInvFourPi; }
+    /// Density of sample: 1/(4 pi) everywhere.
+    float pdf(Vector3f) const { return kInvFourPi; }
 
-/// Inverse of square_to_uniform_sphere. At the poles the azimuth is undefined;
-/// any u.y is a valid preimage there.
-inline Point2f uniform_sphere_to_square(Vector3f v) {
-    return {std::min(0.5f * (1.0f - v.z), kOneMinusEpsilon), azimuth_to_unit(v.x, v.y)};
-}
+    /// Inverse of sample. At the poles the azimuth is undefined; any u.y is a
+    /// valid preimage there.
+    Point2f invert(Vector3f v) const {
+        return {std::min(0.5f * (1.0f - v.z), kOneMinusEpsilon), azimuth_to_unit(v.x, v.y)};
+    }
+};
 
 /// Uniform over the cone of directions within theta_max of +z, i.e. the cap
 /// z >= cos_theta_max, of solid angle 2 pi (1 - cos_theta_max). Valid for

@@ -27,6 +27,7 @@
 
 namespace warpcheck {
 
+class TrowbridgeReitzNormals;
 class TrowbridgeReitzVisibleNormals;
 
 /// The Trowbridge-Reitz distribution of microfacet normals with roughness
@@ -87,30 +88,10 @@ public:
 
     // --- Normals with density D(wm) cos(theta_m) --------------------------------
 
-    /// Samples wm with density D(wm) cos(theta_m). On the unit hemisphere the
-    /// projected-area distribution of normals is uniform on the disk below it, so
-    /// take a uniform disk point p (polar map: r^2 = u.x, phi = 2 pi u.y), lift it
-    /// to n = (p, sqrt(1 - r^2)) and stretch: wm = normalize(ax p.x, ay p.y, sqrt(1 - u.x)).
-    /// Isotropic: tan^2 theta_m = alpha^2 u.x / (1 - u.x). cos(theta_m) depends on
-    /// u.x only (decreasing) when isotropic; the azimuth depends on u.y only
-    /// (increasing) always.
-    Vector3f sample_normal(Point2f u) const {
-        const Point2f p = square_to_uniform_disk_polar(u);
-        return normalize({ax_ * p.x, ay_ * p.y, safe_sqrt(1.0f - u.x)});
-    }
+    /// The warp for normals with density D(wm) cos(theta_m); see TrowbridgeReitzNormals.
+    TrowbridgeReitzNormals normals() const;
 
-    /// Density of sample_normal with respect to solid angle: D(wm) cos(theta_m), 0 below the horizon.
-    float normal_pdf(Vector3f wm) const { return wm.z > 0.0f ? D(wm) * wm.z : 0.0f; }
-
-    /// Inverse of sample_normal: unstretch to n ~ (wm.x/ax, wm.y/ay, wm.z); then
-    /// u.x = r^2 = |n.xy|^2 / |n|^2 and u.y is the azimuth of n.
-    Point2f invert_normal(Vector3f wm) const {
-        const float nx = wm.x / ax_, ny = wm.y / ay_, nz = std::max(wm.z, 0.0f);
-        const float rho2 = nx * nx + ny * ny;
-        return {std::min(rho2 / (rho2 + nz * nz), kOneMinusEpsilon), azimuth_to_unit(nx, ny)};
-    }
-
-    /// The marginal density of cos(theta_m) under sample_normal, isotropic case
+    /// The marginal density of cos(theta_m) under TrowbridgeReitzNormals::sample, isotropic case
     /// (alpha = alpha_x): p(z) = 2 pi z D(z) = 2 alpha^2 z / (1 + (alpha^2 - 1) z^2)^2
     /// on [0, 1]. In double: it is a reference for tests and checks.
     static double isotropic_cos_theta_pdf(double alpha, double z) {
@@ -118,7 +99,7 @@ public:
         return z >= 0.0 && z <= 1.0 ? 2.0 * a2 * z / (den * den) : 0.0;
     }
 
-    /// The marginal density of the azimuth phi_m in [0, 2 pi) under sample_normal:
+    /// The marginal density of the azimuth phi_m in [0, 2 pi) under TrowbridgeReitzNormals::sample:
     /// tan(phi_m) = (ay/ax) tan(2 pi u.y), so
     ///   p(phi) = ax ay / (2 pi (ay^2 cos^2 phi + ax^2 sin^2 phi)).
     static double azimuth_pdf(double ax, double ay, double phi) {
@@ -144,6 +125,41 @@ private:
     }
 
     float ax_, ay_;
+};
+
+/// Trowbridge-Reitz microfacet normals wm with density D(wm) cos(theta_m), the
+/// projected-area distribution, with respect to the solid angle of wm.
+class TrowbridgeReitzNormals {
+public:
+    explicit TrowbridgeReitzNormals(const TrowbridgeReitz& distribution) : tr_(distribution) {}
+
+    const TrowbridgeReitz& distribution() const { return tr_; }
+
+    /// Samples wm with density D(wm) cos(theta_m). On the unit hemisphere the
+    /// projected-area distribution of normals is uniform on the disk below it, so
+    /// take a uniform disk point p (polar map: r^2 = u.x, phi = 2 pi u.y), lift it
+    /// to n = (p, sqrt(1 - r^2)) and stretch: wm = normalize(ax p.x, ay p.y, sqrt(1 - u.x)).
+    /// Isotropic: tan^2 theta_m = alpha^2 u.x / (1 - u.x). cos(theta_m) depends on
+    /// u.x only (decreasing) when isotropic; the azimuth depends on u.y only
+    /// (increasing) always.
+    Vector3f sample(Point2f u) const {
+        const Point2f p = UniformDiskPolar{}.sample(u);
+        return normalize({tr_.alpha_x() * p.x, tr_.alpha_y() * p.y, safe_sqrt(1.0f - u.x)});
+    }
+
+    /// Density of sample with respect to solid angle: D(wm) cos(theta_m), 0 below the horizon.
+    float pdf(Vector3f wm) const { return wm.z > 0.0f ? tr_.D(wm) * wm.z : 0.0f; }
+
+    /// Inverse of sample: unstretch to n ~ (wm.x/ax, wm.y/ay, wm.z); then
+    /// u.x = r^2 = |n.xy|^2 / |n|^2 and u.y is the azimuth of n.
+    Point2f invert(Vector3f wm) const {
+        const float nx = wm.x / tr_.alpha_x(), ny = wm.y / tr_.alpha_y(), nz = std::max(wm.z, 0.0f);
+        const float rho2 = nx * nx + ny * ny;
+        return {std::min(rho2 / (rho2 + nz * nz), kOneMinusEpsilon), azimuth_to_unit(nx, ny)};
+    }
+
+private:
+    TrowbridgeReitz tr_;
 };
 
 /// Visible normals of a Trowbridge-Reitz surface seen from the direction wo:
@@ -285,7 +301,7 @@ public:
                 d = n > 0.0f ? Point2f{c.x * (r / n), c.y * (r / n)} : Point2f{r, 0.0f};
             }
         }
-        return uniform_disk_concentric_to_square(rotate(d, rot_cos_, -rot_sin_));
+        return UniformDiskConcentric{}.invert(rotate(d, rot_cos_, -rot_sin_));
     }
 
 private:
@@ -301,6 +317,8 @@ private:
     float rot_cos_ = 1.0f, rot_sin_ = 0.0f;
     float g1_over_cos_o_ = 1.0f;
 };
+
+inline TrowbridgeReitzNormals TrowbridgeReitz::normals() const { return TrowbridgeReitzNormals(*this); }
 
 inline TrowbridgeReitzVisibleNormals TrowbridgeReitz::visible_normals(Vector3f wo) const {
     return TrowbridgeReitzVisibleNormals(*this, wo);

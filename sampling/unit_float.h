@@ -1,10 +1,10 @@
 // Floats in [0,1) from random bits: the five ways renderers do it, with their
 // inverses, so that the exhaustive counts can say exactly how biased each is.
 //
-// Naming: `<input>_to_unit_float_<method>(bits)` samples, and
-// `unit_float_<method>_to_<input>(x)` inverts: it returns the smallest input that
-// the sampler maps to x, so for a monotone sampler it is the CDF on the input
-// grid: P(sample < x) = unit_float_<method>_to_<input>(x) * 2^-k.
+// Each method is a warp (sampling/README.md): `UnitFloat<Method>{}.sample(bits)`
+// samples, `pdf(x)` is the density they all aim at (1 on [0,1)), and `invert(x)`
+// returns the smallest input that the sampler maps to x, so for a monotone
+// sampler it is the CDF on the input grid: P(sample < x) = invert(x) * 2^-k.
 //
 // The reference measure throughout is "uniform real, rounded down to a float":
 // a float x of [0,1) should come out with probability next_float_up(x) - x, its
@@ -107,124 +107,149 @@ constexpr uint64_t below_power_of_two_first_word(int top, float m, int word_bits
 
 }  // namespace detail
 
+/// The density every sampler of [0,1) aims at: 1 on [0,1), 0 elsewhere (the
+/// exhaustive counts, not the density, measure how far each falls short).
+struct UnitIntervalDensity {
+    constexpr float pdf(float x) const { return x >= 0.0f && x < 1.0f ? 1.0f : 0.0f; }
+};
+
 // ---------------------------------------------------------------------------
 // [0,1) from 32 bits
 
-/// u * 2^-32 in float, rounded to nearest even: the most common way and the most
-/// biased. Returns 1.0 for the 128 largest u (it leaves [0,1)); below 2^-8 only
-/// some floats are reachable; in [0.5, 1) floats come 257 and 255 times
-/// alternately (ties go to the even significand) instead of 256.
-constexpr float u32_to_unit_float_mul(uint32_t u) { return static_cast<float>(u) * 0x1p-32f; }
+/// u * 2^-32 in float.
+struct UnitFloatMul : UnitIntervalDensity {
+    /// u * 2^-32 in float, rounded to nearest even: the most common way and the most
+    /// biased. Returns 1.0 for the 128 largest u (it leaves [0,1)); below 2^-8 only
+    /// some floats are reachable; in [0.5, 1) floats come 257 and 255 times
+    /// alternately (ties go to the even significand) instead of 256.
+    constexpr float sample(uint32_t u) const { return static_cast<float>(u) * 0x1p-32f; }
 
-/// The smallest u with u32_to_unit_float_mul(u) >= x (x in [0,1]; 0 for x <= 0,
-/// UINT32_MAX above 1): for a float that is produced, its first preimage.
-constexpr uint32_t unit_float_mul_to_u32(float x) {
-    if (!(x > 0.0f)) return 0;
-    if (x > 1.0f) return std::numeric_limits<uint32_t>::max();
-    // Reals in (midpoint below x, midpoint above x) round to x; the midpoint
-    // itself goes to the even neighbour. In double, the midpoint times 2^32 is
-    // exact; start at its ceiling and correct the tie by at most one step.
-    const double mid = (static_cast<double>(next_float_down(x)) + static_cast<double>(x)) * 0x1p31;
-    double c = mid;
-    if (c != static_cast<double>(static_cast<uint64_t>(c))) c = static_cast<double>(static_cast<uint64_t>(c) + 1);
-    uint64_t u = static_cast<uint64_t>(c);
-    if (u > 0 && u32_to_unit_float_mul(static_cast<uint32_t>(u - 1)) >= x) --u;
-    while (u < 0xffffffffu && u32_to_unit_float_mul(static_cast<uint32_t>(u)) < x) ++u;
-    return static_cast<uint32_t>(u > 0xffffffffu ? 0xffffffffu : u);
-}
+    /// The smallest u with UnitFloatMul{}.sample(u) >= x (x in [0,1]; 0 for x <= 0,
+    /// UINT32_MAX above 1): for a float that is produced, its first preimage.
+    constexpr uint32_t invert(float x) const {
+        if (!(x > 0.0f)) return 0;
+        if (x > 1.0f) return std::numeric_limits<uint32_t>::max();
+        // Reals in (midpoint below x, midpoint above x) round to x; the midpoint
+        // itself goes to the even neighbour. In double, the midpoint times 2^32 is
+        // exact; start at its ceiling and correct the tie by at most one step.
+        const double mid = (static_cast<double>(next_float_down(x)) + static_cast<double>(x)) * 0x1p31;
+        double c = mid;
+        if (c != static_cast<double>(static_cast<uint64_t>(c))) c = static_cast<double>(static_cast<uint64_t>(c) + 1);
+        uint64_t u = static_cast<uint64_t>(c);
+        if (u > 0 && sample(static_cast<uint32_t>(u - 1)) >= x) --u;
+        while (u < 0xffffffffu && sample(static_cast<uint32_t>(u)) < x) ++u;
+        return static_cast<uint32_t>(u > 0xffffffffu ? 0xffffffffu : u);
+    }
+};
 
-/// u * 2^-32 clamped to the largest float below 1, as many renderers patch the
-/// above. It stays in [0,1), but 0x1.fffffep-1 now takes the 128 inputs that
-/// rounded to 1 on top of its own 255: 383 instead of 256.
-constexpr float u32_to_unit_float_mul_clamped(uint32_t u) {
-    const float x = u32_to_unit_float_mul(u);
-    return x < kOneMinusEpsilon ? x : kOneMinusEpsilon;
-}
+/// u * 2^-32 in float, clamped below 1.
+struct UnitFloatMulClamped : UnitIntervalDensity {
+    /// u * 2^-32 clamped to the largest float below 1, as many renderers patch the
+    /// above. It stays in [0,1), but 0x1.fffffep-1 now takes the 128 inputs that
+    /// rounded to 1 on top of its own 255: 383 instead of 256.
+    constexpr float sample(uint32_t u) const {
+        const float x = UnitFloatMul{}.sample(u);
+        return x < kOneMinusEpsilon ? x : kOneMinusEpsilon;
+    }
 
-/// First preimage of x under u32_to_unit_float_mul_clamped (x in [0,1)): the
-/// clamp only adds inputs above the old ones, so it is that of the plain multiply.
-constexpr uint32_t unit_float_mul_clamped_to_u32(float x) { return unit_float_mul_to_u32(x); }
+    /// First preimage of x under UnitFloatMulClamped::sample (x in [0,1)): the
+    /// clamp only adds inputs above the old ones, so it is that of the plain multiply.
+    constexpr uint32_t invert(float x) const { return UnitFloatMul{}.invert(x); }
+};
 
-/// (u >> 8) * 2^-24: the top 24 bits on the 2^-24 grid. Exact, never 1, and
-/// every value comes exactly 256 times, but only 2^24 of the 2^30 floats of
-/// [0,1) are reachable (the grid is coarse near 0).
-constexpr float u32_to_unit_float_24bit(uint32_t u) { return static_cast<float>(u >> 8) * 0x1p-24f; }
+/// The top 24 of 32 bits on the 2^-24 grid.
+struct UnitFloat24Bit : UnitIntervalDensity {
+    /// (u >> 8) * 2^-24: the top 24 bits on the 2^-24 grid. Exact, never 1, and
+    /// every value comes exactly 256 times, but only 2^24 of the 2^30 floats of
+    /// [0,1) are reachable (the grid is coarse near 0).
+    constexpr float sample(uint32_t u) const { return static_cast<float>(u >> 8) * 0x1p-24f; }
 
-/// The smallest u with u32_to_unit_float_24bit(u) >= x, for x in [0,1).
-constexpr uint32_t unit_float_24bit_to_u32(float x) {
-    if (!(x > 0.0f)) return 0;
-    const double scaled = static_cast<double>(x) * 0x1p24;  // exact
-    const auto k = static_cast<uint64_t>(scaled);
-    const uint64_t grid = k + (static_cast<double>(k) < scaled ? 1 : 0);
-    return grid >= (uint64_t{1} << 24) ? std::numeric_limits<uint32_t>::max() : static_cast<uint32_t>(grid << 8);
-}
+    /// The smallest u with UnitFloat24Bit{}.sample(u) >= x, for x in [0,1).
+    constexpr uint32_t invert(float x) const {
+        if (!(x > 0.0f)) return 0;
+        const double scaled = static_cast<double>(x) * 0x1p24;  // exact
+        const auto k = static_cast<uint64_t>(scaled);
+        const uint64_t grid = k + (static_cast<double>(k) < scaled ? 1 : 0);
+        return grid >= (uint64_t{1} << 24) ? std::numeric_limits<uint32_t>::max() : static_cast<uint32_t>(grid << 8);
+    }
+};
 
-/// The bit trick: 23 random bits as the significand of a float in [1,2), minus
-/// 1. The subtraction is exact, so this is the 2^-23 grid: 2^23 values, each
-/// 512 times; the finest spacing is 2^-23 even next to 0.
-constexpr float u32_to_unit_float_bits(uint32_t u) {
-    return bits_to_float(0x3f800000u | (u >> 9)) - 1.0f;  // 0x3f800000 is 1.0f
-}
+/// 23 bits as the significand of [1,2), minus 1.
+struct UnitFloatBits : UnitIntervalDensity {
+    /// The bit trick: 23 random bits as the significand of a float in [1,2), minus
+    /// 1. The subtraction is exact, so this is the 2^-23 grid: 2^23 values, each
+    /// 512 times; the finest spacing is 2^-23 even next to 0.
+    constexpr float sample(uint32_t u) const {
+        return bits_to_float(0x3f800000u | (u >> 9)) - 1.0f;  // 0x3f800000 is 1.0f
+    }
 
-/// The smallest u with u32_to_unit_float_bits(u) >= x, for x in [0,1).
-constexpr uint32_t unit_float_bits_to_u32(float x) {
-    if (!(x > 0.0f)) return 0;
-    const double scaled = static_cast<double>(x) * 0x1p23;
-    const auto k = static_cast<uint64_t>(scaled);
-    const uint64_t grid = k + (static_cast<double>(k) < scaled ? 1 : 0);
-    return grid >= (uint64_t{1} << 23) ? std::numeric_limits<uint32_t>::max() : static_cast<uint32_t>(grid << 9);
-}
+    /// The smallest u with UnitFloatBits{}.sample(u) >= x, for x in [0,1).
+    constexpr uint32_t invert(float x) const {
+        if (!(x > 0.0f)) return 0;
+        const double scaled = static_cast<double>(x) * 0x1p23;
+        const auto k = static_cast<uint64_t>(scaled);
+        const uint64_t grid = k + (static_cast<double>(k) < scaled ? 1 : 0);
+        return grid >= (uint64_t{1} << 23) ? std::numeric_limits<uint32_t>::max() : static_cast<uint32_t>(grid << 9);
+    }
+};
 
 // ---------------------------------------------------------------------------
 // [0,1) from 64 bits
 
-/// Reynolds' pragmatic version: the leading zeros of the top 41 bits choose
-/// the binade (k zeros: [2^-(k+1), 2^-k), probability 2^-(k+1), as its width),
-/// the low 23 bits the significand. Every float >= 2^-41 has exactly its
-/// measure; below, if the top 41 bits are all zero (probability 2^-41), the
-/// result is bits * 2^-64, uniform on [0, 2^-41) on the 2^-64 grid. Never 1.
-/// One word, no loop, no branch on the fast path beyond the zero test.
-constexpr float u64_to_unit_float_reynolds(uint64_t bits) {
-    const uint64_t exponent_bits = bits >> 23;  // 41 bits
-    const auto significand = static_cast<uint32_t>(bits) & kFloatSignificandMask;
-    if (exponent_bits == 0) return static_cast<float>(significand) * 0x1p-64f;  // exact: < 2^23
-    const int zeros = std::countl_zero(exponent_bits) - 23;                    // 0..40
-    return bits_to_float(static_cast<uint32_t>(kFloatExponentBias - 1 - zeros) << kFloatSignificandBits | significand);
-}
+/// Reynolds' one-word sampler of every float of [0,1) above 2^-41.
+struct UnitFloatReynolds : UnitIntervalDensity {
+    /// Reynolds' pragmatic version: the leading zeros of the top 41 bits choose
+    /// the binade (k zeros: [2^-(k+1), 2^-k), probability 2^-(k+1), as its width),
+    /// the low 23 bits the significand. Every float >= 2^-41 has exactly its
+    /// measure; below, if the top 41 bits are all zero (probability 2^-41), the
+    /// result is bits * 2^-64, uniform on [0, 2^-41) on the 2^-64 grid. Never 1.
+    /// One word, no loop, no branch on the fast path beyond the zero test.
+    constexpr float sample(uint64_t bits) const {
+        const uint64_t exponent_bits = bits >> 23;  // 41 bits
+        const auto significand = static_cast<uint32_t>(bits) & kFloatSignificandMask;
+        if (exponent_bits == 0) return static_cast<float>(significand) * 0x1p-64f;  // exact: < 2^23
+        const int zeros = std::countl_zero(exponent_bits) - 23;                     // 0..40
+        return bits_to_float(static_cast<uint32_t>(kFloatExponentBias - 1 - zeros) << kFloatSignificandBits |
+                             significand);
+    }
 
-/// The smallest 64-bit input with u64_to_unit_float_reynolds(bits) == x, for a
-/// float x in [0,1) (below 2^-41: for x on the 2^-64 grid).
-constexpr uint64_t unit_float_reynolds_to_u64(float x) {
-    if (!(x > 0.0f)) return 0;
-    if (x < 0x1p-41f) return detail::float_to_scaled_u64(x, 64);
-    const int zeros = -1 - float_exponent(x);  // 0..40
-    return (uint64_t{1} << (40 - zeros)) << 23 | float_significand(x);
-}
+    /// The smallest 64-bit input with UnitFloatReynolds{}.sample(bits) == x, for a
+    /// float x in [0,1) (below 2^-41: for x on the 2^-64 grid).
+    constexpr uint64_t invert(float x) const {
+        if (!(x > 0.0f)) return 0;
+        if (x < 0x1p-41f) return detail::float_to_scaled_u64(x, 64);
+        const int zeros = -1 - float_exponent(x);  // 0..40
+        return (uint64_t{1} << (40 - zeros)) << 23 | float_significand(x);
+    }
+};
 
-/// Walker's algorithm: the exponent from the count of leading zeros of as many
-/// random words as needed (k zeros: binade [2^-(k+1), 2^-k)), down to the
-/// denormals, and 23 uniform significand bits. Each float of [0,1) has exactly
-/// its measure, next_float_up(x) - x, including every denormal and 0 (2^-149).
-/// `rng` is any callable returning uint64_t (or uint32_t, called twice).
-///
-/// The significand is read from the bits right after the first one of the
-/// first word, so that with probability 1 - 2^-41 the result is
-/// floor(w * 2^-64) rounded down to a float: monotone in the first word w, with
-/// the first preimage given by unit_float_walker_to_u64. Otherwise (w < 2^23)
-/// w is the significand and up to 5 more words continue the count; the loop
-/// is bounded because below 2^-126 the denormals are uniform.
-template <typename Rng>
-float unit_float_walker(Rng& rng) {
-    return detail::sample_below_power_of_two(-1, detail::draw_u64(rng), 64, rng);
-}
+/// Walker's sampler of every float of [0,1), denormals included.
+struct UnitFloatWalker : UnitIntervalDensity {
+    /// Walker's algorithm: the exponent from the count of leading zeros of as many
+    /// random words as needed (k zeros: binade [2^-(k+1), 2^-k)), down to the
+    /// denormals, and 23 uniform significand bits. Each float of [0,1) has exactly
+    /// its measure, next_float_up(x) - x, including every denormal and 0 (2^-149).
+    /// `rng` is any callable returning uint64_t (or uint32_t, called twice).
+    ///
+    /// The significand is read from the bits right after the first one of the
+    /// first word, so that with probability 1 - 2^-41 the result is
+    /// floor(w * 2^-64) rounded down to a float: monotone in the first word w, with
+    /// the first preimage given by UnitFloatWalker::invert. Otherwise (w < 2^23)
+    /// w is the significand and up to 5 more words continue the count; the loop
+    /// is bounded because below 2^-126 the denormals are uniform.
+    template <typename Rng>
+    float sample(Rng& rng) const {
+        return detail::sample_below_power_of_two(-1, detail::draw_u64(rng), 64, rng);
+    }
 
-/// The smallest first word with which unit_float_walker returns x, for x in
-/// [2^-41, 1) (where one word decides). Below 2^-41 the further words decide too;
-/// this then returns the first word of that branch (x's significand).
-constexpr uint64_t unit_float_walker_to_u64(float x) {
-    if (!(x > 0.0f)) return 0;
-    if (x < 0x1p-41f) return float_significand(x);
-    return detail::below_power_of_two_first_word(-1, x, 64);
-}
+    /// The smallest first word with which UnitFloatWalker::sample returns x, for x in
+    /// [2^-41, 1) (where one word decides). Below 2^-41 the further words decide too;
+    /// this then returns the first word of that branch (x's significand).
+    constexpr uint64_t invert(float x) const {
+        if (!(x > 0.0f)) return 0;
+        if (x < 0x1p-41f) return float_significand(x);
+        return detail::below_power_of_two_first_word(-1, x, 64);
+    }
+};
 
 }  // namespace warpcheck

@@ -41,21 +41,30 @@ private:
 /// "uniform_cone[cos_theta_max=0.3]" matches exactly that one.
 bool name_matches(std::string_view name, std::string_view pattern);
 
-// The warps and checks that ship with warpcheck, one function per family.
+// The warps and checks that ship with warpcheck.
+/// Adds every built-in case: each file of validate/cases registers its family
+/// with WARPCHECK_BUILTIN_CASES, and this calls them in order of their rank
+/// (then of their name), so the output order does not depend on link order.
 void register_builtin_cases(Registry& registry);
 void register_builtin_checks(Registry& registry);
 
-void register_geometric_cases(Registry& registry);
-void register_interval_cases(Registry& registry);
-/// Renderer idioms that fail by the rules (u * 2^-32 reaching 1.0, lerps that
-/// reach b or step down). Not built in: every default check of every built-in
-/// case passes. Tests, and anyone who wants the evidence, add them.
 /// Idioms that fail by the rules (u * 2^-32 reaching 1.0, lerps reaching b),
-/// registered and marked as known flaws.
+/// registered and marked as known flaws. Not part of register_builtin_cases:
+/// every default check of every built-in case passes.
 void register_flawed_interval_cases(Registry& registry);
-void register_linear_cases(Registry& registry);
-void register_exponential_cases(Registry& registry);
-void register_trowbridge_reitz_cases(Registry& registry);
-void register_piecewise_constant_cases(Registry& registry);
+
+namespace detail {
+using RegisterCasesFn = void (*)(Registry&);
+/// Records a family's registration function; called during static initialisation.
+bool add_builtin_cases(int rank, const char* name, RegisterCasesFn fn);
+}  // namespace detail
 
 }  // namespace warpcheck
+
+/// Registers a built-in family from its own file in validate/cases, e.g.
+///   WARPCHECK_BUILTIN_CASES(30, register_linear_cases);
+/// `rank` orders the families in register_builtin_cases (and so in the output):
+/// the ranks 10..60 keep the historical order; a new family takes the next free one.
+#define WARPCHECK_BUILTIN_CASES(rank, fn)                                        \
+    [[maybe_unused]] static const bool warpcheck_builtin_cases_registered_##fn = \
+        ::warpcheck::detail::add_builtin_cases(rank, #fn, fn)

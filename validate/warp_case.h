@@ -68,10 +68,12 @@ struct MonotoneMarginal {
     std::function<double(double)> pdf;
 };
 
+/// Built with designated initialisers, e.g. {.family = "uniform_cone", .params = ...,
+/// .domain = ...}; every field has a default, so a case names only what it sets.
 struct WarpCaseInfo {
-    std::string family;               ///< e.g. "uniform_cone"
-    std::vector<Parameter> params;    ///< concrete values, in display order
-    std::string description;          ///< one line: what it samples, with which density
+    std::string family{};             ///< e.g. "uniform_cone"
+    std::vector<Parameter> params{};  ///< concrete values, in display order
+    std::string description{};        ///< one line: what it samples, with which density
     InputKind input = InputKind::Uniform2D;
     chi2::Domain domain = chi2::Domain::unit_square();
     /// Largest |invert(sample(u)) - u| (max norm, in u units) that the round trip
@@ -187,6 +189,27 @@ template <typename Sample, typename Pdf, typename Invert>
 std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample, Pdf pdf, Invert invert) {
     return std::make_unique<detail::LambdaWarpCase<Sample, Pdf, Invert>>(std::move(info), std::move(sample),
                                                                          std::move(pdf), std::move(invert));
+}
+
+/// A warp object: a class with `sample(In)`, `pdf(Out)` and `invert(Out)`
+/// const members that are not overloaded or templates (sampling/README.md).
+template <typename W>
+concept WarpObject = requires {
+    typename detail::FirstArg<decltype(&W::sample)>::type;
+    typename detail::FirstArg<decltype(&W::pdf)>::type;
+    &W::invert;
+};
+
+/// Makes a warp case from a warp object, e.g. make_warp_case(info, UniformCone(0.3f)):
+/// In and Out are read off the member signatures. The object is held by value;
+/// the members are called directly, so they inline into the batch loops.
+template <WarpObject W>
+std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, W warp) {
+    using In = typename detail::FirstArg<decltype(&W::sample)>::type;
+    using Out = typename detail::FirstArg<decltype(&W::pdf)>::type;
+    return make_warp_case(
+        std::move(info), [warp](In u) { return warp.sample(u); }, [warp](Out x) { return warp.pdf(x); },
+        [warp](Out x) { return warp.invert(x); });
 }
 
 }  // namespace warpcheck

@@ -30,10 +30,7 @@ std::unique_ptr<WarpCase> cosine_hemisphere_case() {
     info.family = "cosine_hemisphere";
     info.input = InputKind::Uniform2D;
     info.domain = chi2::Domain::hemisphere();
-    return make_warp_case(
-        info, [](Point2f u) { return square_to_cosine_hemisphere(u); },
-        [](Vector3f v) { return square_to_cosine_hemisphere_pdf(v); },
-        [](Vector3f v) { return cosine_hemisphere_to_square(v); });
+    return make_warp_case(info, CosineHemisphere{});
 }
 
 struct Fixture {

@@ -30,7 +30,7 @@ void BM_ExhaustiveSweepMul32(benchmark::State& state) {
     const warpcheck::ParallelFor parallel_for = [&pool](std::size_t n, const std::function<void(std::size_t)>& body) {
         pool.parallel_for(n, body);
     };
-    const auto fn = warpcheck::u32_block_fn([](uint32_t u) { return warpcheck::u32_to_unit_float_mul(u); });
+    const auto fn = warpcheck::u32_block_fn([](uint32_t u) { return warpcheck::UnitFloatMul{}.sample(u); });
     uint64_t distinct = 0;
     for (auto _ : state) {
         const warpcheck::SweepSummary s = warpcheck::exhaustive_sweep(fn, uint64_t{1} << 32, 0.0f, 1.0f, parallel_for);

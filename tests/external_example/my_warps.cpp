@@ -22,9 +22,14 @@ struct LinearWarp {
 void warpcheck_register(warpcheck::Registry& registry) {
     for (auto [a, b] : {std::pair{1.0f, 3.0f}, std::pair{0.0f, 1.0f}}) {
         const LinearWarp warp{a, b};
+        // With members named sample, pdf and invert, make_warp_case(info, warp)
+        // would do; three callables adapt a warp with any other names.
         registry.add_case(warpcheck::make_warp_case(
-            {"linear", {{"a", a}, {"b", b}}, "density proportional to (1-x) a + x b on [0,1]",
-             warpcheck::InputKind::Uniform1D, warpcheck::chi2::Domain::interval(0, 1)},
+            {.family = "linear",
+             .params = {{"a", a}, {"b", b}},
+             .description = "density proportional to (1-x) a + x b on [0,1]",
+             .input = warpcheck::InputKind::Uniform1D,
+             .domain = warpcheck::chi2::Domain::interval(0, 1)},
             [warp](float u) { return warp.sample(u); },
             [warp](float x) { return warp.pdf(x); },
             [warp](float x) { return warp.invert(x); }));

@@ -54,22 +54,22 @@ double integrate_disk(const std::function<float(Point2f)>& pdf, int n = 800) {
 }
 
 TEST(Disk, ConcentricKnownValues) {
-    EXPECT_EQ(square_to_uniform_disk_concentric({0.5f, 0.5f}), (Point2f{0.0f, 0.0f}));
-    const Point2f right = square_to_uniform_disk_concentric({1.0f, 0.5f});
+    EXPECT_EQ(UniformDiskConcentric{}.sample({0.5f, 0.5f}), (Point2f{0.0f, 0.0f}));
+    const Point2f right = UniformDiskConcentric{}.sample({1.0f, 0.5f});
     EXPECT_TRUE(near(right.x, 1.0, 1e-7));
     EXPECT_TRUE(near(right.y, 0.0, 1e-7));
-    const Point2f top = square_to_uniform_disk_concentric({0.5f, 1.0f});
+    const Point2f top = UniformDiskConcentric{}.sample({0.5f, 1.0f});
     EXPECT_TRUE(near(top.x, 0.0, 1e-7));
     EXPECT_TRUE(near(top.y, 1.0, 1e-7));
     // The square's corner (1,1) maps to the disk at 45 degrees.
-    const Point2f corner = square_to_uniform_disk_concentric({1.0f, 1.0f});
+    const Point2f corner = UniformDiskConcentric{}.sample({1.0f, 1.0f});
     EXPECT_TRUE(near(corner.x, std::sqrt(0.5), 1e-6));
     EXPECT_TRUE(near(corner.y, std::sqrt(0.5), 1e-6));
 }
 
 TEST(Disk, DensitiesIntegrateToOne) {
-    EXPECT_TRUE(near(integrate_disk(square_to_uniform_disk_concentric_pdf), 1.0, 1e-3));
-    EXPECT_TRUE(near(integrate_disk(square_to_uniform_disk_polar_pdf), 1.0, 1e-3));
+    EXPECT_TRUE(near(integrate_disk([](Point2f x) { return UniformDiskConcentric{}.pdf(x); }), 1.0, 1e-3));
+    EXPECT_TRUE(near(integrate_disk([](Point2f x) { return UniformDiskPolar{}.pdf(x); }), 1.0, 1e-3));
 }
 
 // u.y is the azimuth phi / (2 pi) for every warp here but the concentric disk,
@@ -95,27 +95,29 @@ void expect_round_trip(Sample sample, Invert invert, double tol, bool periodic_y
 }
 
 TEST(Disk, RoundTrips) {
-    expect_round_trip(square_to_uniform_disk_polar, uniform_disk_polar_to_square, 1e-5);
-    expect_round_trip(square_to_uniform_disk_concentric, uniform_disk_concentric_to_square, 1e-5, false);
+    expect_round_trip([](Point2f u) { return UniformDiskPolar{}.sample(u); },
+                      [](Point2f x) { return UniformDiskPolar{}.invert(x); }, 1e-5);
+    expect_round_trip([](Point2f u) { return UniformDiskConcentric{}.sample(u); },
+                      [](Point2f x) { return UniformDiskConcentric{}.invert(x); }, 1e-5, false);
 }
 
 TEST(Hemisphere, KnownValues) {
-    EXPECT_FLOAT_EQ(square_to_cosine_hemisphere_pdf({0.0f, 0.0f, 1.0f}), static_cast<float>(1.0 / kPiD));
-    EXPECT_FLOAT_EQ(square_to_uniform_hemisphere_pdf({0.0f, 0.0f, 1.0f}), static_cast<float>(0.5 / kPiD));
-    EXPECT_EQ(square_to_cosine_hemisphere_pdf({0.0f, 0.0f, -1.0f}), 0.0f);
-    EXPECT_EQ(square_to_uniform_hemisphere_pdf({0.0f, 0.0f, -0.5f}), 0.0f);
+    EXPECT_FLOAT_EQ(CosineHemisphere{}.pdf({0.0f, 0.0f, 1.0f}), static_cast<float>(1.0 / kPiD));
+    EXPECT_FLOAT_EQ(UniformHemisphere{}.pdf({0.0f, 0.0f, 1.0f}), static_cast<float>(0.5 / kPiD));
+    EXPECT_EQ(CosineHemisphere{}.pdf({0.0f, 0.0f, -1.0f}), 0.0f);
+    EXPECT_EQ(UniformHemisphere{}.pdf({0.0f, 0.0f, -0.5f}), 0.0f);
     // The centre of the square is the pole for the cosine warp.
-    const Vector3f pole = square_to_cosine_hemisphere({0.5f, 0.5f});
+    const Vector3f pole = CosineHemisphere{}.sample({0.5f, 0.5f});
     EXPECT_EQ(pole, (Vector3f{0.0f, 0.0f, 1.0f}));
-    const Vector3f v = square_to_uniform_hemisphere({0.25f, 0.25f});
+    const Vector3f v = UniformHemisphere{}.sample({0.25f, 0.25f});
     EXPECT_TRUE(near(v.z, 0.25, 1e-7));
     EXPECT_TRUE(near(v.x, 0.0, 1e-6));
     EXPECT_TRUE(near(v.y, std::sqrt(1.0 - 0.0625), 1e-6));
 }
 
 TEST(Hemisphere, DensitiesIntegrateToOne) {
-    EXPECT_TRUE(near(integrate_spherical(square_to_uniform_hemisphere_pdf, 0.0), 1.0, 1e-4));
-    EXPECT_TRUE(near(integrate_spherical(square_to_cosine_hemisphere_pdf, 0.0), 1.0, 1e-4));
+    EXPECT_TRUE(near(integrate_spherical([](Vector3f x) { return UniformHemisphere{}.pdf(x); }, 0.0), 1.0, 1e-4));
+    EXPECT_TRUE(near(integrate_spherical([](Vector3f x) { return CosineHemisphere{}.pdf(x); }, 0.0), 1.0, 1e-4));
     for (float n : {0.0f, 1.0f, 7.5f}) {
         const CosinePowerHemisphere lobe(n);
         EXPECT_TRUE(near(integrate_spherical([&](Vector3f w) { return lobe.pdf(w); }, 0.0), 1.0, 1e-3)) << n;
@@ -124,14 +126,16 @@ TEST(Hemisphere, DensitiesIntegrateToOne) {
 
 TEST(Hemisphere, CosinePowerMatchesItsSpecialCases) {
     const CosinePowerHemisphere one(1.0f);
-    EXPECT_FLOAT_EQ(one.pdf({0.6f, 0.0f, 0.8f}), square_to_cosine_hemisphere_pdf({0.6f, 0.0f, 0.8f}));
+    EXPECT_FLOAT_EQ(one.pdf({0.6f, 0.0f, 0.8f}), CosineHemisphere{}.pdf({0.6f, 0.0f, 0.8f}));
     const CosinePowerHemisphere zero(0.0f);
-    EXPECT_FLOAT_EQ(zero.pdf({0.6f, 0.0f, 0.8f}), square_to_uniform_hemisphere_pdf({0.6f, 0.0f, 0.8f}));
+    EXPECT_FLOAT_EQ(zero.pdf({0.6f, 0.0f, 0.8f}), UniformHemisphere{}.pdf({0.6f, 0.0f, 0.8f}));
 }
 
 TEST(Hemisphere, RoundTrips) {
-    expect_round_trip(square_to_uniform_hemisphere, uniform_hemisphere_to_square, 1e-5);
-    expect_round_trip(square_to_cosine_hemisphere, cosine_hemisphere_to_square, 1e-5, false);
+    expect_round_trip([](Point2f u) { return UniformHemisphere{}.sample(u); },
+                      [](Vector3f x) { return UniformHemisphere{}.invert(x); }, 1e-5);
+    expect_round_trip([](Point2f u) { return CosineHemisphere{}.sample(u); },
+                      [](Vector3f x) { return CosineHemisphere{}.invert(x); }, 1e-5, false);
     const CosinePowerHemisphere lobe(4.0f);
     expect_round_trip([&](Point2f u) { return lobe.sample(u); }, [&](Vector3f v) { return lobe.invert(v); }, 1e-5);
 }
@@ -141,7 +145,7 @@ TEST(Hemisphere, SamplesAreUnitLengthAndUpward) {
     for (int i = 0; i < 10000; ++i) {
         const float a = rng.next_float();
         const Point2f u{a, rng.next_float()};
-        for (Vector3f v : {square_to_uniform_hemisphere(u), square_to_cosine_hemisphere(u)}) {
+        for (Vector3f v : {UniformHemisphere{}.sample(u), CosineHemisphere{}.sample(u)}) {
             ASSERT_TRUE(near(length(v), 1.0, 1e-6));
             ASSERT_GE(v.z, 0.0f);
         }
@@ -149,10 +153,11 @@ TEST(Hemisphere, SamplesAreUnitLengthAndUpward) {
 }
 
 TEST(Sphere, DensityAndRoundTrip) {
-    EXPECT_TRUE(near(integrate_spherical(square_to_uniform_sphere_pdf, -1.0), 1.0, 1e-4));
-    expect_round_trip(square_to_uniform_sphere, uniform_sphere_to_square, 1e-5);
-    EXPECT_EQ(square_to_uniform_sphere({0.0f, 0.3f}).z, 1.0f);
-    EXPECT_EQ(square_to_uniform_sphere({0.5f, 0.3f}).z, 0.0f);
+    EXPECT_TRUE(near(integrate_spherical([](Vector3f x) { return UniformSphere{}.pdf(x); }, -1.0), 1.0, 1e-4));
+    expect_round_trip([](Point2f u) { return UniformSphere{}.sample(u); },
+                      [](Vector3f x) { return UniformSphere{}.invert(x); }, 1e-5);
+    EXPECT_EQ(UniformSphere{}.sample({0.0f, 0.3f}).z, 1.0f);
+    EXPECT_EQ(UniformSphere{}.sample({0.5f, 0.3f}).z, 0.0f);
 }
 
 TEST(Cone, DensityIntegratesToOneOverTheCap) {

@@ -39,25 +39,25 @@ struct FirstThen {
 // --- [0,1) from 32 bits -------------------------------------------------------
 
 TEST(UnitFloat32, MultiplyKnownValues) {
-    EXPECT_EQ(u32_to_unit_float_mul(0), 0.0f);
-    EXPECT_EQ(u32_to_unit_float_mul(1), 0x1p-32f);
-    EXPECT_EQ(u32_to_unit_float_mul(0x80000000u), 0.5f);
+    EXPECT_EQ(UnitFloatMul{}.sample(0), 0.0f);
+    EXPECT_EQ(UnitFloatMul{}.sample(1), 0x1p-32f);
+    EXPECT_EQ(UnitFloatMul{}.sample(0x80000000u), 0.5f);
     // The 128 largest inputs round to 1; the one below does not.
-    EXPECT_EQ(u32_to_unit_float_mul(0xffffffffu), 1.0f);
-    EXPECT_EQ(u32_to_unit_float_mul(0xffffffffu - 127), 1.0f);
-    EXPECT_EQ(u32_to_unit_float_mul(0xffffffffu - 128), kOneMinusEpsilon);
-    EXPECT_EQ(u32_to_unit_float_mul_clamped(0xffffffffu), kOneMinusEpsilon);
-    EXPECT_EQ(u32_to_unit_float_mul_clamped(0x80000000u), 0.5f);
+    EXPECT_EQ(UnitFloatMul{}.sample(0xffffffffu), 1.0f);
+    EXPECT_EQ(UnitFloatMul{}.sample(0xffffffffu - 127), 1.0f);
+    EXPECT_EQ(UnitFloatMul{}.sample(0xffffffffu - 128), kOneMinusEpsilon);
+    EXPECT_EQ(UnitFloatMulClamped{}.sample(0xffffffffu), kOneMinusEpsilon);
+    EXPECT_EQ(UnitFloatMulClamped{}.sample(0x80000000u), 0.5f);
 }
 
 TEST(UnitFloat32, GridSamplersKnownValues) {
-    EXPECT_EQ(u32_to_unit_float_24bit(0xffffffffu), 1.0f - 0x1p-24f);
-    EXPECT_EQ(u32_to_unit_float_24bit(0x000000ffu), 0.0f);
-    EXPECT_EQ(u32_to_unit_float_24bit(0x00000100u), 0x1p-24f);
-    EXPECT_EQ(u32_to_unit_float_bits(0xffffffffu), 1.0f - 0x1p-23f);
-    EXPECT_EQ(u32_to_unit_float_bits(0x000001ffu), 0.0f);
-    EXPECT_EQ(u32_to_unit_float_bits(0x00000200u), 0x1p-23f);
-    EXPECT_EQ(u32_to_unit_float_bits(0x80000000u), 0.5f);
+    EXPECT_EQ(UnitFloat24Bit{}.sample(0xffffffffu), 1.0f - 0x1p-24f);
+    EXPECT_EQ(UnitFloat24Bit{}.sample(0x000000ffu), 0.0f);
+    EXPECT_EQ(UnitFloat24Bit{}.sample(0x00000100u), 0x1p-24f);
+    EXPECT_EQ(UnitFloatBits{}.sample(0xffffffffu), 1.0f - 0x1p-23f);
+    EXPECT_EQ(UnitFloatBits{}.sample(0x000001ffu), 0.0f);
+    EXPECT_EQ(UnitFloatBits{}.sample(0x00000200u), 0x1p-23f);
+    EXPECT_EQ(UnitFloatBits{}.sample(0x80000000u), 0.5f);
 }
 
 template <typename Sample, typename Invert>
@@ -78,43 +78,43 @@ void expect_first_preimages(Sample sample, Invert invert) {
 }
 
 TEST(UnitFloat32, InversesReturnTheFirstPreimage) {
-    expect_first_preimages([](uint32_t u) { return u32_to_unit_float_mul(u); },
-                           [](float x) { return unit_float_mul_to_u32(x); });
-    expect_first_preimages([](uint32_t u) { return u32_to_unit_float_mul_clamped(u); },
-                           [](float x) { return unit_float_mul_clamped_to_u32(x); });
-    expect_first_preimages([](uint32_t u) { return u32_to_unit_float_24bit(u); },
-                           [](float x) { return unit_float_24bit_to_u32(x); });
-    expect_first_preimages([](uint32_t u) { return u32_to_unit_float_bits(u); },
-                           [](float x) { return unit_float_bits_to_u32(x); });
+    expect_first_preimages([](uint32_t u) { return UnitFloatMul{}.sample(u); },
+                           [](float x) { return UnitFloatMul{}.invert(x); });
+    expect_first_preimages([](uint32_t u) { return UnitFloatMulClamped{}.sample(u); },
+                           [](float x) { return UnitFloatMulClamped{}.invert(x); });
+    expect_first_preimages([](uint32_t u) { return UnitFloat24Bit{}.sample(u); },
+                           [](float x) { return UnitFloat24Bit{}.invert(x); });
+    expect_first_preimages([](uint32_t u) { return UnitFloatBits{}.sample(u); },
+                           [](float x) { return UnitFloatBits{}.invert(x); });
 }
 
 TEST(UnitFloat32, InversesAreTheCdfBetweenOutputs) {
     // A float that is never produced maps to the first input above it.
     const float unreachable = 0x1.000002p-30f;  // 2^-30 (1 + 2^-23): below 2^-8 only multiples of 2^-32 appear
-    EXPECT_EQ(unit_float_mul_to_u32(unreachable), 5u);
-    EXPECT_EQ(unit_float_mul_to_u32(-1.0f), 0u);
-    EXPECT_EQ(unit_float_mul_to_u32(kNaN), 0u);
-    EXPECT_EQ(unit_float_mul_to_u32(2.0f), 0xffffffffu);
-    EXPECT_EQ(unit_float_24bit_to_u32(0x1.8p-30f), 1u << 8);  // off the 2^-24 grid: the next grid point
-    EXPECT_EQ(unit_float_bits_to_u32(0x1.8p-30f), 1u << 9);
+    EXPECT_EQ(UnitFloatMul{}.invert(unreachable), 5u);
+    EXPECT_EQ(UnitFloatMul{}.invert(-1.0f), 0u);
+    EXPECT_EQ(UnitFloatMul{}.invert(kNaN), 0u);
+    EXPECT_EQ(UnitFloatMul{}.invert(2.0f), 0xffffffffu);
+    EXPECT_EQ(UnitFloat24Bit{}.invert(0x1.8p-30f), 1u << 8);  // off the 2^-24 grid: the next grid point
+    EXPECT_EQ(UnitFloatBits{}.invert(0x1.8p-30f), 1u << 9);
 }
 
 // --- [0,1) from 64 bits ------------------------------------------------------
 
 TEST(UnitFloat64, ReynoldsKnownValuesAndFirstPreimages) {
-    EXPECT_EQ(u64_to_unit_float_reynolds(uint64_t{1} << 63), 0.5f);
-    EXPECT_EQ(u64_to_unit_float_reynolds(~uint64_t{0}), kOneMinusEpsilon);
-    EXPECT_EQ(u64_to_unit_float_reynolds(uint64_t{1} << 23), 0x1p-41f);  // one leading one at the bottom
-    EXPECT_EQ(u64_to_unit_float_reynolds(0), 0.0f);
-    EXPECT_EQ(u64_to_unit_float_reynolds(5), 5 * 0x1p-64f);
+    EXPECT_EQ(UnitFloatReynolds{}.sample(uint64_t{1} << 63), 0.5f);
+    EXPECT_EQ(UnitFloatReynolds{}.sample(~uint64_t{0}), kOneMinusEpsilon);
+    EXPECT_EQ(UnitFloatReynolds{}.sample(uint64_t{1} << 23), 0x1p-41f);  // one leading one at the bottom
+    EXPECT_EQ(UnitFloatReynolds{}.sample(0), 0.0f);
+    EXPECT_EQ(UnitFloatReynolds{}.sample(5), 5 * 0x1p-64f);
     Pcg32 rng(4, 4);
     for (int i = 0; i < 200000; ++i) {
         const uint64_t bits = rng.next_u64() >> (i % 64);
-        const float x = u64_to_unit_float_reynolds(bits);
+        const float x = UnitFloatReynolds{}.sample(bits);
         ASSERT_LT(x, 1.0f);
         ASSERT_GE(x, 0.0f);
-        const uint64_t first = unit_float_reynolds_to_u64(x);
-        ASSERT_EQ(u64_to_unit_float_reynolds(first), x);
+        const uint64_t first = UnitFloatReynolds{}.invert(x);
+        ASSERT_EQ(UnitFloatReynolds{}.sample(first), x);
         ASSERT_LE(first, bits);
     }
 }
@@ -126,23 +126,23 @@ TEST(UnitFloat64, WalkerReachesTheDenormalsAndTerminates) {
         ++calls;
         return 0;
     };
-    EXPECT_EQ(unit_float_walker(zeros), 0.0f);
+    EXPECT_EQ(UnitFloatWalker{}.sample(zeros), 0.0f);
     EXPECT_LE(calls, 7u);
     // First word 5, then zeros: a denormal with significand 5.
     calls = 0;
     auto five_then_zeros = [&calls]() -> uint64_t { return calls++ == 0 ? 5 : 0; };
-    EXPECT_EQ(unit_float_walker(five_then_zeros), 5 * 0x1p-149f);
+    EXPECT_EQ(UnitFloatWalker{}.sample(five_then_zeros), 5 * 0x1p-149f);
     // First word 5, then a word with one leading zero: exponent -1 - 41 - 1.
     calls = 0;
     auto five_then_half = [&calls]() -> uint64_t { return calls++ == 0 ? 5 : uint64_t{1} << 62; };
-    EXPECT_EQ(unit_float_walker(five_then_half), bits_to_float((127u - 43u) << 23 | 5u));
+    EXPECT_EQ(UnitFloatWalker{}.sample(five_then_half), bits_to_float((127u - 43u) << 23 | 5u));
 }
 
 TEST(UnitFloat64, WalkerUsesOneWordAndInvertsIt) {
     CountingRng rng;
     for (int i = 0; i < 100000; ++i) {
         const uint64_t before = rng.calls;
-        const float x = unit_float_walker(rng);
+        const float x = UnitFloatWalker{}.sample(rng);
         ASSERT_EQ(rng.calls, before + 1);
         ASSERT_GE(x, 0.0f);
         ASSERT_LT(x, 1.0f);
@@ -151,13 +151,13 @@ TEST(UnitFloat64, WalkerUsesOneWordAndInvertsIt) {
     for (int i = 0; i < 100000; ++i) {
         const uint64_t w = pcg.next_u64() >> (i % 40);
         FirstThen src{w};
-        const float x = unit_float_walker(src);
-        FirstThen again{unit_float_walker_to_u64(x)};
-        ASSERT_EQ(unit_float_walker(again), x);
-        ASSERT_LE(unit_float_walker_to_u64(x), w);
+        const float x = UnitFloatWalker{}.sample(src);
+        FirstThen again{UnitFloatWalker{}.invert(x)};
+        ASSERT_EQ(UnitFloatWalker{}.sample(again), x);
+        ASSERT_LE(UnitFloatWalker{}.invert(x), w);
     }
-    EXPECT_EQ(unit_float_walker_to_u64(0.5f), uint64_t{1} << 63);
-    EXPECT_EQ(unit_float_walker_to_u64(0.75f), uint64_t{3} << 62);
+    EXPECT_EQ(UnitFloatWalker{}.invert(0.5f), uint64_t{1} << 63);
+    EXPECT_EQ(UnitFloatWalker{}.invert(0.75f), uint64_t{3} << 62);
 }
 
 TEST(UnitFloat64, RandomSourcesOf32BitsAreCalledTwicePerWord) {
@@ -168,7 +168,7 @@ TEST(UnitFloat64, RandomSourcesOf32BitsAreCalledTwicePerWord) {
         return a.next_u32();
     };
     auto u64 = [&b]() -> uint64_t { return b.next_u64(); };  // high half first, as the 32-bit pairs
-    for (int i = 0; i < 1000; ++i) ASSERT_EQ(unit_float_walker(u32), unit_float_walker(u64));
+    for (int i = 0; i < 1000; ++i) ASSERT_EQ(UnitFloatWalker{}.sample(u32), UnitFloatWalker{}.sample(u64));
     EXPECT_EQ(calls, 2000);
     const UniformFloatInterval interval(-3.0f, 5.0f);
     for (int i = 0; i < 1000; ++i) ASSERT_EQ(interval.sample(u32), interval.sample(u64));
@@ -179,7 +179,7 @@ TEST(UnitFloat64, WalkerBinadeMassesAreHalves) {
     constexpr int n = 1 << 20;
     int top = 0, second = 0;
     for (int i = 0; i < n; ++i) {
-        const float x = unit_float_walker(rng);
+        const float x = UnitFloatWalker{}.sample(rng);
         top += x >= 0.5f;
         second += x >= 0.25f && x < 0.5f;
     }
@@ -246,7 +246,7 @@ TEST(UniformFloatInterval, StaysInsideAndInvertsEveryFirstWord) {
             ASSERT_GE(x, c.a) << c.a << " " << c.b;
             ASSERT_LT(x, c.b) << c.a << " " << c.b;
             if (!(std::fabs(x) >= reach || interval.narrow())) continue;  // further words decide there
-            const uint64_t first = interval.first_word(x);
+            const uint64_t first = interval.invert(x);
             FirstThen again{first};
             ASSERT_EQ(interval.sample(again), x) << c.a << " " << c.b << " w = " << w;
             if (src.calls == 1) {

@@ -10,22 +10,22 @@ namespace warpcheck {
 namespace {
 
 TEST(Linear, KnownValues) {
-    EXPECT_EQ(sample_linear(0.0f, 0.0f, 1.0f), 0.0f);          // 0/0 in the naive formula
-    EXPECT_NEAR(sample_linear(0.25f, 0.0f, 1.0f), 0.5f, 1e-7);  // density 2x: CDF x^2
-    EXPECT_NEAR(sample_linear(0.5f, 1.0f, 1.0f), 0.5f, 1e-7);   // constant density
-    EXPECT_FLOAT_EQ(linear_pdf(1.0f, 1.0f, 3.0f), 1.5f);
-    EXPECT_FLOAT_EQ(linear_pdf(0.0f, 1.0f, 3.0f), 0.5f);
-    EXPECT_EQ(linear_pdf(1.5f, 1.0f, 3.0f), 0.0f);
+    EXPECT_EQ(Linear(0.0f, 1.0f).sample(0.0f), 0.0f);           // 0/0 in the naive formula
+    EXPECT_NEAR(Linear(0.0f, 1.0f).sample(0.25f), 0.5f, 1e-7);  // density 2x: CDF x^2
+    EXPECT_NEAR(Linear(1.0f, 1.0f).sample(0.5f), 0.5f, 1e-7);   // constant density
+    EXPECT_FLOAT_EQ(Linear(1.0f, 3.0f).pdf(1.0f), 1.5f);
+    EXPECT_FLOAT_EQ(Linear(1.0f, 3.0f).pdf(0.0f), 0.5f);
+    EXPECT_EQ(Linear(1.0f, 3.0f).pdf(1.5f), 0.0f);
 }
 
 TEST(Linear, InverseAndDensityAgree) {
     for (auto [a, b] : {std::pair{1.0f, 3.0f}, std::pair{0.0f, 1.0f}, std::pair{5.0f, 0.0f}}) {
         double integral = 0.0;
         const int n = 10000;
-        for (int i = 0; i < n; ++i) integral += linear_pdf((i + 0.5f) / n, a, b) / n;
+        for (int i = 0; i < n; ++i) integral += Linear(a, b).pdf((i + 0.5f) / n) / n;
         EXPECT_NEAR(integral, 1.0, 1e-6) << a << " " << b;
         for (float u : {0x1p-24f, 0.1f, 0.5f, 0.9f, kOneMinusEpsilon}) {
-            const float back = invert_linear(sample_linear(u, a, b), a, b);
+            const float back = Linear(a, b).invert(Linear(a, b).sample(u));
             EXPECT_NEAR(back, u, 1e-6) << a << " " << b << " u=" << u;
         }
     }

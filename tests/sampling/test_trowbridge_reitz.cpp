@@ -127,7 +127,7 @@ TEST(TrowbridgeReitz, KnownValues) {
 TEST(TrowbridgeReitz, DCosIntegratesToOne) {
     for (auto [ax, ay] : kAlphas) {
         const TrowbridgeReitz tr(ax, ay);
-        const double integral = integrate_hemisphere([&](Vector3f w) { return tr.normal_pdf(w); }, no_breaks);
+        const double integral = integrate_hemisphere([&](Vector3f w) { return tr.normals().pdf(w); }, no_breaks);
         EXPECT_NEAR(integral, 1.0, 1e-5) << ax << " " << ay;
     }
 }
@@ -172,8 +172,8 @@ TEST(TrowbridgeReitz, VisibleNormalsAtNormalIncidenceAreDCos) {
     const auto vis = tr.visible_normals({0.0f, 0.0f, 1.0f});
     Pcg32 rng(5, 6);
     for (int i = 0; i < 1000; ++i) {
-        const Vector3f w = tr.sample_normal({rng.next_float(), rng.next_float()});
-        EXPECT_NEAR(vis.pdf(w), tr.normal_pdf(w), 1e-5 * tr.normal_pdf(w));
+        const Vector3f w = tr.normals().sample({rng.next_float(), rng.next_float()});
+        EXPECT_NEAR(vis.pdf(w), tr.normals().pdf(w), 1e-5 * tr.normals().pdf(w));
     }
 }
 
@@ -205,8 +205,8 @@ void expect_round_trip(Sample sample, Invert invert, Point2f u, const char* what
 TEST(TrowbridgeReitz, NormalRoundTrip) {
     for (auto [ax, ay] : kAlphas) {
         const TrowbridgeReitz tr(ax, ay);
-        auto s = [&](Point2f u) { return tr.sample_normal(u); };
-        auto i = [&](Vector3f w) { return tr.invert_normal(w); };
+        auto s = [&](Point2f u) { return tr.normals().sample(u); };
+        auto i = [&](Vector3f w) { return tr.normals().invert(w); };
         for (float a : kEdges)
             for (float b : kEdges) expect_round_trip(s, i, {a, b}, "normal edge");
         Pcg32 rng(1, 2);
@@ -254,10 +254,10 @@ TEST(TrowbridgeReitz, SmallestAlphaStaysFinite) {
         const auto vis = tr.visible_normals(direction(radians(theta_o), 0.0));
         for (int k = 0; k < 10000; ++k) {
             const Point2f u{rng.next_float(), rng.next_float()};
-            const Vector3f m = tr.sample_normal(u), v = vis.sample(u);
-            EXPECT_TRUE(std::isfinite(tr.normal_pdf(m)) && tr.normal_pdf(m) > 0.0f);
+            const Vector3f m = tr.normals().sample(u), v = vis.sample(u);
+            EXPECT_TRUE(std::isfinite(tr.normals().pdf(m)) && tr.normals().pdf(m) > 0.0f);
             EXPECT_TRUE(std::isfinite(vis.pdf(v)));
-            const Point2f back = tr.invert_normal(m);
+            const Point2f back = tr.normals().invert(m);
             EXPECT_LE(std::max(std::abs(back.x - u.x), std::abs(back.y - u.y)), 1e-4f);
         }
     }

@@ -32,11 +32,11 @@ inline std::unique_ptr<WarpCase> tr_normals(float alpha, bool wrong) {
     m.coordinate = [](const WarpOutput& o) { return static_cast<double>(o[2]); };
     m.pdf = [alpha, wrong](double z) { return z > 0.0 ? 2.0 * std::numbers::pi * z * isotropic_D(alpha, z, wrong) : 0.0; };
     info.marginal = m;
-    const TrowbridgeReitz tr(alpha);
+    const TrowbridgeReitzNormals normals = TrowbridgeReitz(alpha).normals();
     return make_warp_case(
-        info, [tr](Point2f u) { return tr.sample_normal(u); },
+        info, [normals](Point2f u) { return normals.sample(u); },
         [alpha, wrong](Vector3f w) { return w.z > 0.0f ? isotropic_D(alpha, w.z, wrong) * w.z : 0.0; },
-        [tr](Vector3f w) { return tr.invert_normal(w); });
+        [normals](Vector3f w) { return normals.invert(w); });
 }
 
 inline std::unique_ptr<WarpCase> trimmed(float c, float x_max, bool wrong) {

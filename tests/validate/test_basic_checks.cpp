@@ -20,8 +20,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 WarpCaseInfo disk_info(const char* family) { return {family, {}, "test warp", InputKind::Uniform2D, chi2::Domain::unit_disk()}; }
 
 TEST(RoundtripCheck, CorrectWarpPasses) {
-    auto warp = make_warp_case(disk_info("polar"), square_to_uniform_disk_polar, square_to_uniform_disk_polar_pdf,
-                               uniform_disk_polar_to_square);
+    auto warp = make_warp_case(disk_info("polar"), UniformDiskPolar{});
     const CheckResult r = run_check(*make_roundtrip_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     EXPECT_LT(*r.figure("max_error"), 1e-6);
@@ -30,10 +29,12 @@ TEST(RoundtripCheck, CorrectWarpPasses) {
 
 // The inverse forgets that r = sqrt(u.x): it returns r instead of r^2.
 TEST(RoundtripCheck, InverseWithoutSquareFails) {
-    auto warp = make_warp_case(disk_info("polar_broken"), square_to_uniform_disk_polar,
-                               square_to_uniform_disk_polar_pdf, [](Point2f p) {
-                                   return Point2f{std::sqrt(p.x * p.x + p.y * p.y), azimuth_to_unit(p.x, p.y)};
-                               });
+    auto warp = make_warp_case(
+        disk_info("polar_broken"), [](Point2f u) { return UniformDiskPolar{}.sample(u); },
+        [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
+        [](Point2f p) {
+            return Point2f{std::sqrt(p.x * p.x + p.y * p.y), azimuth_to_unit(p.x, p.y)};
+        });
     const CheckResult r = run_check(*make_roundtrip_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_GT(*r.figure("failures"), 1000.0);
@@ -45,23 +46,27 @@ TEST(RoundtripCheck, InverseWithoutSquareFails) {
 
 // An inverse that is off by half of a 1/64 cell in u.x.
 TEST(RoundtripCheck, InverseOffByHalfACellFails) {
-    auto warp = make_warp_case(disk_info("polar_shifted"), square_to_uniform_disk_polar,
-                               square_to_uniform_disk_polar_pdf, [](Point2f p) {
-                                   Point2f u = uniform_disk_polar_to_square(p);
-                                   u.x = std::min(u.x + 1.0f / 128.0f, kOneMinusEpsilon);
-                                   return u;
-                               });
+    auto warp = make_warp_case(
+        disk_info("polar_shifted"), [](Point2f u) { return UniformDiskPolar{}.sample(u); },
+        [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
+        [](Point2f p) {
+            Point2f u = UniformDiskPolar{}.invert(p);
+            u.x = std::min(u.x + 1.0f / 128.0f, kOneMinusEpsilon);
+            return u;
+        });
     EXPECT_EQ(run_check(*make_roundtrip_check(), *warp).verdict, Verdict::Fail);
 }
 
 // NaN only at one edge of the input square must still fail: NaN never compares as small.
 TEST(RoundtripCheck, NaNAtOneEdgeFails) {
-    auto warp = make_warp_case(disk_info("polar_nan_edge"), square_to_uniform_disk_polar,
-                               square_to_uniform_disk_polar_pdf, [](Point2f p) {
-                                   Point2f u = uniform_disk_polar_to_square(p);
-                                   if (u.x == 0.0f) u.y = kNaN;
-                                   return u;
-                               });
+    auto warp = make_warp_case(
+        disk_info("polar_nan_edge"), [](Point2f u) { return UniformDiskPolar{}.sample(u); },
+        [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
+        [](Point2f p) {
+            Point2f u = UniformDiskPolar{}.invert(p);
+            if (u.x == 0.0f) u.y = kNaN;
+            return u;
+        });
     const CheckResult r = run_check(*make_roundtrip_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_GE(*r.figure("failures"), 4.0);  // the four edge inputs with u.x = 0
@@ -81,9 +86,7 @@ TEST(RoundtripCheck, RawBitInversesMustBeExact) {
 }
 
 TEST(ConsistencyCheck, CorrectWarpsPass) {
-    auto cosine = make_warp_case({"cos", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                                 square_to_cosine_hemisphere, square_to_cosine_hemisphere_pdf,
-                                 cosine_hemisphere_to_square);
+    auto cosine = make_warp_case({"cos", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, CosineHemisphere{});
     const CheckResult r = run_check(*make_consistency_check(), *cosine);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     // u.x = 0 reaches the rim, where cos(theta)/pi is 0: accepted, and counted.
@@ -92,20 +95,24 @@ TEST(ConsistencyCheck, CorrectWarpsPass) {
 
 TEST(ConsistencyCheck, EachViolationHasItsOwnMessage) {
     const auto domain = chi2::Domain::hemisphere();
-    auto nan_sample = make_warp_case({"nan_sample", {}, "", InputKind::Uniform2D, domain},
-                                     [](Point2f u) {
-                                         Vector3f v = square_to_uniform_hemisphere(u);
-                                         if (u.x > 0.999f) v.x = kNaN;
-                                         return v;
-                                     },
-                                     square_to_uniform_hemisphere_pdf, uniform_hemisphere_to_square);
-    auto outside = make_warp_case({"outside", {}, "", InputKind::Uniform2D, domain},
-                                  square_to_uniform_sphere,
-                                  [](Vector3f) { return 0.5f; }, uniform_hemisphere_to_square);
-    auto zero_pdf = make_warp_case({"zero_pdf", {}, "", InputKind::Uniform2D, domain}, square_to_uniform_hemisphere,
-                                   [](Vector3f v) { return v.z > 0.5f ? 0.0f : 0.3f; }, uniform_hemisphere_to_square);
-    auto nan_pdf = make_warp_case({"nan_pdf", {}, "", InputKind::Uniform2D, domain}, square_to_uniform_hemisphere,
-                                  [](Vector3f v) { return v.z > 0.5f ? kNaN : 0.3f; }, uniform_hemisphere_to_square);
+    auto nan_sample = make_warp_case(
+        {"nan_sample", {}, "", InputKind::Uniform2D, domain},
+        [](Point2f u) {
+            Vector3f v = UniformHemisphere{}.sample(u);
+            if (u.x > 0.999f) v.x = kNaN;
+            return v;
+        },
+        [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
+        [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+    auto outside = make_warp_case(
+        {"outside", {}, "", InputKind::Uniform2D, domain}, [](Point2f u) { return UniformSphere{}.sample(u); },
+        [](Vector3f) { return 0.5f; }, [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+    auto zero_pdf = make_warp_case(
+        {"zero_pdf", {}, "", InputKind::Uniform2D, domain}, [](Point2f u) { return UniformHemisphere{}.sample(u); },
+        [](Vector3f v) { return v.z > 0.5f ? 0.0f : 0.3f; }, [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+    auto nan_pdf = make_warp_case(
+        {"nan_pdf", {}, "", InputKind::Uniform2D, domain}, [](Point2f u) { return UniformHemisphere{}.sample(u); },
+        [](Vector3f v) { return v.z > 0.5f ? kNaN : 0.3f; }, [](Vector3f x) { return UniformHemisphere{}.invert(x); });
     const auto check = make_consistency_check();
     const CheckResult a = run_check(*check, *nan_sample), b = run_check(*check, *outside),
                       c = run_check(*check, *zero_pdf), d = run_check(*check, *nan_pdf);

@@ -3,19 +3,20 @@
 // samples) fail, non-statistical problems fail with their own message, and the
 // result is bit-identical for any thread count. Seeds are fixed, so every test
 // here is deterministic.
+#include <gtest/gtest.h>
+
 #include <bit>
 #include <cmath>
 #include <memory>
 #include <numbers>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "chi2/domain.h"
 #include "sampling/exponential.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sphere.h"
 #include "sampling/trowbridge_reitz.h"
+#include "support/builtin_case.h"
 #include "validate/check.h"
 #include "validate/checks/checks.h"
 #include "validate/thread_pool.h"
@@ -49,19 +50,9 @@ WarpCaseInfo info(std::string family, chi2::Domain domain, InputKind input = Inp
     return i;
 }
 
-std::unique_ptr<WarpCase> cosine_hemisphere() {
-    return make_warp_case(
-        info("cosine_hemisphere", chi2::Domain::hemisphere()), [](Point2f u) { return square_to_cosine_hemisphere(u); },
-        [](Vector3f v) { return square_to_cosine_hemisphere_pdf(v); },
-        [](Vector3f v) { return cosine_hemisphere_to_square(v); });
-}
-
-std::unique_ptr<WarpCase> uniform_sphere() {
-    return make_warp_case(
-        info("uniform_sphere", chi2::Domain::sphere()), [](Point2f u) { return square_to_uniform_sphere(u); },
-        [](Vector3f v) { return square_to_uniform_sphere_pdf(v); },
-        [](Vector3f v) { return uniform_sphere_to_square(v); });
-}
+// The production cases, by name.
+const WarpCase& cosine_hemisphere() { return testing::builtin_case("cosine_hemisphere"); }
+const WarpCase& uniform_sphere() { return testing::builtin_case("uniform_sphere"); }
 
 void expect_statistical_pass(const CheckResult& r) {
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
@@ -72,13 +63,9 @@ void expect_statistical_pass(const CheckResult& r) {
 // --- Null: correct warps pass ---------------------------------------------------
 
 TEST(Chi2Check, CorrectGeometricWarpsPass) {
-    expect_statistical_pass(run_chi2(*cosine_hemisphere()));
-    expect_statistical_pass(run_chi2(*uniform_sphere()));
-    const UniformCone cone(0.3f);
-    auto cone_case = make_warp_case(
-        info("uniform_cone", chi2::Domain::spherical_cap(0.3)), [cone](Point2f u) { return cone.sample(u); },
-        [cone](Vector3f v) { return cone.pdf(v); }, [cone](Vector3f v) { return cone.invert(v); });
-    expect_statistical_pass(run_chi2(*cone_case));
+    expect_statistical_pass(run_chi2(cosine_hemisphere()));
+    expect_statistical_pass(run_chi2(uniform_sphere()));
+    expect_statistical_pass(run_chi2(testing::builtin_case("uniform_cone[cos_theta_max=0.3]")));
 }
 
 TEST(Chi2Check, PeakedTrowbridgeReitzPasses) {
@@ -87,7 +74,7 @@ TEST(Chi2Check, PeakedTrowbridgeReitzPasses) {
     const TrowbridgeReitz tr(0.05f);
     auto warp = make_warp_case(
         info("trowbridge_reitz_normals", chi2::Domain::hemisphere()),
-        [tr](Point2f u) { return tr.sample_normal(u); }, [tr](Vector3f m) { return tr.D(m) * std::max(0.0f, m.z); },
+        [tr](Point2f u) { return tr.normals().sample(u); }, [tr](Vector3f m) { return tr.D(m) * std::max(0.0f, m.z); },
         [](Vector3f) { return Point2f{}; });
     const CheckResult r = run_chi2(*warp);
     expect_statistical_pass(r);
@@ -99,9 +86,7 @@ TEST(Chi2Check, PeakedTrowbridgeReitzPasses) {
 TEST(Chi2Check, ExponentialOnTheHalfLinePassesWhateverItsRate) {
     for (float rate : {1.0f, 250.0f, 0.002f}) {
         const Exponential e(rate);
-        auto warp = make_warp_case(
-            info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D),
-            [e](float u) { return e.sample(u); }, [e](float x) { return e.pdf(x); }, [e](float x) { return e.invert(x); });
+        auto warp = make_warp_case(info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D), e);
         const CheckResult r = run_chi2(*warp);
         expect_statistical_pass(r);
         // The cells follow the distribution's scale (1 / pdf(0) = 1 / rate).
@@ -117,9 +102,9 @@ TEST(Chi2Check, DensityOffByTwoPercentOverPartOfTheDomainFails) {
     // normalised): the samples of the correct warp disagree with it.
     auto warp = make_warp_case(
         info("cosine_hemisphere_tilted_pdf", chi2::Domain::hemisphere()),
-        [](Point2f u) { return square_to_cosine_hemisphere(u); },
-        [](Vector3f v) { return (v.x > 0 ? 1.02f : 0.98f) * square_to_cosine_hemisphere_pdf(v); },
-        [](Vector3f v) { return cosine_hemisphere_to_square(v); });
+        [](Point2f u) { return CosineHemisphere{}.sample(u); },
+        [](Vector3f v) { return (v.x > 0 ? 1.02f : 0.98f) * CosineHemisphere{}.pdf(v); },
+        [](Vector3f v) { return CosineHemisphere{}.invert(v); });
     const CheckResult r = run_chi2(*warp);
     EXPECT_EQ(r.verdict, Verdict::Pass) << "no non-statistical failure: " << r.message;
     ASSERT_TRUE(r.p_value.has_value());
@@ -148,8 +133,8 @@ TEST(Chi2Check, MirroredSamplesFail) {
 
 TEST(Chi2Check, DensityIntegratingToLessThanOneFailsOnItsOwn) {
     auto warp = make_warp_case(
-        info("uniform_sphere_low_pdf", chi2::Domain::sphere()), [](Point2f u) { return square_to_uniform_sphere(u); },
-        [](Vector3f) { return 0.99f / (4 * kPi); }, [](Vector3f v) { return uniform_sphere_to_square(v); });
+        info("uniform_sphere_low_pdf", chi2::Domain::sphere()), [](Point2f u) { return UniformSphere{}.sample(u); },
+        [](Vector3f) { return 0.99f / (4 * kPi); }, [](Vector3f v) { return UniformSphere{}.invert(v); });
     const CheckResult r = run_chi2(*warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_NE(r.message.find("integrates to 0.99"), std::string::npos) << r.message;
@@ -159,12 +144,12 @@ TEST(Chi2Check, NaNAndOutsideSamplesFailOnTheirOwn) {
     auto warp = make_warp_case(
         info("broken_sphere", chi2::Domain::sphere()),
         [](Point2f u) {
-            Vector3f v = square_to_uniform_sphere(u);
+            Vector3f v = UniformSphere{}.sample(u);
             if (u.x < 1e-4f) v.x = std::nanf("");
             if (u.x > 0.9999f) v = 2.0f * v;
             return v;
         },
-        [](Vector3f v) { return square_to_uniform_sphere_pdf(v); }, [](Vector3f v) { return uniform_sphere_to_square(v); });
+        [](Vector3f v) { return UniformSphere{}.pdf(v); }, [](Vector3f v) { return UniformSphere{}.invert(v); });
     const CheckResult r = run_chi2(*warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_GT(*r.figure("nan"), 0.0);
@@ -176,7 +161,7 @@ TEST(Chi2Check, NaNAndOutsideSamplesFailOnTheirOwn) {
 // --- Result content and determinism ------------------------------------------------
 
 TEST(Chi2Check, ResultCarriesFiguresSummaryAndPlots) {
-    const CheckResult r = run_chi2(*cosine_hemisphere(), 2, 200'000);
+    const CheckResult r = run_chi2(cosine_hemisphere(), 2, 200'000);
     for (const char* name : {"statistic", "dof", "p_value", "integral", "cells", "pooled_cells", "outside", "nan",
                              "zero_expected_hits"})
         EXPECT_TRUE(r.figure(name).has_value()) << name;
@@ -202,9 +187,7 @@ TEST(Chi2Check, ResultCarriesFiguresSummaryAndPlots) {
 
 TEST(Chi2Check, OneDimensionalCasesGetLinePlots) {
     const Exponential e(1.0f);
-    auto warp = make_warp_case(
-        info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D), [e](float u) { return e.sample(u); },
-        [e](float x) { return e.pdf(x); }, [e](float x) { return e.invert(x); });
+    auto warp = make_warp_case(info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D), e);
     const CheckResult r = run_chi2(*warp, 1, 100'000);
     ASSERT_EQ(r.plots.size(), 2u);
     EXPECT_EQ(r.plots[0].series.size(), 2u);  // observed, expected
@@ -212,10 +195,10 @@ TEST(Chi2Check, OneDimensionalCasesGetLinePlots) {
 }
 
 TEST(Chi2Check, BitIdenticalForAnyThreadCount) {
-    const auto warp = cosine_hemisphere();
-    const CheckResult one = run_chi2(*warp, 1, 500'000);
+    const WarpCase& warp = cosine_hemisphere();
+    const CheckResult one = run_chi2(warp, 1, 500'000);
     for (unsigned threads : {2u, 3u}) {
-        const CheckResult many = run_chi2(*warp, threads, 500'000);
+        const CheckResult many = run_chi2(warp, threads, 500'000);
         ASSERT_EQ(one.figures.size(), many.figures.size());
         for (std::size_t i = 0; i < one.figures.size(); ++i) {
             EXPECT_EQ(one.figures[i].name, many.figures[i].name);

@@ -10,6 +10,7 @@
 #include "sampling/hash.h"
 #include "sampling/interval.h"
 #include "sampling/unit_float.h"
+#include "support/builtin_case.h"
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
 #include "validate/exhaustive_sweep.h"
@@ -30,7 +31,8 @@ SweepSummary sweep(const FloatBlockFn& f, uint64_t count, float a, float b, unsi
 
 // Full sweeps are shared between tests: each costs ~0.5 s.
 const SweepSummary& mul_sweep() {
-    static const SweepSummary s = sweep(u32_block_fn([](uint32_t u) { return u32_to_unit_float_mul(u); }), kAll32, 0.0f, 1.0f);
+    static const SweepSummary s =
+        sweep(u32_block_fn([](uint32_t u) { return UnitFloatMul{}.sample(u); }), kAll32, 0.0f, 1.0f);
     return s;
 }
 
@@ -81,24 +83,28 @@ TEST(ExhaustiveSweep, MulBy2ToMinus32HasThePublishedFigures) {
 TEST(ExhaustiveSweep, LargestFloatBelowOneIsHit255TimesAnd1Point0128Times) {
     // Against [0, 0x1.fffffep-1) the largest float below 1 becomes an outside
     // value too, so its exact count is reported.
-    const SweepSummary s = sweep(u32_block_fn([](uint32_t u) { return u32_to_unit_float_mul(u); }), kAll32, 0.0f, kOneMinusEpsilon);
+    const SweepSummary s =
+        sweep(u32_block_fn([](uint32_t u) { return UnitFloatMul{}.sample(u); }), kAll32, 0.0f, kOneMinusEpsilon);
     EXPECT_EQ(s.outside_inputs_of(kOneMinusEpsilon), 255u);
     EXPECT_EQ(s.outside_inputs_of(1.0f), 128u);
 }
 
 TEST(ExhaustiveSweep, ClampLeavesTheLargestFloatBelowOneHit383Times) {
-    const SweepSummary in01 = sweep(u32_block_fn([](uint32_t u) { return u32_to_unit_float_mul_clamped(u); }), kAll32, 0.0f, 1.0f);
+    const SweepSummary in01 =
+        sweep(u32_block_fn([](uint32_t u) { return UnitFloatMulClamped{}.sample(u); }), kAll32, 0.0f, 1.0f);
     EXPECT_EQ(in01.outside_inputs, 0u);  // never 1.0
     EXPECT_EQ(in01.distinct, 83'886'080u);
     EXPECT_EQ(in01.binade(1, -1)->max_multiplicity, 383u);
     EXPECT_EQ(in01.binade(1, -1)->pattern(), "");  // the alternation is broken by the clamped float
-    const SweepSummary below = sweep(u32_block_fn([](uint32_t u) { return u32_to_unit_float_mul_clamped(u); }), kAll32, 0.0f, kOneMinusEpsilon);
+    const SweepSummary below =
+        sweep(u32_block_fn([](uint32_t u) { return UnitFloatMulClamped{}.sample(u); }), kAll32, 0.0f, kOneMinusEpsilon);
     EXPECT_EQ(below.outside_distinct, 1u);
     EXPECT_EQ(below.outside_inputs_of(kOneMinusEpsilon), 383u);
 }
 
 TEST(ExhaustiveSweep, TwentyFourBitsHit16777216ValuesExactly256TimesEach) {
-    const SweepSummary s = sweep(u32_block_fn([](uint32_t u) { return u32_to_unit_float_24bit(u); }), kAll32, 0.0f, 1.0f);
+    const SweepSummary s =
+        sweep(u32_block_fn([](uint32_t u) { return UnitFloat24Bit{}.sample(u); }), kAll32, 0.0f, 1.0f);
     EXPECT_EQ(s.distinct, 16'777'216u);
     EXPECT_EQ(s.outside_inputs, 0u);
     EXPECT_EQ(s.non_monotone_steps, 0u);
@@ -117,7 +123,8 @@ TEST(ExhaustiveSweep, TwentyFourBitsHit16777216ValuesExactly256TimesEach) {
 
 TEST(ExhaustiveSweep, CountsDoNotDependOnTheThreadCount) {
     const SweepSummary& two = mul_sweep();
-    const SweepSummary one = sweep(u32_block_fn([](uint32_t u) { return u32_to_unit_float_mul(u); }), kAll32, 0.0f, 1.0f, 1);
+    const SweepSummary one =
+        sweep(u32_block_fn([](uint32_t u) { return UnitFloatMul{}.sample(u); }), kAll32, 0.0f, 1.0f, 1);
     EXPECT_EQ(one.distinct, two.distinct);
     EXPECT_EQ(one.outside_inputs, two.outside_inputs);
     EXPECT_EQ(one.never_produced, two.never_produced);
@@ -233,17 +240,7 @@ TEST(ExhaustiveSweep, LerpsOnTheirTGrid) {
 
 // --- the checks --------------------------------------------------------------
 
-const WarpCase& builtin_case(const std::string& name) {
-    static const Registry registry = [] {
-        Registry r;
-        register_interval_cases(r);
-        register_flawed_interval_cases(r);
-        return r;
-    }();
-    const WarpCase* c = registry.find_case(name);
-    if (!c) throw std::runtime_error("no case " + name);
-    return *c;
-}
+using testing::builtin_case;
 
 TEST(ExhaustiveCheck, FailsTheMultiplyForReaching1AndStatesTheRule) {
     const CheckResult r = testing::run_check(*make_exhaustive_check(), builtin_case("unit_float_mul32"));
@@ -275,8 +272,8 @@ TEST(ExhaustiveCheck, FailsALerpThatReachesB) {
 }
 
 TEST(BinadeCheck, SixtyFourBitSamplersPass) {
-    for (const char* name : {"unit_float_walker", "unit_float_reynolds", "uniform_float_interval[a=-3,b=5]",
-                             "uniform_float_interval[a=0.999,b=1.001]"}) {
+    for (const char* name : {"unit_float_walker", "unit_float_reynolds",
+                             "uniform_float_interval[a=-3,b=5]", "uniform_float_interval[a=0.999,b=1.001]"}) {
         const CheckResult r = testing::run_check(*make_binade_check(), builtin_case(name));
         EXPECT_EQ(r.verdict, Verdict::Pass) << name << ": " << r.summary;
         EXPECT_GE(*r.figure("samples"), 16'777'216.0);
@@ -290,8 +287,8 @@ TEST(BinadeCheck, SeesThe257Over255AlternationOfThe32BitMultiply) {
     info.input = InputKind::Bits64;
     info.domain = chi2::Domain::interval(0.0, 1.0);
     auto warp = make_warp_case(
-        info, [](uint64_t bits) { return u32_to_unit_float_mul_clamped(static_cast<uint32_t>(bits >> 32)); },
-        [](float) { return 1.0f; }, [](float x) { return uint64_t{unit_float_mul_to_u32(x)} << 32; });
+        info, [](uint64_t bits) { return UnitFloatMulClamped{}.sample(static_cast<uint32_t>(bits >> 32)); },
+        [](float) { return 1.0f; }, [](float x) { return uint64_t{UnitFloatMul{}.invert(x)} << 32; });
     const CheckResult r = testing::run_check(*make_binade_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail) << r.summary;
     EXPECT_LT(*r.figure("parity_p_value"), 1e-12);

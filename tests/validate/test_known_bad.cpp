@@ -43,64 +43,77 @@ std::vector<KnownBad> known_bad_warps() {
     using chi2::Domain;
     std::vector<KnownBad> v;
     v.push_back({"cosine_hemisphere_pdf_3pct_high", "normalisation off by +3%", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::hemisphere()), square_to_cosine_hemisphere,
-                                           [](Vector3f w) { return 1.03f * square_to_cosine_hemisphere_pdf(w); },
-                                           cosine_hemisphere_to_square);
+                     return make_warp_case(
+                         info(n, Domain::hemisphere()), [](Point2f u) { return CosineHemisphere{}.sample(u); },
+                         [](Vector3f w) { return 1.03f * CosineHemisphere{}.pdf(w); },
+                         [](Vector3f x) { return CosineHemisphere{}.invert(x); });
                  }});
     v.push_back({"uniform_hemisphere_pdf_3pct_low", "normalisation off by -3%", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::hemisphere()), square_to_uniform_hemisphere,
-                                           [](Vector3f w) { return 0.97f * square_to_uniform_hemisphere_pdf(w); },
-                                           uniform_hemisphere_to_square);
+                     return make_warp_case(
+                         info(n, Domain::hemisphere()), [](Point2f u) { return UniformHemisphere{}.sample(u); },
+                         [](Vector3f w) { return 0.97f * UniformHemisphere{}.pdf(w); },
+                         [](Vector3f x) { return UniformHemisphere{}.invert(x); });
                  }});
     v.push_back({"cosine_hemisphere_pdf_cos_squared", "density cos^2/pi instead of cos/pi", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::hemisphere()), square_to_cosine_hemisphere,
-                                           [](Vector3f w) { return w.z >= 0 ? w.z * w.z * kInvPi : 0.0f; },
-                                           cosine_hemisphere_to_square);
+                     return make_warp_case(
+                         info(n, Domain::hemisphere()), [](Point2f u) { return CosineHemisphere{}.sample(u); },
+                         [](Vector3f w) { return w.z >= 0 ? w.z * w.z * kInvPi : 0.0f; },
+                         [](Vector3f x) { return CosineHemisphere{}.invert(x); });
                  }});
-    v.push_back({"cosine_hemisphere_2pct_half", "density 2% high on one half, 2% low on the other",
-                 [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::hemisphere()), square_to_cosine_hemisphere,
-                                           [](Vector3f w) {
-                                               return (w.y >= 0 ? 1.02f : 0.98f) * square_to_cosine_hemisphere_pdf(w);
-                                           },
-                                           cosine_hemisphere_to_square);
-                 }});
+    v.push_back(
+        {"cosine_hemisphere_2pct_half", "density 2% high on one half, 2% low on the other", [](const std::string& n) {
+             return make_warp_case(
+                 info(n, Domain::hemisphere()), [](Point2f u) { return CosineHemisphere{}.sample(u); },
+                 [](Vector3f w) { return (w.y >= 0 ? 1.02f : 0.98f) * CosineHemisphere{}.pdf(w); },
+                 [](Vector3f x) { return CosineHemisphere{}.invert(x); });
+         }});
     v.push_back({"disk_polar_inverse_missing_sqrt", "inverse returns r instead of r^2", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::unit_disk()), square_to_uniform_disk_polar,
-                                           square_to_uniform_disk_polar_pdf, [](Point2f p) {
-                                               return Point2f{std::hypot(p.x, p.y), azimuth_to_unit(p.x, p.y)};
-                                           });
+                     return make_warp_case(
+                         info(n, Domain::unit_disk()), [](Point2f u) { return UniformDiskPolar{}.sample(u); },
+                         [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
+                         [](Point2f p) {
+                             return Point2f{std::hypot(p.x, p.y), azimuth_to_unit(p.x, p.y)};
+                         });
                  }});
     v.push_back({"disk_polar_sample_missing_sqrt", "sampler uses r = u instead of sqrt(u)", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::unit_disk()),
-                                           [](Point2f u) { return square_to_uniform_disk_polar({u.x * u.x, u.y}); },
-                                           square_to_uniform_disk_polar_pdf, uniform_disk_polar_to_square);
+                     return make_warp_case(
+                         info(n, Domain::unit_disk()),
+                         [](Point2f u) {
+                             return UniformDiskPolar{}.sample({u.x * u.x, u.y});
+                         },
+                         [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
+                         [](Point2f x) { return UniformDiskPolar{}.invert(x); });
                  }});
     v.push_back({"disk_concentric_wrong_wedge", "concentric map with a/b in place of b/a in one wedge",
                  [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::unit_disk()),
-                                           [](Point2f u) {
-                                               const float a = 2 * u.x - 1, b = 2 * u.y - 1;
-                                               if (std::abs(a) > std::abs(b)) {
-                                                   const float phi = kPiOver4 * (a / b);
-                                                   return Point2f{a * std::cos(phi), a * std::sin(phi)};
-                                               }
-                                               return square_to_uniform_disk_concentric(u);
-                                           },
-                                           square_to_uniform_disk_concentric_pdf, uniform_disk_concentric_to_square);
+                     return make_warp_case(
+                         info(n, Domain::unit_disk()),
+                         [](Point2f u) {
+                             const float a = 2 * u.x - 1, b = 2 * u.y - 1;
+                             if (std::abs(a) > std::abs(b)) {
+                                 const float phi = kPiOver4 * (a / b);
+                                 return Point2f{a * std::cos(phi), a * std::sin(phi)};
+                             }
+                             return UniformDiskConcentric{}.sample(u);
+                         },
+                         [](Point2f x) { return UniformDiskConcentric{}.pdf(x); },
+                         [](Point2f x) { return UniformDiskConcentric{}.invert(x); });
                  }});
     v.push_back({"disk_pdf_negative", "density negative on half of the disk", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::unit_disk()), square_to_uniform_disk_concentric,
-                                           [](Point2f p) { return p.x < 0 ? -kInvPi : kInvPi; },
-                                           uniform_disk_concentric_to_square);
+                     return make_warp_case(
+                         info(n, Domain::unit_disk()), [](Point2f u) { return UniformDiskConcentric{}.sample(u); },
+                         [](Point2f p) { return p.x < 0 ? -kInvPi : kInvPi; },
+                         [](Point2f x) { return UniformDiskConcentric{}.invert(x); });
                  }});
     v.push_back({"disk_inverse_nan_at_edge", "inverse is NaN at one edge of the square", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::unit_disk()), square_to_uniform_disk_polar,
-                                           square_to_uniform_disk_polar_pdf, [](Point2f p) {
-                                               Point2f u = uniform_disk_polar_to_square(p);
-                                               if (u.x == 0) u.x = kNaN;
-                                               return u;
-                                           });
+                     return make_warp_case(
+                         info(n, Domain::unit_disk()), [](Point2f u) { return UniformDiskPolar{}.sample(u); },
+                         [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
+                         [](Point2f p) {
+                             Point2f u = UniformDiskPolar{}.invert(p);
+                             if (u.x == 0) u.x = kNaN;
+                             return u;
+                         });
                  }});
     v.push_back({"cosine_power_swapped_angles", "sampler swaps u.x and u.y (theta from u.y, phi from u.x)",
                  [](const std::string& n) {
@@ -131,52 +144,68 @@ std::vector<KnownBad> known_bad_warps() {
                  }});
     v.push_back({"uniform_sphere_nonuniform_z", "z = 1 - 2 u^2 with its own inverse, uniform density claimed",
                  [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::sphere()),
-                                           [](Point2f u) { return square_to_uniform_sphere({u.x * u.x, u.y}); },
-                                           square_to_uniform_sphere_pdf, [](Vector3f w) {
-                                               const Point2f u = uniform_sphere_to_square(w);
-                                               return Point2f{std::sqrt(u.x), u.y};
-                                           });
+                     return make_warp_case(
+                         info(n, Domain::sphere()),
+                         [](Point2f u) {
+                             return UniformSphere{}.sample({u.x * u.x, u.y});
+                         },
+                         [](Vector3f x) { return UniformSphere{}.pdf(x); },
+                         [](Vector3f w) {
+                             const Point2f u = UniformSphere{}.invert(w);
+                             return Point2f{std::sqrt(u.x), u.y};
+                         });
                  }});
     v.push_back({"uniform_sphere_half_turn", "phi = pi u.y: only half of the sphere", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::sphere()),
-                                           [](Point2f u) { return square_to_uniform_sphere({u.x, 0.5f * u.y}); },
-                                           square_to_uniform_sphere_pdf, uniform_sphere_to_square);
+                     return make_warp_case(
+                         info(n, Domain::sphere()),
+                         [](Point2f u) {
+                             return UniformSphere{}.sample({u.x, 0.5f * u.y});
+                         },
+                         [](Vector3f x) { return UniformSphere{}.pdf(x); },
+                         [](Vector3f x) { return UniformSphere{}.invert(x); });
                  }});
     v.push_back({"uniform_sphere_nan_for_small_u", "sampler returns NaN for u.x < 1e-3", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::sphere()),
-                                           [](Point2f u) {
-                                               Vector3f w = square_to_uniform_sphere(u);
-                                               if (u.x < 1e-3f) w.z = kNaN;
-                                               return w;
-                                           },
-                                           square_to_uniform_sphere_pdf, uniform_sphere_to_square);
+                     return make_warp_case(
+                         info(n, Domain::sphere()),
+                         [](Point2f u) {
+                             Vector3f w = UniformSphere{}.sample(u);
+                             if (u.x < 1e-3f) w.z = kNaN;
+                             return w;
+                         },
+                         [](Vector3f x) { return UniformSphere{}.pdf(x); },
+                         [](Vector3f x) { return UniformSphere{}.invert(x); });
                  }});
     v.push_back({"uniform_hemisphere_not_normalised", "direction built with r = 1 - z instead of sqrt(1 - z^2)",
                  [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::hemisphere()),
-                                           [](Point2f u) {
-                                               const float z = u.x, r = 1 - z, phi = kTwoPi * u.y;
-                                               return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
-                                           },
-                                           square_to_uniform_hemisphere_pdf, uniform_hemisphere_to_square);
+                     return make_warp_case(
+                         info(n, Domain::hemisphere()),
+                         [](Point2f u) {
+                             const float z = u.x, r = 1 - z, phi = kTwoPi * u.y;
+                             return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
+                         },
+                         [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
+                         [](Vector3f x) { return UniformHemisphere{}.invert(x); });
                  }});
-    v.push_back({"uniform_hemisphere_pdf_nan_near_pole", "pdf is NaN within 1e-3 of the pole", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::hemisphere()), square_to_uniform_hemisphere,
-                                           [](Vector3f w) { return w.z > 0.999f ? kNaN : kInvTwoPi; },
-                                           uniform_hemisphere_to_square);
-                 }});
+    v.push_back(
+        {"uniform_hemisphere_pdf_nan_near_pole", "pdf is NaN within 1e-3 of the pole", [](const std::string& n) {
+             return make_warp_case(
+                 info(n, Domain::hemisphere()), [](Point2f u) { return UniformHemisphere{}.sample(u); },
+                 [](Vector3f w) { return w.z > 0.999f ? kNaN : kInvTwoPi; },
+                 [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+         }});
     v.push_back({"linear_mirrored_sampler", "density right, sampler mirrored (x -> 1 - x)", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::interval(0, 1), InputKind::Uniform1D),
-                                           [](float u) { return 1.0f - sample_linear(u, 1.0f, 3.0f); },
-                                           [](float x) { return linear_pdf(x, 1.0f, 3.0f); },
-                                           [](float x) { return invert_linear(x, 1.0f, 3.0f); });
+                     return make_warp_case(
+                         info(n, Domain::interval(0, 1), InputKind::Uniform1D),
+                         [](float u) { return 1.0f - Linear(1.0f, 3.0f).sample(u); },
+                         [](float x) { return Linear(1.0f, 3.0f).pdf(x); },
+                         [](float x) { return Linear(1.0f, 3.0f).invert(x); });
                  }});
     v.push_back({"linear_pdf_unnormalised", "pdf lerp(x, a, b) without the 2 / (a + b)", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::interval(0, 1), InputKind::Uniform1D),
-                                           [](float u) { return sample_linear(u, 1.0f, 3.0f); },
-                                           [](float x) { return (1 - x) * 1.0f + x * 3.0f; },
-                                           [](float x) { return invert_linear(x, 1.0f, 3.0f); });
+                     return make_warp_case(
+                         info(n, Domain::interval(0, 1), InputKind::Uniform1D),
+                         [](float u) { return Linear(1.0f, 3.0f).sample(u); },
+                         [](float x) { return (1 - x) * 1.0f + x * 3.0f; },
+                         [](float x) { return Linear(1.0f, 3.0f).invert(x); });
                  }});
     v.push_back({"bilinear_pdf_weights_swapped", "pdf swaps the (1,0) and (0,1) corner weights",
                  [](const std::string& n) {
@@ -191,27 +220,31 @@ std::vector<KnownBad> known_bad_warps() {
                  [](const std::string&) { return testing::trimmed(1.0f, 1.0f, true); }});
     v.push_back({"visible_normals_abs_dot", "visible-normal pdf with |wo.wm| instead of the mask",
                  [](const std::string&) { return testing::visible(0.3f, 85.0, true); }});
-    v.push_back({"unit_float_returns_one", "u * 2^-32 in float: 1.0 for the 128 largest inputs",
-                 [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::interval(0, 1), InputKind::Bits32),
-                                           [](uint32_t u) { return u32_to_unit_float_mul(u); },
-                                           [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
-                                           [](float x) { return unit_float_mul_to_u32(x); });
-                 }});
-    v.push_back({"unit_float_rounding_biased", "64 random bits, only 32 used, times 2^-32 with the clamp: 257/255 parity",
-                 [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::interval(0, 1), InputKind::Bits64),
-                                           [](uint64_t u) { return u32_to_unit_float_mul_clamped(static_cast<uint32_t>(u >> 32)); },
-                                           [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
-                                           [](float x) { return uint64_t{unit_float_mul_clamped_to_u32(x)} << 32; });
+    v.push_back(
+        {"unit_float_returns_one", "u * 2^-32 in float: 1.0 for the 128 largest inputs", [](const std::string& n) {
+             return make_warp_case(
+                 info(n, Domain::interval(0, 1), InputKind::Bits32),
+                 [](uint32_t u) { return UnitFloatMul{}.sample(u); },
+                 [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
+                 [](float x) { return UnitFloatMul{}.invert(x); });
+         }});
+    v.push_back({"unit_float_rounding_biased",
+                 "64 random bits, only 32 used, times 2^-32 with the clamp: 257/255 parity", [](const std::string& n) {
+                     return make_warp_case(
+                         info(n, Domain::interval(0, 1), InputKind::Bits64),
+                         [](uint64_t u) { return UnitFloatMulClamped{}.sample(static_cast<uint32_t>(u >> 32)); },
+                         [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
+                         [](float x) { return uint64_t{UnitFloatMulClamped{}.invert(x)} << 32; });
                  }});
     v.push_back({"uniform_sphere_throws", "sampler throws for some inputs", [](const std::string& n) {
-                     return make_warp_case(info(n, Domain::sphere()),
-                                           [](Point2f u) {
-                                               if (u.x > 0.9999f) throw std::domain_error("invalid input");
-                                               return square_to_uniform_sphere(u);
-                                           },
-                                           square_to_uniform_sphere_pdf, uniform_sphere_to_square);
+                     return make_warp_case(
+                         info(n, Domain::sphere()),
+                         [](Point2f u) {
+                             if (u.x > 0.9999f) throw std::domain_error("invalid input");
+                             return UniformSphere{}.sample(u);
+                         },
+                         [](Vector3f x) { return UniformSphere{}.pdf(x); },
+                         [](Vector3f x) { return UniformSphere{}.invert(x); });
                  }});
     return v;
 }

@@ -49,15 +49,15 @@ TEST(Sidak, NaNAndLowPValuesFail) {
 }
 
 TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
-    auto thrower = make_warp_case({"thrower", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                                  [](Point2f u) {
-                                      if (u.x > 0.99f) throw std::runtime_error("boom");
-                                      return square_to_uniform_hemisphere(u);
-                                  },
-                                  square_to_uniform_hemisphere_pdf, uniform_hemisphere_to_square);
-    auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                               square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
-                               uniform_hemisphere_to_square);
+    auto thrower = make_warp_case(
+        {"thrower", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+        [](Point2f u) {
+            if (u.x > 0.99f) throw std::runtime_error("boom");
+            return UniformHemisphere{}.sample(u);
+        },
+        [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
+        [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+    auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, UniformHemisphere{});
     const auto check = make_roundtrip_check();
     RunOptions options;
     options.samples = 100'000;
@@ -77,17 +77,18 @@ TEST(Runner, SamplerThatNeverTerminatesIsAnErrorAfterItsBudget) {
     // Leaked on purpose: the abandoned thread keeps spinning inside sample()
     // until the process exits, so what it uses must never be destroyed.
     static const WarpCase* stuck = make_warp_case(
-        {"never_accepts", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-        [](Point2f u) {
-            volatile float candidate = u.x;
-            while (candidate < 2.0f) candidate = candidate * 0.5f;  // rejection that never accepts
-            return square_to_uniform_hemisphere(u);
-        },
-        square_to_uniform_hemisphere_pdf, uniform_hemisphere_to_square).release();
+                                       {"never_accepts", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+                                       [](Point2f u) {
+                                           volatile float candidate = u.x;
+                                           while (candidate < 2.0f)
+                                               candidate = candidate * 0.5f;  // rejection that never accepts
+                                           return UniformHemisphere{}.sample(u);
+                                       },
+                                       [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
+                                       [](Vector3f x) { return UniformHemisphere{}.invert(x); })
+                                       .release();
     static const Check* check = make_roundtrip_check().release();
-    auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                               square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
-                               uniform_hemisphere_to_square);
+    auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, UniformHemisphere{});
     RunOptions options;
     options.samples = 100'000;
     options.threads = 2;
@@ -169,12 +170,9 @@ TEST(Registry, NamesAndMatching) {
     EXPECT_TRUE(name_matches("abc", "a?c"));
     EXPECT_FALSE(name_matches("abc", "sphere"));
     Registry r;
-    r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                              square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
-                              uniform_hemisphere_to_square));
+    r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, UniformHemisphere{}));
     EXPECT_THROW(r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                                           square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf,
-                                           uniform_hemisphere_to_square)),
+                                           UniformHemisphere{})),
                  std::invalid_argument);
 }
 

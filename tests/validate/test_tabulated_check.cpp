@@ -55,32 +55,25 @@ std::unique_ptr<WarpCase> tr_normal_case(float alpha, bool increasing) {
     m.pdf = [alpha](double z) { return TrowbridgeReitz::isotropic_cos_theta_pdf(alpha, z); };
     info.marginal = m;
     const TrowbridgeReitz tr(alpha);
-    return make_warp_case(info, [tr](Point2f u) { return tr.sample_normal(u); },
-                          [tr](Vector3f w) { return tr.normal_pdf(w); }, [tr](Vector3f w) { return tr.invert_normal(w); });
+    return make_warp_case(info, tr.normals());
 }
 
 TEST(TabulatedCheck, AppliesTo1DWarpsAndDeclaredMarginals) {
     const auto check = make_tabulated_check();
     const TrimmedExponential t(1.0f, 1.0f);
-    auto interval = make_warp_case(info_1d("trimmed", chi2::Domain::interval(0.0, 1.0)),
-                                   [t](float u) { return t.sample(u); }, [t](float x) { return t.pdf(x); },
-                                   [t](float x) { return t.invert(x); });
+    auto interval = make_warp_case(info_1d("trimmed", chi2::Domain::interval(0.0, 1.0)), t);
     EXPECT_TRUE(check->applies_to(*interval));
     EXPECT_TRUE(check->applies_to(*exponential_case(1.0f)));
     EXPECT_TRUE(check->applies_to(*tr_normal_case(0.3f, false)));
     // A half-line without a declared truncation, and a 2D warp without a marginal: no.
     const Exponential e(1.0f);
-    auto half_line = make_warp_case(info_1d("exponential", chi2::Domain::half_line(0.0)),
-                                    [e](float u) { return e.sample(u); }, [e](float x) { return e.pdf(x); },
-                                    [e](float x) { return e.invert(x); });
+    auto half_line = make_warp_case(info_1d("exponential", chi2::Domain::half_line(0.0)), e);
     EXPECT_FALSE(check->applies_to(*half_line));
     WarpCaseInfo plain;
     plain.family = "plain";
     plain.domain = chi2::Domain::hemisphere();
     const TrowbridgeReitz tr(0.3f);
-    auto no_marginal = make_warp_case(plain, [tr](Point2f u) { return tr.sample_normal(u); },
-                                      [tr](Vector3f w) { return tr.normal_pdf(w); },
-                                      [tr](Vector3f w) { return tr.invert_normal(w); });
+    auto no_marginal = make_warp_case(plain, tr.normals());
     EXPECT_FALSE(check->applies_to(*no_marginal));
 }
 

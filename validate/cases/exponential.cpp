@@ -7,14 +7,17 @@
 #include "validate/registry.h"
 
 namespace warpcheck {
+namespace {
 
 void register_exponential_cases(Registry& registry) {
     using chi2::Domain;
     for (double a : {0.1, 1.0, 10.0}) {
         const Exponential e(static_cast<float>(a));
-        WarpCaseInfo info{"exponential", {{"a", a}},
-                          "exponential with rate a on [0, inf): pdf a exp(-a x), x = -log1p(-u) / a",
-                          InputKind::Uniform1D, Domain::half_line(0.0)};
+        WarpCaseInfo info{.family = "exponential",
+                          .params = {{"a", a}},
+                          .description = "exponential with rate a on [0, inf): pdf a exp(-a x), x = -log1p(-u) / a",
+                          .input = InputKind::Uniform1D,
+                          .domain = Domain::half_line(0.0)};
         // The tabulated check truncates the half-line where the tail holds 1e-3 of
         // the mass (so that ~1000 of 1e6 samples test the tail explicitly); the tail
         // mass comes from the CDF, exp(-a hi), with the rate as the warp holds it.
@@ -23,23 +26,28 @@ void register_exponential_cases(Registry& registry) {
         view.tail_mass = std::exp(-static_cast<double>(e.rate()) * view.hi);
         view.label = "x";
         info.marginal = view;
-        registry.add_case(make_warp_case(info, [e](float u) { return e.sample(u); },
-                                         [e](float x) { return e.pdf(x); }, [e](float x) { return e.invert(x); }));
+        registry.add_case(make_warp_case(info, e));
     }
     // c = 1e-6: c xmax is tiny, the density is uniform to 1e-6 and the naive
     // normalisation 1 - exp(-c xmax) keeps only ~1 significant digit in float.
     // c = 100: exp(-c xmax) is below float precision; all mass within ~0.1.
     for (auto [c, x_max] : {std::pair{1e-6, 1.0}, {1.0, 1.0}, {0.5, 4.0}, {100.0, 1.0}}) {
         const TrimmedExponential t(static_cast<float>(c), static_cast<float>(x_max));
-        WarpCaseInfo info{"trimmed_exponential", {{"c", c}, {"x_max", x_max}},
-                          "exponential with rate c trimmed to [0, x_max]: pdf c exp(-c x) / (1 - exp(-c x_max))",
-                          InputKind::Uniform1D, Domain::interval(0.0, x_max)};
+        WarpCaseInfo info{
+            .family = "trimmed_exponential",
+            .params = {{"c", c}, {"x_max", x_max}},
+            .description = "exponential with rate c trimmed to [0, x_max]: pdf c exp(-c x) / (1 - exp(-c x_max))",
+            .input = InputKind::Uniform1D,
+            .domain = Domain::interval(0.0, x_max)};
         // Uniform chi-square cells over [0, x_max] put c = 100's mass (scale 0.01)
         // into a handful of cells; 20 cells per 1/c keep ~150 cells with counts.
         if (c * x_max > 10.0) info.chi2_resolution.first = static_cast<int>(20.0 * c * x_max);
-        registry.add_case(make_warp_case(info, [t](float u) { return t.sample(u); },
-                                         [t](float x) { return t.pdf(x); }, [t](float x) { return t.invert(x); }));
+        registry.add_case(make_warp_case(info, t));
     }
 }
+
+WARPCHECK_BUILTIN_CASES(40, register_exponential_cases);
+
+}  // namespace
 
 }  // namespace warpcheck

@@ -49,33 +49,29 @@ private:
     bool monotone_;
 };
 
-// A case description; members are assigned one by one so that WarpCaseInfo can
-// grow without touching this file.
-WarpCaseInfo case_info(std::string family, std::vector<Parameter> params, std::string description, InputKind input,
-                       chi2::Domain domain) {
-    WarpCaseInfo info;
-    info.family = std::move(family);
-    info.params = std::move(params);
-    info.description = std::move(description);
-    info.input = input;
-    info.domain = domain;
-    return info;
+// A [0,1) sampler of 32 bits with its first-preimage inverse, sweepable. The
+// sweep gets a lambda, not a member pointer, so that the call is inlined into
+// its vectorised loop.
+template <typename UnitFloat>
+std::unique_ptr<WarpCase> unit_float_32_case(std::string family, std::string description, UnitFloat warp) {
+    auto inner = make_warp_case({.family = std::move(family),
+                                 .description = std::move(description),
+                                 .input = InputKind::Bits32,
+                                 .domain = chi2::Domain::interval(0.0, 1.0),
+                                 .exact_inverse = true},
+                                warp);
+    return std::make_unique<SweepableWarpCase>(std::move(inner),
+                                               u32_block_fn([warp](uint32_t u) { return warp.sample(u); }),
+                                               uint64_t{1} << 32, "all 2^32 inputs", true);
 }
 
-// A [0,1) sampler of 32 bits with its first-preimage inverse. Pass lambdas, not
-// function names: a function pointer would not be inlined into the sweep's
-// vectorised loop.
-template <typename Sample, typename Invert>
-std::unique_ptr<WarpCase> unit_float_32_case(std::string family, std::string description, Sample sample,
-                                             Invert invert) {
-    WarpCaseInfo info = case_info(std::move(family), {}, std::move(description), InputKind::Bits32,
-                                  chi2::Domain::interval(0.0, 1.0));
-    info.exact_inverse = true;
-    auto inner = make_warp_case(
-        info, [sample](uint32_t u) { return sample(u); }, [](float x) { return x >= 0.0f && x < 1.0f ? 1.0f : 0.0f; },
-        [invert](float x) { return invert(x); });
-    return std::make_unique<SweepableWarpCase>(std::move(inner), u32_block_fn(sample), uint64_t{1} << 32,
-                                               "all 2^32 inputs", true);
+// A [0,1) sampler of 64 bits, whose inverse returns the first input exactly.
+WarpCaseInfo unit_float_64_info(std::string family, std::string description) {
+    return {.family = std::move(family),
+            .description = std::move(description),
+            .input = InputKind::Bits64,
+            .domain = chi2::Domain::interval(0.0, 1.0),
+            .exact_inverse = true};
 }
 
 // The random source of a 64-bit case: the input bits first, then (for the rare
@@ -109,13 +105,14 @@ std::string interval_text(double a, double b, char close) { return fmt::format("
 std::unique_ptr<WarpCase> lerp_case(LerpInterval::Form form, double a, double b) {
     const LerpInterval lerp(static_cast<float>(a), static_cast<float>(b), form);
     const bool offset = form == LerpInterval::Form::Offset;
-    WarpCaseInfo info = case_info(offset ? "lerp_offset" : "lerp_blend", {{"a", a}, {"b", b}},
-                                  fmt::format("{} over {}; pdf 1/(b - a)", offset ? "a + t (b - a)" : "(1 - t) a + t b",
-                                              interval_text(a, b, ')')),
-                                  InputKind::Uniform1D, chi2::Domain::interval(lerp.a, lerp.b));
     auto inner = make_warp_case(
-        info, [lerp](float t) { return lerp.sample(t); }, [lerp](float x) { return lerp.pdf(x); },
-        [lerp](float x) { return lerp.invert(x); });
+        {.family = offset ? "lerp_offset" : "lerp_blend",
+         .params = {{"a", a}, {"b", b}},
+         .description = fmt::format("{} over {}; pdf 1/(b - a)", offset ? "a + t (b - a)" : "(1 - t) a + t b",
+                                    interval_text(a, b, ')')),
+         .input = InputKind::Uniform1D,
+         .domain = chi2::Domain::interval(lerp.a, lerp.b)},
+        lerp);
     FloatBlockFn fn = [lerp](uint64_t first, std::size_t n, float* out) {
         for (std::size_t i = 0; i < n; ++i) out[i] = lerp.sample(static_cast<float>(first + i) * 0x1p-24f);  // exact
     };
@@ -124,50 +121,34 @@ std::unique_ptr<WarpCase> lerp_case(LerpInterval::Form form, double a, double b)
                                                "t = k 2^-24 for every k < 2^24", offset);
 }
 
-}  // namespace
-
 void register_interval_cases(Registry& registry) {
     using chi2::Domain;
 
     // --- [0,1) from 32 bits: exhaustively countable ---------------------------
     registry.add_case(unit_float_32_case(
         "unit_float_mul32_clamped", "u * 2^-32 clamped to 0x1.fffffep-1: in [0,1), but that float is hit 383 times",
-        [](uint32_t u) { return u32_to_unit_float_mul_clamped(u); },
-        [](float x) { return unit_float_mul_clamped_to_u32(x); }));
-    registry.add_case(unit_float_32_case("unit_float_24bit",
-                                         "(u >> 8) * 2^-24: the 2^-24 grid, each value exactly 256 times",
-                                         [](uint32_t u) { return u32_to_unit_float_24bit(u); },
-        [](float x) { return unit_float_24bit_to_u32(x); }));
-    registry.add_case(unit_float_32_case("unit_float_bits",
-                                         "23 bits as the significand of [1,2), minus 1: the 2^-23 grid",
-                                         [](uint32_t u) { return u32_to_unit_float_bits(u); },
-        [](float x) { return unit_float_bits_to_u32(x); }));
+        UnitFloatMulClamped{}));
+    registry.add_case(unit_float_32_case(
+        "unit_float_24bit", "(u >> 8) * 2^-24: the 2^-24 grid, each value exactly 256 times", UnitFloat24Bit{}));
+    registry.add_case(unit_float_32_case(
+        "unit_float_bits", "23 bits as the significand of [1,2), minus 1: the 2^-23 grid", UnitFloatBits{}));
 
     // --- [0,1) from 64 bits: every float with its measure ----------------------
-    {
-        WarpCaseInfo info = case_info("unit_float_reynolds", {},
-                          "leading zeros of 41 bits pick the binade, 23 low bits the significand; exact above 2^-41",
-                          InputKind::Bits64, Domain::interval(0.0, 1.0));
-        info.exact_inverse = true;
-        registry.add_case(make_warp_case(
-            info, [](uint64_t bits) { return u64_to_unit_float_reynolds(bits); },
-            [](float x) { return x >= 0.0f && x < 1.0f ? 1.0f : 0.0f; },
-            [](float x) { return unit_float_reynolds_to_u64(x); }));
-    }
-    {
-        WarpCaseInfo info = case_info("unit_float_walker", {},
-                          "Walker: exponent from leading zeros of as many words as needed, down to the denormals",
-                          InputKind::Bits64, Domain::interval(0.0, 1.0));
-        info.exact_inverse = true;
-        registry.add_case(make_warp_case(
-            info,
-            [](uint64_t bits) {
-                FirstThenStream rng(bits);
-                return unit_float_walker(rng);
-            },
-            [](float x) { return x >= 0.0f && x < 1.0f ? 1.0f : 0.0f; },
-            [](float x) { return unit_float_walker_to_u64(x); }));
-    }
+    registry.add_case(make_warp_case(
+        unit_float_64_info("unit_float_reynolds",
+                           "leading zeros of 41 bits pick the binade, 23 low bits the significand; exact above 2^-41"),
+        UnitFloatReynolds{}));
+    // Walker's sampler draws further words in rare cases: it reads them from a
+    // stream seeded by the input bits, so that sample(bits) is a function.
+    const UnitFloatWalker walker;
+    registry.add_case(make_warp_case(
+        unit_float_64_info("unit_float_walker",
+                           "Walker: exponent from leading zeros of as many words as needed, down to the denormals"),
+        [walker](uint64_t bits) {
+            FirstThenStream rng(bits);
+            return walker.sample(rng);
+        },
+        [walker](float x) { return walker.pdf(x); }, [walker](float x) { return walker.invert(x); }));
 
     // --- every float of [a,b), exactly ----------------------------------------
     // Wide ([0,1), [-3,5), [0.001, 1000)), straddling a binade ([0.999, 1.001)),
@@ -176,18 +157,19 @@ void register_interval_cases(Registry& registry) {
         {0.0, 1.0}, {-3.0, 5.0}, {0.001, 1000.0}, {0.999, 1.001}, {-1.0, -0.75}, {-1e-30, 1.0}};
     for (const auto& [a, b] : exact_intervals) {
         const UniformFloatInterval sampler(static_cast<float>(a), static_cast<float>(b));
-        WarpCaseInfo info = case_info("uniform_float_interval", {{"a", a}, {"b", b}},
-                          fmt::format("every float of {} with probability (next float - x)/(b - a)",
-                                      interval_text(a, b, ')')),
-                          InputKind::Bits64, Domain::interval(sampler.a(), sampler.b()));
-        info.exact_inverse = true;
         registry.add_case(make_warp_case(
-            info,
+            {.family = "uniform_float_interval",
+             .params = {{"a", a}, {"b", b}},
+             .description =
+                 fmt::format("every float of {} with probability (next float - x)/(b - a)", interval_text(a, b, ')')),
+             .input = InputKind::Bits64,
+             .domain = Domain::interval(sampler.a(), sampler.b()),
+             .exact_inverse = true},
             [sampler](uint64_t bits) {
                 FirstThenStream rng(bits);
                 return sampler.sample(rng);
             },
-            [sampler](float x) { return sampler.pdf(x); }, [sampler](float x) { return sampler.first_word(x); }));
+            [sampler](float x) { return sampler.pdf(x); }, [sampler](float x) { return sampler.invert(x); }));
     }
 
     // Lerps that pass by the rules: monotone on the t grid, b never reached.
@@ -195,16 +177,19 @@ void register_interval_cases(Registry& registry) {
         registry.add_case(lerp_case(form, -3.0, 5.0));
 }
 
+WARPCHECK_BUILTIN_CASES(20, register_interval_cases);
+
+}  // namespace
+
 void register_flawed_interval_cases(Registry& registry) {
     auto add_flawed = [&](std::unique_ptr<WarpCase> warp, std::string flaw) {
         const std::string name = warp->name();
         registry.add_case(std::move(warp));
         registry.mark_known_flaw(name, std::move(flaw));
     };
-    add_flawed(unit_float_32_case(
-                   "unit_float_mul32", "u * 2^-32 in float, round to nearest; biased, and 1.0 for the 128 largest u",
-                   [](uint32_t u) { return u32_to_unit_float_mul(u); },
-                   [](float x) { return unit_float_mul_to_u32(x); }),
+    add_flawed(unit_float_32_case("unit_float_mul32",
+                                  "u * 2^-32 in float, round to nearest; biased, and 1.0 for the 128 largest u",
+                                  UnitFloatMul{}),
                "returns 1.0, outside [0,1), for the 128 largest inputs");
     // a + t (b - a) reaches b on all three (1, 64 and 3 values of t); the blend
     // steps down on all three and reaches b on the last two.

@@ -1,25 +1,31 @@
 // Linear and bilinear warps (sampling/linear.h).
+#include <utility>
+
 #include "sampling/linear.h"
 #include "validate/registry.h"
 
 namespace warpcheck {
+namespace {
 
 void register_linear_cases(Registry& registry) {
     for (auto [a, b] : {std::pair{1.0, 3.0}, std::pair{0.0, 1.0}, std::pair{2.0, 0.0}}) {
-        const auto fa = static_cast<float>(a), fb = static_cast<float>(b);
-        registry.add_case(make_warp_case(
-            {"linear", {{"a", a}, {"b", b}}, "density proportional to (1-x) a + x b on [0,1]", InputKind::Uniform1D,
-             chi2::Domain::interval(0.0, 1.0)},
-            [=](float u) { return sample_linear(u, fa, fb); }, [=](float x) { return linear_pdf(x, fa, fb); },
-            [=](float x) { return invert_linear(x, fa, fb); }));
+        registry.add_case(make_warp_case({.family = "linear",
+                                          .params = {{"a", a}, {"b", b}},
+                                          .description = "density proportional to (1-x) a + x b on [0,1]",
+                                          .input = InputKind::Uniform1D,
+                                          .domain = chi2::Domain::interval(0.0, 1.0)},
+                                         Linear(static_cast<float>(a), static_cast<float>(b))));
     }
-    const Bilinear patch(1.0f, 4.0f, 0.5f, 2.0f);
-    registry.add_case(make_warp_case({"bilinear", {{"w00", 1}, {"w10", 4}, {"w01", 0.5}, {"w11", 2}},
-                                      "density proportional to the bilinear interpolation of corner weights",
-                                      InputKind::Uniform2D, chi2::Domain::unit_square()},
-                                     [=](Point2f u) { return patch.sample(u); },
-                                     [=](Point2f p) { return patch.pdf(p); },
-                                     [=](Point2f p) { return patch.invert(p); }));
+    registry.add_case(
+        make_warp_case({.family = "bilinear",
+                        .params = {{"w00", 1}, {"w10", 4}, {"w01", 0.5}, {"w11", 2}},
+                        .description = "density proportional to the bilinear interpolation of corner weights",
+                        .input = InputKind::Uniform2D,
+                        .domain = chi2::Domain::unit_square()},
+                       Bilinear(1.0f, 4.0f, 0.5f, 2.0f)));
 }
 
+WARPCHECK_BUILTIN_CASES(30, register_linear_cases);
+
+}  // namespace
 }  // namespace warpcheck

@@ -16,7 +16,11 @@ void add_1d(Registry& registry, const std::string& family, const std::string& wh
             float hi) {
     const auto d = std::make_shared<const PiecewiseConstant1D>(f, lo, hi);
     registry.add_case(make_warp_case(
-        {family, {{"n", static_cast<double>(f.size())}}, what, InputKind::Uniform1D, chi2::Domain::interval(lo, hi)},
+        {.family = family,
+         .params = {{"n", static_cast<double>(f.size())}},
+         .description = what,
+         .input = InputKind::Uniform1D,
+         .domain = chi2::Domain::interval(lo, hi)},
         [d](float u) { return d->sample(u).x; }, [d](float x) { return d->pdf(x); },
         [d](float x) { return d->invert(x); }));
 }
@@ -24,8 +28,6 @@ void add_1d(Registry& registry, const std::string& family, const std::string& wh
 void add_2d(Registry& registry, const std::string& family, const std::string& what, std::vector<float> f, int nu,
             int nv, float x0, float x1, float y0, float y1) {
     const auto d = std::make_shared<const PiecewiseConstant2D>(f, nu, nv, x0, x1, y0, y1);
-    WarpCaseInfo info{family, {{"nu", static_cast<double>(nu)}, {"nv", static_cast<double>(nv)}}, what,
-                      InputKind::Uniform2D, chi2::Domain::box(x0, x1, y0, y1)};
     // y comes from the marginal alone, driven by u.y alone: a monotone 1D view.
     MonotoneMarginal m;
     m.input_coordinate = 1;
@@ -34,12 +36,15 @@ void add_2d(Registry& registry, const std::string& family, const std::string& wh
     m.label = "y";
     m.coordinate = [](const WarpOutput& o) { return static_cast<double>(o[1]); };
     m.pdf = [d](double y) { return static_cast<double>(d->marginal().pdf(static_cast<float>(y))); };
-    info.marginal = std::move(m);
+    WarpCaseInfo info{.family = family,
+                      .params = {{"nu", static_cast<double>(nu)}, {"nv", static_cast<double>(nv)}},
+                      .description = what,
+                      .input = InputKind::Uniform2D,
+                      .domain = chi2::Domain::box(x0, x1, y0, y1),
+                      .marginal = std::move(m)};
     registry.add_case(make_warp_case(info, [d](Point2f u) { return d->sample(u).p; },
                                      [d](Point2f p) { return d->pdf(p); }, [d](Point2f p) { return d->invert(p); }));
 }
-
-}  // namespace
 
 void register_piecewise_constant_cases(Registry& registry) {
     add_1d(registry, "piecewise_constant_1d",
@@ -73,5 +78,9 @@ void register_piecewise_constant_cases(Registry& registry) {
     add_2d(registry, "piecewise_constant_2d_all_zero", "all-zero 3 x 2 table on [0, 1]^2: uniform, pdf 1",
            std::vector<float>(6, 0.0f), 3, 2, 0.0f, 1.0f, 0.0f, 1.0f);
 }
+
+WARPCHECK_BUILTIN_CASES(60, register_piecewise_constant_cases);
+
+}  // namespace
 
 }  // namespace warpcheck

@@ -43,19 +43,17 @@ MonotoneMarginal normal_marginal(double ax, double ay) {
     return m;
 }
 
-}  // namespace
-
 void register_trowbridge_reitz_cases(Registry& registry) {
     using chi2::Domain;
     for (auto [ax, ay] : kAlphas) {
         const TrowbridgeReitz tr(static_cast<float>(ax), static_cast<float>(ay));
-        WarpCaseInfo info{"trowbridge_reitz_normals", {{"ax", ax}, {"ay", ay}},
-                          "Trowbridge-Reitz microfacet normals; pdf D(wm) cos(theta_m) per solid angle",
-                          InputKind::Uniform2D, Domain::hemisphere()};
-        info.marginal = normal_marginal(ax, ay);
-        registry.add_case(make_warp_case(info, [tr](Point2f u) { return tr.sample_normal(u); },
-                                         [tr](Vector3f m) { return tr.normal_pdf(m); },
-                                         [tr](Vector3f m) { return tr.invert_normal(m); }));
+        registry.add_case(make_warp_case(
+            {.family = "trowbridge_reitz_normals",
+             .params = {{"ax", ax}, {"ay", ay}},
+             .description = "Trowbridge-Reitz microfacet normals; pdf D(wm) cos(theta_m) per solid angle",
+             .domain = Domain::hemisphere(),
+             .marginal = normal_marginal(ax, ay)},
+            tr.normals()));
     }
     for (auto [ax, ay] : kAlphas) {
         const TrowbridgeReitz tr(static_cast<float>(ax), static_cast<float>(ay));
@@ -65,14 +63,18 @@ void register_trowbridge_reitz_cases(Registry& registry) {
             // No tabulated view: the concentric map mixes both inputs into every
             // coordinate. Round trip at the default tolerance: the inverse is exact to ~6e-7.
             registry.add_case(make_warp_case(
-                {"trowbridge_reitz_visible", {{"ax", ax}, {"ay", ay}, {"theta_o", theta_o}},
-                 "Trowbridge-Reitz visible normals for wo at theta_o in the xz-plane (spherical caps); "
-                 "pdf G1(wo) max(0, wo.wm) D(wm) / cos(theta_o) per solid angle",
-                 InputKind::Uniform2D, Domain::hemisphere()},
-                [vis](Point2f u) { return vis.sample(u); }, [vis](Vector3f m) { return vis.pdf(m); },
-                [vis](Vector3f m) { return vis.invert(m); }));
+                {.family = "trowbridge_reitz_visible",
+                 .params = {{"ax", ax}, {"ay", ay}, {"theta_o", theta_o}},
+                 .description = "Trowbridge-Reitz visible normals for wo at theta_o in the xz-plane (spherical caps); "
+                                "pdf G1(wo) max(0, wo.wm) D(wm) / cos(theta_o) per solid angle",
+                 .domain = Domain::hemisphere()},
+                vis));
         }
     }
 }
+
+WARPCHECK_BUILTIN_CASES(50, register_trowbridge_reitz_cases);
+
+}  // namespace
 
 }  // namespace warpcheck
