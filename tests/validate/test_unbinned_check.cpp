@@ -54,11 +54,11 @@ std::unique_ptr<WarpCase> cosine_claiming_power(double eps) {
     info.params = {{"eps", eps}};
     info.domain = chi2::Domain::hemisphere();
     return make_warp_case(
-        info, [](Point2f u) { return square_to_cosine_hemisphere(u); },
+        info, [](Point2f u) { return CosineHemisphere{}.sample(u); },
         [eps](Vector3f v) {
             return v.z >= 0.0f ? (2.0 + eps) / (2.0 * std::numbers::pi) * std::pow(double(v.z), 1.0 + eps) : 0.0;
         },
-        [](Vector3f v) { return cosine_hemisphere_to_square(v); });
+        [](Vector3f v) { return CosineHemisphere{}.invert(v); });
 }
 
 /// Detections over kSeeds seeds by the default suite's statistical checks.
