@@ -77,37 +77,34 @@ Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domai
             dims_ = 1;
             cols_ = pick(resolution_.first, 200);
             bounds_ = {domain_.a, domain_.b, 0.0, 1.0};
-            tol_x_ = kDomainTolerance * std::max({domain_.b - domain_.a, std::abs(domain_.a), std::abs(domain_.b)});
             break;
         case DomainKind::HalfLine:
             dims_ = 1;
             cols_ = pick(resolution_.first, 200);
             bounds_ = {0.0, 1.0, 0.0, 1.0};
-            tol_x_ = kDomainTolerance * std::max(resolution_.half_line_scale, std::abs(domain_.a));
             break;
         case DomainKind::Box:
             dims_ = 2;
             cols_ = pick(resolution_.first, 32);
             rows_ = pick(resolution_.second, 32);
             bounds_ = {domain_.x0, domain_.x1, domain_.y0, domain_.y1};
-            tol_x_ = kDomainTolerance * std::max({domain_.x1 - domain_.x0, std::abs(domain_.x0), std::abs(domain_.x1)});
-            tol_y_ = kDomainTolerance * std::max({domain_.y1 - domain_.y0, std::abs(domain_.y0), std::abs(domain_.y1)});
             break;
         case DomainKind::Disk:
             dims_ = 2;
             cols_ = pick(resolution_.first, 32);
             rows_ = pick(resolution_.second, 32);
             bounds_ = {0.0, kTwoPi, 0.0, 1.0};
-            tol_x_ = tol_y_ = kDomainTolerance;
             break;
         case DomainKind::SphericalCap:
             dims_ = 2;
             cols_ = pick(resolution_.first, 32);
             rows_ = pick(resolution_.second, 32);
             bounds_ = {0.0, kTwoPi, domain_.z_min, 1.0};
-            tol_x_ = tol_y_ = kDomainTolerance;
             break;
     }
+    const Domain::Slack slack = domain_.slack();  // the one membership tolerance
+    tol_x_ = slack.x;
+    tol_y_ = slack.y;
     if (dims_ == 1 && resolution_.second > 1) throw std::invalid_argument("1D domains take one resolution value");
     if (cell_count() > (std::size_t{1} << 26)) throw std::invalid_argument("bin resolution too large");
     du_ = (bounds_.u1 - bounds_.u0) / cols_;
@@ -252,18 +249,7 @@ std::ptrdiff_t Binning::cell_of(const DomainPoint& p) const {
     const int n = domain_.point_dimension();
     for (int k = 0; k < n; ++k)
         if (std::isnan(p[static_cast<std::size_t>(k)])) return kNaN;
-    bool inside = false;
-    switch (domain_.kind) {
-        case DomainKind::Interval: inside = p[0] >= domain_.a - tol_x_ && p[0] <= domain_.b + tol_x_; break;
-        case DomainKind::HalfLine: inside = p[0] >= domain_.a - tol_x_ && std::isfinite(p[0]); break;
-        case DomainKind::Box:
-            inside = p[0] >= domain_.x0 - tol_x_ && p[0] <= domain_.x1 + tol_x_ && p[1] >= domain_.y0 - tol_y_ &&
-                     p[1] <= domain_.y1 + tol_y_;
-            break;
-        case DomainKind::Disk: inside = std::hypot(p[0], p[1]) <= 1.0 + kDomainTolerance; break;
-        case DomainKind::SphericalCap: inside = domain_.contains(p, kDomainTolerance); break;
-    }
-    if (!inside) return kOutside;
+    if (!domain_.contains(p)) return kOutside;
     const auto uv = parameters_of(p);
     return static_cast<std::ptrdiff_t>(cell_at_parameters(uv[0], uv[1]));
 }
@@ -379,7 +365,7 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
             break;
         }
         case DomainKind::Disk: {
-            const double r2_max = (1.0 + kDomainTolerance) * (1.0 + kDomainTolerance);
+            const double r2_max = (1.0 + tol_x_) * (1.0 + tol_x_);  // Domain::contains, squared
             for (const auto& p : points) {
                 const double x = p[0], y = p[1];
                 if (x != x || y != y) { ++hist.nan; continue; }
@@ -393,9 +379,9 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
         }
         case DomainKind::SphericalCap: {
             // |len - 1| <= tol  <=>  len^2 within [(1 - tol)^2, (1 + tol)^2].
-            const double len2_lo = (1.0 - kDomainTolerance) * (1.0 - kDomainTolerance);
-            const double len2_hi = (1.0 + kDomainTolerance) * (1.0 + kDomainTolerance);
-            const double z_lo = domain_.z_min - kDomainTolerance, z0 = domain_.z_min;
+            const double len2_lo = (1.0 - tol_x_) * (1.0 - tol_x_);  // Domain::contains, squared
+            const double len2_hi = (1.0 + tol_x_) * (1.0 + tol_x_);
+            const double z_lo = domain_.z_min - tol_x_, z0 = domain_.z_min;
             for (const auto& p : points) {
                 const double x = p[0], y = p[1], z = p[2];
                 if (x != x || y != y || z != z) { ++hist.nan; continue; }

@@ -23,13 +23,6 @@
 
 namespace warpcheck::chi2 {
 
-/// Samples are accepted this far outside the domain (relative to the domain's
-/// extent per coordinate, and on the unit length for spherical domains) and
-/// counted in the nearest cell. Float warps round at ~6e-8 relative and lose a
-/// few ulps more in trigonometry; 1e-5 is about 100 times that, while a wrong
-/// warp misplaces samples by far more.
-inline constexpr double kDomainTolerance = 1e-5;
-
 /// A rectangle of parameter space.
 struct ParamRect {
     double u0 = 0.0, u1 = 1.0;
@@ -39,7 +32,7 @@ struct ParamRect {
 /// Counts of one histogram: per cell, plus the samples that fell in no cell.
 struct Histogram {
     std::vector<uint64_t> counts;
-    uint64_t outside = 0;  ///< beyond kDomainTolerance of the domain
+    uint64_t outside = 0;  ///< not Domain::contains (beyond its slack)
     uint64_t nan = 0;      ///< a NaN coordinate
     uint64_t snapped = 0;  ///< moved (within tolerance) from a zero-expected cell to a neighbour
     /// In a zero-expected cell and exactly on the domain's boundary, where a
@@ -122,7 +115,7 @@ private:
     int rows_ = 1;
     ParamRect bounds_;
     double du_ = 1.0, dv_ = 1.0;  // cell sizes in parameter space
-    double tol_x_ = 0.0, tol_y_ = 0.0;  // accepted slack outside the domain, per coordinate
+    double tol_x_ = 0.0, tol_y_ = 0.0;  // domain_.slack(), cached for the binning loops
     // Column of phi without atan (when cols is a multiple of 8): reduce (x, y)
     // to t = min/max in [0, 1] of one octant; the octant's column edges are at
     // t = tan(k du), found by a lookup on t and a comparison or two.

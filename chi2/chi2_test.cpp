@@ -145,7 +145,7 @@ Chi2Outcome evaluate_chi2(const Binning& binning, Histogram histogram, CellInteg
 
     out.pearson = pearson_test(observed, out.expected, options.min_expected);
     if (out.pearson.dof < 1)
-        out.errors.push_back("fewer than two cells remain after pooling: no degrees of freedom (increase --samples)");
+        out.errors.push_back("fewer than two cells remain after pooling: too few samples for any degree of freedom");
     else if (!std::isfinite(out.pearson.statistic))
         out.failures.push_back("the chi-square statistic is not finite");
     else if (!std::isfinite(out.pearson.p_value))

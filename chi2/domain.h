@@ -3,6 +3,7 @@
 // sphere dA = dphi dz, so a cell's area in those coordinates is its solid angle.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -11,6 +12,13 @@
 #include <string>
 
 namespace warpcheck::chi2 {
+
+/// Domain membership tolerance, relative to the domain's extent (see
+/// Domain::slack): samples are computed in float, whose coordinates carry a
+/// resolution of ~6e-8 relative plus a few ulps lost in trigonometry, so 1e-5 is
+/// about 100 times the float resolution of the coordinates, while a wrong warp
+/// misplaces samples by far more.
+inline constexpr double kDomainTolerance = 1e-5;
 
 enum class DomainKind {
     Interval,      ///< [a, b], length measure
@@ -98,18 +106,39 @@ struct Domain {
         return 0.0;
     }
 
-    /// Whether p lies in the domain, allowing `tol` of slack (absolute, in the
-    /// domain's coordinates; for spherical domains also on the unit length).
-    /// NaN coordinates are never contained.
-    bool contains(const DomainPoint& p, double tol) const {
+    /// How far outside the domain a point may lie and still count as inside,
+    /// per coordinate: kDomainTolerance times the domain's extent (the largest of
+    /// its width and its ends' magnitudes), or times the unit radius / length
+    /// for disks and spheres.
+    struct Slack {
+        double x = 0.0, y = 0.0;
+    };
+    Slack slack() const {
         switch (kind) {
-            case DomainKind::Interval: return p[0] >= a - tol && p[0] <= b + tol;
-            case DomainKind::HalfLine: return p[0] >= a - tol && p[0] < std::numeric_limits<double>::infinity();
-            case DomainKind::Box: return p[0] >= x0 - tol && p[0] <= x1 + tol && p[1] >= y0 - tol && p[1] <= y1 + tol;
-            case DomainKind::Disk: return std::hypot(p[0], p[1]) <= 1.0 + tol;
+            case DomainKind::Interval: return {kDomainTolerance * std::max({b - a, std::abs(a), std::abs(b)}), 0.0};
+            case DomainKind::HalfLine: return {kDomainTolerance * std::max(1.0, std::abs(a)), 0.0};
+            case DomainKind::Box:
+                return {kDomainTolerance * std::max({x1 - x0, std::abs(x0), std::abs(x1)}),
+                        kDomainTolerance * std::max({y1 - y0, std::abs(y0), std::abs(y1)})};
+            case DomainKind::Disk:
+            case DomainKind::SphericalCap: return {kDomainTolerance, kDomainTolerance};
+        }
+        return {};
+    }
+
+    /// Whether p lies in the domain, within slack() of it: the one definition of
+    /// domain membership that binning, the checks and the sweeps share. NaN
+    /// coordinates are never contained.
+    bool contains(const DomainPoint& p) const {
+        const Slack s = slack();
+        switch (kind) {
+            case DomainKind::Interval: return p[0] >= a - s.x && p[0] <= b + s.x;
+            case DomainKind::HalfLine: return p[0] >= a - s.x && std::isfinite(p[0]);
+            case DomainKind::Box: return p[0] >= x0 - s.x && p[0] <= x1 + s.x && p[1] >= y0 - s.y && p[1] <= y1 + s.y;
+            case DomainKind::Disk: return std::hypot(p[0], p[1]) <= 1.0 + s.x;
             case DomainKind::SphericalCap: {
                 const double len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-                return std::abs(len - 1.0) <= tol && p[2] >= z_min - tol;
+                return std::abs(len - 1.0) <= s.x && p[2] >= z_min - s.x;
             }
         }
         return false;

@@ -1,5 +1,6 @@
 // Parallelism is injected: chi2 runs loops through a ParallelFor that the caller
-// supplies (validate passes its thread pool). Results never depend on it: work is
+// supplies (validate passes its thread pool: ThreadPool::executor()). This is the
+// one parallel-loop type of the project; validate's checks use it too. Results never depend on it: work is
 // split into pieces whose boundaries do not depend on the thread count.
 #pragma once
 

@@ -64,6 +64,8 @@ public:
     void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body) const {
         pool_.parallel_for(n, body);
     }
+    /// The same loop as a chi2::ParallelFor, to hand to chi2 and the sweeps.
+    chi2::ParallelFor executor() const { return pool_.executor(); }
 
     /// Whether the runner has given up on this check (its time budget ran out).
     bool cancelled() const { return cancelled_ && cancelled_->load(std::memory_order_relaxed); }

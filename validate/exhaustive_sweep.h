@@ -1,100 +1,23 @@
-// Exhaustive float histograms: run a function over every input of a range (up
-// to all 2^32 values of a u32) and count, exactly, how often each float comes
-// out, summarised per binade against the ideal measure. Pure counting: no
-// printing, no verdicts (validate/checks/exhaustive_check.cpp judges).
-//
-// Ideal measure: a uniform real of [a,b) rounded down to a float, so the ideal
-// multiplicity of a float x of [a,b) is count * (next_float_up(x) - x) / (b - a):
-// constant within a binade (for negative floats the binade is the magnitude
-// range (2^e, 2^(e+1)], where that spacing is constant).
-//
-// Method: the inputs are split into fixed chunks (2^22 inputs, whatever the
-// thread count). Each chunk evaluates blocks of outputs and counts runs of
-// equal outputs; runs that touch a chunk border are merged in chunk order. For a
-// monotone function that is the exact histogram in O(1) memory. If an output is
-// ever smaller than the one before (a non-monotone step), equal outputs may be
-// far apart, and the counts are redone exactly: by sorting all outputs when
-// there are at most 2^26 inputs, otherwise by passes of an atomic histogram over
-// windows of at most 8 binades (256 MiB). Every figure is an integer count, or
-// computed at the end from integer counts, so results do not depend on threads.
+// The warp side of the exhaustive float sweep (the counting is
+// chi2/float_sweep.h): the interface of cases that can be swept fast, and the
+// vectorised block loop that turns a sampler into a chi2::FloatBlockFn.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <string>
-#include <vector>
 
-#include "sampling/float_bits.h"
+#include "chi2/float_sweep.h"
 
 namespace warpcheck {
 
-/// out[i] = f(first + i) for i in [0, n).
-using FloatBlockFn = std::function<void(uint64_t first, std::size_t n, float* out)>;
-/// Calls body(i) for every i in [0, n), on any threads (e.g. ThreadPool::parallel_for).
-using ParallelFor = std::function<void(std::size_t n, const std::function<void(std::size_t)>& body)>;
-
-/// Counts for one binade of the interval.
-struct BinadeCount {
-    int sign = 1;        ///< +1 or -1
-    int exponent = 0;    ///< magnitudes in [2^e, 2^(e+1)) (negative: (2^e, 2^(e+1)]); -127: the denormals
-    float first = 0.0f;  ///< smallest float of the binade inside the interval
-    float last = 0.0f;   ///< largest float of the binade inside the interval
-    uint64_t floats = 0;    ///< floats of the binade inside the interval
-    uint64_t distinct = 0;  ///< how many of them were produced
-    uint64_t inputs = 0;    ///< inputs that produced one of them
-    double ideal = 0.0;     ///< ideal multiplicity of each of them
-    uint64_t min_multiplicity = 0;  ///< over all its floats in the interval: 0 if one is never produced
-    uint64_t max_multiplicity = 0;
-    /// The first float of the binade (its power of two, where the spacing
-    /// changes, so round-to-nearest gives it a share of both spacings): its
-    /// multiplicity, 0 if not produced or not in the interval.
-    uint64_t edge_multiplicity = 0;
-    /// Over the other produced floats with an even (odd) significand; 0/0 when
-    /// there are none.
-    uint64_t min_even = 0, max_even = 0, min_odd = 0, max_odd = 0;
-    double abs_deviation = 0.0;  ///< sum over its floats of |multiplicity - ideal|
-
-    /// "257/255" (even/odd significands) when every float is produced and,
-    /// apart from the binade's first float, the multiplicity depends only on
-    /// the parity, with different values; "256" when all those are equal; empty
-    /// otherwise.
-    std::string pattern() const;
-};
-
-/// An output outside the interval and how many inputs produced it.
-struct OutsideValue {
-    float value = 0.0f;
-    uint64_t inputs = 0;
-};
-
-struct SweepSummary {
-    uint64_t inputs = 0;              ///< inputs evaluated
-    uint64_t distinct = 0;            ///< distinct outputs (-0 counts as 0; NaNs count as one)
-    uint64_t distinct_inside = 0;     ///< distinct outputs inside [a,b)
-    uint64_t outside_distinct = 0;    ///< distinct outputs outside [a,b)
-    uint64_t outside_inputs = 0;      ///< inputs producing them
-    uint64_t floats_in_interval = 0;  ///< floats of [a,b) (one zero)
-    uint64_t never_produced = 0;      ///< floats of [a,b) no input produced
-    uint64_t non_monotone_steps = 0;  ///< i with f(i+1) < f(i) (NaN steps count as decreasing)
-    bool exact_fallback = false;      ///< whether the non-monotone recount ran
-    /// Total variation distance between the output distribution and the ideal
-    /// measure: half the sum over all floats of |count/inputs - ideal/inputs|,
-    /// outside outputs included (their ideal is 0).
-    double tv_distance = 0.0;
-    std::vector<OutsideValue> outside_values;  ///< the 16 smallest outside outputs, increasing
-    std::vector<BinadeCount> binades;          ///< every binade meeting [a,b), in increasing order
-
-    /// How many inputs produced the outside output x; 0 if x is not among
-    /// outside_values.
-    uint64_t outside_inputs_of(float x) const;
-    /// The binade with this sign and exponent, or nullptr.
-    const BinadeCount* binade(int sign, int exponent) const;
-};
-
-/// Sweeps f over inputs [0, count), count <= 2^32, against [a,b) (finite a < b).
-SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, float b,
-                              const ParallelFor& parallel_for);
+// The counting lives in chi2; its names are used here unqualified, as before.
+using chi2::BinadeCount;
+using chi2::exhaustive_sweep;
+using chi2::FloatBlockFn;
+using chi2::OutsideValue;
+using chi2::ParallelFor;
+using chi2::SweepSummary;
 
 /// Implemented (besides WarpCase) by warp cases that the exhaustive check can
 /// sweep fast: their sampler on the i-th input of its full input grid, in blocks.

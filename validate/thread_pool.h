@@ -18,6 +18,8 @@
 #include <thread>
 #include <vector>
 
+#include "chi2/parallel.h"
+
 namespace warpcheck {
 
 class ThreadPool {
@@ -34,6 +36,12 @@ public:
     /// calls have finished. The first exception thrown by a body is rethrown here
     /// (the remaining indices are skipped).
     void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body);
+
+    /// parallel_for as the project's one loop type, for code that takes an
+    /// executor (chi2, the exhaustive sweeps). The pool must outlive it.
+    chi2::ParallelFor executor() {
+        return [this](std::size_t n, const std::function<void(std::size_t)>& body) { parallel_for(n, body); };
+    }
 
 private:
     struct Loop;

@@ -4,24 +4,29 @@
 // Cells: the binades of [a,b) (sign and exponent; a negative binade holds the
 // magnitudes (2^e, 2^(e+1)], where the spacing is constant). Their probability
 // under the uniform measure is exact: the length of the binade's reals within
-// [a,b), over b - a. Binades expected to get fewer than 5 samples are pooled.
+// [a,b), over b - a. Binades expected to get fewer than 5 samples are pooled
+// as chi2::pearson_test pools (no binade is ever dropped).
 // Parity: within a binade every float has the same probability, so even and
 // odd significands split its samples in proportion to their counts (1/2 for a
 // full binade). A 257/255 alternation moves 1/512 of the mass from odd to even,
 // which at 2^23 samples in [0.5,1) is 11 standard deviations: hence at least
 // 2^24 samples, whatever --samples says below that.
-// The two Pearson statistics give two p-values; the check reports
+// Both statistics come from the engine (chi2/pearson.h): no degrees of freedom
+// gives a NaN p-value. A test without degrees of freedom (an interval inside
+// one binade) is left out of the combination; with none left the check's p is
+// NaN and fails. The two Pearson statistics give two p-values; the check reports
 // p = min(1, 2 min(p_mass, p_parity)) (Bonferroni over its two tests), which
 // the runner compares with its Šidák-corrected level.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <vector>
 
-#include <boost/math/distributions/chi_squared.hpp>
 #include <fmt/format.h>
 
+#include "chi2/pearson.h"
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/input_chunks.h"
@@ -30,7 +35,6 @@ namespace warpcheck {
 namespace {
 
 constexpr uint64_t kMinSamples = uint64_t{1} << 24;
-constexpr double kMinExpected = 5.0;
 constexpr double kMinParityExpected = 100.0;  // per parity, for a binade's parity term
 
 // Binade of a float: +/-(exponent field + 1), 0 never used; for negative
@@ -47,12 +51,6 @@ struct Cell {
     double even_fraction = 0.5;
     uint64_t observed = 0, even = 0;
 };
-
-double chi2_upper(double statistic, double dof) {
-    if (!(dof >= 1.0)) return 1.0;
-    if (!std::isfinite(statistic)) return 0.0;
-    return boost::math::cdf(boost::math::complement(boost::math::chi_squared(dof), statistic));
-}
 
 uint64_t evens_in(uint64_t p, uint64_t q) { return q < p ? 0 : (q >> 1) - ((p + 1) >> 1) + 1; }
 
@@ -92,6 +90,173 @@ std::string cell_label(int key) {
     return fmt::format("{}2^{}", sign, field - 127);
 }
 
+// ---- compute: counts per binade, a map-reduce over input chunks ----
+
+struct Counts {
+    std::vector<uint64_t> in, even;
+    uint64_t outside = 0;
+};
+
+// Adds every sample to its binade in `cells`; returns the samples outside [a,b).
+uint64_t count_binades(const WarpCase& warp, const CheckContext& ctx, uint64_t samples, std::vector<Cell>& cells) {
+    const double a = warp.domain().a, b = warp.domain().b;
+    std::map<int, std::size_t> index;
+    for (std::size_t k = 0; k < cells.size(); ++k) index[cells[k].key] = k;
+    auto chunks = map_input_chunks<Counts>(ctx, warp.input_kind(), samples, false, [&](std::size_t, auto inputs) {
+        Counts c;
+        c.in.assign(cells.size(), 0);
+        c.even.assign(cells.size(), 0);
+        std::vector<WarpOutput> x(inputs.size());
+        warp.sample(inputs, x);
+        for (const WarpOutput& o : x) {
+            const float v = o[0];
+            const auto it = (v >= a && v < b) ? index.find(binade_key(v)) : index.end();
+            if (it == index.end()) {
+                ++c.outside;
+                continue;
+            }
+            ++c.in[it->second];
+            c.even[it->second] += (float_to_bits(v) & 1u) == 0;
+        }
+        return c;
+    });
+    uint64_t outside = 0;
+    for (const Counts& c : chunks) {  // chunk order: the sums do not depend on the threads
+        outside += c.outside;
+        for (std::size_t k = 0; k < c.in.size(); ++k) {
+            cells[k].observed += c.in[k];
+            cells[k].even += c.even[k];
+        }
+    }
+    return outside;
+}
+
+// ---- the two statistics ----
+
+struct ParityTest {
+    double statistic = 0.0;
+    int cells = 0;
+    double p_value = 0.0;
+    double worst_term = 0.0;
+    int worst_key = 0;
+};
+
+struct Tests {
+    chi2::PearsonResult mass;
+    ParityTest parity;
+    double p_value = 0.0;  ///< Bonferroni over the two; NaN if either is NaN
+};
+
+chi2::PearsonResult test_mass(const std::vector<Cell>& cells, double n) {
+    std::vector<double> observed, expected;
+    for (const Cell& c : cells) {
+        observed.push_back(static_cast<double>(c.observed));
+        expected.push_back(c.probability * n);
+    }
+    return chi2::pearson_test(observed, expected, chi2::kMinExpectedCount);
+}
+
+// Within a binade the parity split is binomial given the binade's count: one
+// degree of freedom per binade with enough of each parity expected.
+ParityTest test_parity(const std::vector<Cell>& cells) {
+    ParityTest t;
+    for (const Cell& c : cells) {
+        const double o = static_cast<double>(c.observed);
+        const double e_even = o * c.even_fraction, e_odd = o - e_even;
+        if (!(e_even >= kMinParityExpected && e_odd >= kMinParityExpected)) continue;
+        const double d = static_cast<double>(c.even) - e_even;
+        const double term = d * d / e_even + d * d / e_odd;
+        t.statistic += term;
+        ++t.cells;
+        if (term > t.worst_term) {
+            t.worst_term = term;
+            t.worst_key = c.key;
+        }
+    }
+    t.p_value = chi2::chi_square_upper_tail(t.statistic, t.cells);
+    return t;
+}
+
+// Bonferroni over the tests that have degrees of freedom. A test without any
+// (an interval inside one binade has a single mass term) tests nothing and is
+// left out, visibly (its p-value stays NaN in the figures); with neither left
+// the combined p is NaN, which fails.
+Tests test_binades(const std::vector<Cell>& cells, double n) {
+    Tests t;
+    t.mass = test_mass(cells, n);
+    t.parity = test_parity(cells);
+    std::vector<double> ps;
+    if (t.mass.dof >= 1) ps.push_back(t.mass.p_value);
+    if (t.parity.cells >= 1) ps.push_back(t.parity.p_value);
+    t.p_value = ps.empty() ? std::numeric_limits<double>::quiet_NaN() : 1.0;
+    for (double p : ps) {
+        if (std::isnan(p)) {  // a NaN test makes a NaN check: it fails
+            t.p_value = p;
+            break;
+        }
+        t.p_value = std::min(t.p_value, std::min(1.0, static_cast<double>(ps.size()) * p));
+    }
+    return t;
+}
+
+// ---- judge ----
+
+// Fail on any sample outside [a,b): no tolerance, a float sampler must stay in
+// its interval exactly. Otherwise the runner compares p with its corrected level
+// (a NaN p, no degrees of freedom, fails there).
+CheckResult judge(const Tests& t, uint64_t outside, uint64_t samples, double a, double b) {
+    CheckResult r;
+    r.samples = samples;
+    r.p_value = t.p_value;
+    r.figures = {{"samples", static_cast<double>(samples)},
+                 {"mass_chi2", t.mass.statistic},
+                 {"mass_dof", static_cast<double>(t.mass.dof)},
+                 {"mass_p_value", t.mass.p_value},
+                 {"parity_chi2", t.parity.statistic},
+                 {"parity_dof", static_cast<double>(t.parity.cells)},
+                 {"parity_p_value", t.parity.p_value},
+                 {"outside", static_cast<double>(outside)}};
+    r.summary = fmt::format("p {:.3g} (binade mass {:.3g}, parity {:.3g})", t.p_value, t.mass.p_value,
+                            t.parity.p_value);
+    if (outside > 0) {
+        r.verdict = Verdict::Fail;
+        r.message = fmt::format("{} of {} samples lie outside [{}, {})", outside, samples, a, b);
+        return r;
+    }
+    r.verdict = Verdict::Pass;  // the runner applies the corrected level to p
+    if (t.parity.cells > 0 && t.parity.p_value < 1e-3)
+        r.message = fmt::format("largest parity deviation in binade {}", cell_label(t.parity.worst_key));
+    return r;
+}
+
+// ---- evidence: a table of binades and a plot of observed / expected ----
+
+void add_evidence(CheckResult& r, const std::vector<Cell>& cells, double n) {
+    Table t{"Binades (largest first)", {"binade", "expected", "observed", "even share expected", "even observed"}, {}};
+    Plot plot;
+    plot.kind = Plot::Kind::Points;
+    plot.title = "Samples per binade: observed / expected";
+    plot.x_label = "binade (signed exponent index)";
+    plot.y_label = "observed / expected";
+    Series ratio{"observed / expected", {}, {}};
+    for (auto it = cells.rbegin(); it != cells.rend(); ++it) {
+        const double e = it->probability * n;
+        if (e < 1e-3 && it->observed == 0) continue;
+        const double observed = static_cast<double>(it->observed);
+        t.rows.push_back({cell_label(it->key), fmt::format("{:.1f}", e), std::to_string(it->observed),
+                          fmt::format("{:.6f}", it->even_fraction),
+                          it->observed ? fmt::format("{:.6f}", static_cast<double>(it->even) / observed)
+                                       : std::string("-")});
+        if (e >= chi2::kMinExpectedCount) {
+            ratio.x.push_back(it->key);
+            ratio.y.push_back(observed / e);
+        }
+    }
+    r.tables.push_back(std::move(t));
+    plot.series.push_back(std::move(ratio));
+    r.plots.push_back(std::move(plot));
+}
+
 class BinadeCheck final : public Check {
 public:
     std::string name() const override { return "binade"; }
@@ -106,127 +271,11 @@ public:
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const double a = warp.domain().a, b = warp.domain().b;
         std::vector<Cell> cells = cells_of(a, b);
-        std::map<int, std::size_t> index;
-        for (std::size_t k = 0; k < cells.size(); ++k) index[cells[k].key] = k;
-
-        struct Counts {
-            std::vector<uint64_t> in, even;
-            uint64_t outside = 0;
-        };
         const uint64_t samples = std::max(ctx.options().samples, kMinSamples);
-        auto chunks = map_input_chunks<Counts>(ctx, warp.input_kind(), samples, false, [&](std::size_t, auto inputs) {
-            Counts c;
-            c.in.assign(cells.size(), 0);
-            c.even.assign(cells.size(), 0);
-            std::vector<WarpOutput> x(inputs.size());
-            warp.sample(inputs, x);
-            for (const WarpOutput& o : x) {
-                const float v = o[0];
-                const auto it = (v >= a && v < b) ? index.find(binade_key(v)) : index.end();
-                if (it == index.end()) {
-                    ++c.outside;
-                    continue;
-                }
-                ++c.in[it->second];
-                c.even[it->second] += (float_to_bits(v) & 1u) == 0;
-            }
-            return c;
-        });
-        uint64_t outside = 0, total = 0;
-        for (const Counts& c : chunks) {
-            outside += c.outside;
-            for (std::size_t k = 0; k < c.in.size(); ++k) {
-                cells[k].observed += c.in[k];
-                cells[k].even += c.even[k];
-            }
-        }
-        total = samples;
-        const auto n = static_cast<double>(total);
-
-        // Mass per binade, pooling the cells expected below 5 (the smallest ones).
-        double mass_stat = 0.0, pooled_expected = 0.0, pooled_observed = 0.0;
-        int mass_cells = 0;
-        for (const Cell& c : cells) {
-            const double e = c.probability * n;
-            if (e < kMinExpected) {
-                pooled_expected += e;
-                pooled_observed += static_cast<double>(c.observed);
-                continue;
-            }
-            mass_stat += (static_cast<double>(c.observed) - e) * (static_cast<double>(c.observed) - e) / e;
-            ++mass_cells;
-        }
-        if (pooled_expected >= kMinExpected) {
-            mass_stat += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
-            ++mass_cells;
-        }  // else: too little even pooled to test; the outside count still guards the ends
-        const double mass_p = chi2_upper(mass_stat, mass_cells - 1);
-
-        // Significand parity per binade.
-        double parity_stat = 0.0;
-        int parity_cells = 0;
-        double worst_parity = 0.0;
-        int worst_key = 0;
-        for (const Cell& c : cells) {
-            const double o = static_cast<double>(c.observed);
-            const double e_even = o * c.even_fraction, e_odd = o - e_even;
-            if (!(e_even >= kMinParityExpected && e_odd >= kMinParityExpected)) continue;
-            const double d = static_cast<double>(c.even) - e_even;
-            const double term = d * d / e_even + d * d / e_odd;
-            parity_stat += term;
-            ++parity_cells;
-            if (term > worst_parity) {
-                worst_parity = term;
-                worst_key = c.key;
-            }
-        }
-        const double parity_p = chi2_upper(parity_stat, parity_cells);
-
-        CheckResult r;
-        r.samples = total;
-        const double p = std::min(1.0, 2.0 * std::min(mass_p, parity_p));
-        r.p_value = p;
-        r.figures = {{"samples", n},
-                     {"mass_chi2", mass_stat},
-                     {"mass_dof", static_cast<double>(mass_cells - 1)},
-                     {"mass_p_value", mass_p},
-                     {"parity_chi2", parity_stat},
-                     {"parity_dof", static_cast<double>(parity_cells)},
-                     {"parity_p_value", parity_p},
-                     {"outside", static_cast<double>(outside)}};
-        r.summary = fmt::format("p {:.3g} (binade mass {:.3g}, parity {:.3g})", p, mass_p, parity_p);
-        if (outside > 0) {
-            r.verdict = Verdict::Fail;
-            r.message = fmt::format("{} of {} samples lie outside [{}, {})", outside, total, a, b);
-        } else {
-            r.verdict = Verdict::Pass;  // the runner applies the corrected level to p
-            if (parity_cells > 0 && parity_p < 1e-3)
-                r.message = fmt::format("largest parity deviation in binade {}", cell_label(worst_key));
-        }
-
-        Table t{"Binades (largest first)", {"binade", "expected", "observed", "even share expected", "even observed"}, {}};
-        Plot plot;
-        plot.kind = Plot::Kind::Points;
-        plot.title = "Samples per binade: observed / expected";
-        plot.x_label = "binade (signed exponent index)";
-        plot.y_label = "observed / expected";
-        Series ratio{"observed / expected", {}, {}};
-        for (auto it = cells.rbegin(); it != cells.rend(); ++it) {
-            const double e = it->probability * n;
-            if (e < 1e-3 && it->observed == 0) continue;
-            t.rows.push_back({cell_label(it->key), fmt::format("{:.1f}", e), std::to_string(it->observed),
-                              fmt::format("{:.6f}", it->even_fraction),
-                              it->observed ? fmt::format("{:.6f}", static_cast<double>(it->even) /
-                                                                       static_cast<double>(it->observed))
-                                           : std::string("-")});
-            if (e >= kMinExpected) {
-                ratio.x.push_back(it->key);
-                ratio.y.push_back(static_cast<double>(it->observed) / e);
-            }
-        }
-        r.tables.push_back(std::move(t));
-        plot.series.push_back(std::move(ratio));
-        r.plots.push_back(std::move(plot));
+        const uint64_t outside = count_binades(warp, ctx, samples, cells);
+        const Tests tests = test_binades(cells, static_cast<double>(samples));
+        CheckResult r = judge(tests, outside, samples, a, b);
+        add_evidence(r, cells, static_cast<double>(samples));
         return r;
     }
 };

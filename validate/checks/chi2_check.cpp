@@ -141,10 +141,7 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
                     static_cast<float>(points[i][2])};
         warp.pdf(x, density);
     };
-    const chi2::ParallelFor parallel = [&ctx](std::size_t n, const std::function<void(std::size_t)>& body) {
-        ctx.parallel_for(n, body);
-    };
-    return chi2::run_chi2_test(binning, ctx.options().samples, generate, pdf, options, parallel);
+    return chi2::run_chi2_test(binning, ctx.options().samples, generate, pdf, options, ctx.executor());
 }
 
 /// The judge part. The rules that need no significance level (NaN or outside

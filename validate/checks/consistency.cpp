@@ -46,14 +46,6 @@ struct Stats {
     }
 };
 
-double domain_slack(const chi2::Domain& d) {
-    switch (d.kind) {
-        case chi2::DomainKind::SphericalCap: return 1e-5;
-        case chi2::DomainKind::Disk: return 1e-6;
-        default: return 0.0;
-    }
-}
-
 bool finite_point(const chi2::DomainPoint& p, int dims) {
     for (int k = 0; k < dims; ++k)
         if (!std::isfinite(p[static_cast<std::size_t>(k)])) return false;
@@ -61,14 +53,14 @@ bool finite_point(const chi2::DomainPoint& p, int dims) {
 }
 
 /// Sorts one sample into the kinds of violation (or none).
-void classify(Stats& s, const chi2::Domain& domain, double slack, uint64_t index, const Example& e) {
+void classify(Stats& s, const chi2::Domain& domain, uint64_t index, const Example& e) {
     ++s.count;
     const chi2::DomainPoint p = to_domain_point(e.output);
     if (!finite_point(p, domain.point_dimension())) {
         s.nan_sample.add(index, e);
         return;
     }
-    if (!domain.contains(p, slack)) s.outside.add(index, e);
+    if (!domain.contains(p)) s.outside.add(index, e);
     if (!std::isfinite(e.pdf) || e.pdf < 0.0) {
         s.bad_pdf.add(index, e);
     } else if (e.pdf == 0.0) {
@@ -82,7 +74,6 @@ void classify(Stats& s, const chi2::Domain& domain, double slack, uint64_t index
 
 Stats compute(const WarpCase& warp, const CheckContext& ctx) {
     const chi2::Domain& domain = warp.domain();
-    const double slack = domain_slack(domain);
     auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, true,
                                          [&](std::size_t chunk, std::span<const WarpInput> inputs) {
         Stats s;
@@ -91,7 +82,7 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx) {
         warp.sample(inputs, x);
         warp.pdf(x, pdf);
         for (std::size_t i = 0; i < inputs.size(); ++i)
-            classify(s, domain, slack, chunk * kInputChunkSize + i, {inputs[i], x[i], pdf[i]});
+            classify(s, domain, chunk * kInputChunkSize + i, {inputs[i], x[i], pdf[i]});
         return s;
     });
     return merge_in_order(parts);

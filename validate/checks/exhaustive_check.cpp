@@ -46,6 +46,52 @@ std::string binade_label(const BinadeCount& b) {
     return fmt::format("{}[2^{}, 2^{})", b.sign > 0 ? "" : "-", b.exponent, b.exponent + 1);
 }
 
+// ---- evidence: multiplicity per binade (plot), every binade and the outside
+// outputs (tables) ----
+void add_evidence(CheckResult& r, const SweepSummary& s, const std::string& grid) {
+    Plot p;
+    p.kind = Plot::Kind::Lines;
+    p.title = "Multiplicity per binade (" + grid + ")";
+    p.x_label = "binade exponent e: [2^e, 2^(e+1)), -127 the denormals (positive side; the table has both)";
+    p.y_label = "inputs per float";
+    p.log_y = true;
+    Series mn{"min", {}, {}}, ideal{"ideal", {}, {}}, mx{"max", {}, {}};
+    for (const BinadeCount& bc : s.binades) {
+        if (bc.sign < 0) continue;  // the plot shows the positive side; the table has both
+        const double x = bc.exponent;
+        // log axis: a zero minimum is drawn at the bottom (NaN leaves a gap).
+        mn.x.push_back(x);
+        mn.y.push_back(bc.min_multiplicity > 0 ? static_cast<double>(bc.min_multiplicity) : std::nan(""));
+        ideal.x.push_back(x);
+        ideal.y.push_back(bc.ideal);
+        mx.x.push_back(x);
+        mx.y.push_back(bc.max_multiplicity > 0 ? static_cast<double>(bc.max_multiplicity) : std::nan(""));
+    }
+    p.series = {std::move(mn), std::move(ideal), std::move(mx)};
+    if (!p.series[0].x.empty()) r.plots.push_back(std::move(p));
+
+    Table t{"Per binade (highest first)",
+            {"binade", "floats", "produced", "ideal", "min", "max", "first float", "pattern (even/odd)",
+             "sum |m - ideal| / inputs"},
+            {}};
+    for (auto it = s.binades.rbegin(); it != s.binades.rend(); ++it) {
+        const BinadeCount& bc = *it;
+        if (bc.inputs == 0 && bc.ideal < 1e-3 && t.rows.size() > 40) continue;  // keep the table readable
+        t.rows.push_back({binade_label(bc), std::to_string(bc.floats), std::to_string(bc.distinct),
+                          fmt::format("{:.6g}", bc.ideal), std::to_string(bc.min_multiplicity),
+                          std::to_string(bc.max_multiplicity), std::to_string(bc.edge_multiplicity),
+                          bc.pattern().empty() ? std::string("-") : bc.pattern(),
+                          fmt::format("{:.3g}", bc.abs_deviation / static_cast<double>(s.inputs))});
+    }
+    r.tables.push_back(std::move(t));
+    if (!s.outside_values.empty()) {
+        Table o{"Outputs outside [a, b)", {"value", "inputs"}, {}};
+        for (const OutsideValue& v : s.outside_values)
+            o.rows.push_back({fmt::format("{} ({:a})", v.value, v.value), std::to_string(v.inputs)});
+        r.tables.push_back(std::move(o));
+    }
+}
+
 class ExhaustiveCheck final : public Check {
 public:
     std::string name() const override { return "exhaustive"; }
@@ -68,9 +114,7 @@ public:
         const auto a = static_cast<float>(warp.domain().a);
         const auto b = static_cast<float>(warp.domain().b);
 
-        const SweepSummary s = exhaustive_sweep(fn, inputs, a, b, [&ctx](std::size_t n, const auto& body) {
-            ctx.parallel_for(n, body);
-        });
+        const SweepSummary s = exhaustive_sweep(fn, inputs, a, b, ctx.executor());
 
         CheckResult r;
         r.samples = s.inputs;
@@ -131,47 +175,7 @@ public:
                                     grid, s.tv_distance, max_rel);
         }
 
-        Plot p;
-        p.kind = Plot::Kind::Lines;
-        p.title = "Multiplicity per binade (" + grid + ")";
-        p.x_label = "binade exponent e: [2^e, 2^(e+1)), -127 the denormals (positive side; the table has both)";
-        p.y_label = "inputs per float";
-        p.log_y = true;
-        Series mn{"min", {}, {}}, ideal{"ideal", {}, {}}, mx{"max", {}, {}};
-        for (const BinadeCount& bc : s.binades) {
-            if (bc.sign < 0) continue;  // the plot shows the positive side; the table has both
-            const double x = bc.exponent;
-            // log axis: a zero minimum is drawn at the bottom (NaN leaves a gap).
-            mn.x.push_back(x);
-            mn.y.push_back(bc.min_multiplicity > 0 ? static_cast<double>(bc.min_multiplicity) : std::nan(""));
-            ideal.x.push_back(x);
-            ideal.y.push_back(bc.ideal);
-            mx.x.push_back(x);
-            mx.y.push_back(bc.max_multiplicity > 0 ? static_cast<double>(bc.max_multiplicity) : std::nan(""));
-        }
-        p.series = {std::move(mn), std::move(ideal), std::move(mx)};
-        if (!p.series[0].x.empty()) r.plots.push_back(std::move(p));
-
-        Table t{"Per binade (highest first)",
-                {"binade", "floats", "produced", "ideal", "min", "max", "first float", "pattern (even/odd)",
-                 "sum |m - ideal| / inputs"},
-                {}};
-        for (auto it = s.binades.rbegin(); it != s.binades.rend(); ++it) {
-            const BinadeCount& bc = *it;
-            if (bc.inputs == 0 && bc.ideal < 1e-3 && t.rows.size() > 40) continue;  // keep the table readable
-            t.rows.push_back({binade_label(bc), std::to_string(bc.floats), std::to_string(bc.distinct),
-                              fmt::format("{:.6g}", bc.ideal), std::to_string(bc.min_multiplicity),
-                              std::to_string(bc.max_multiplicity), std::to_string(bc.edge_multiplicity),
-                              bc.pattern().empty() ? std::string("-") : bc.pattern(),
-                              fmt::format("{:.3g}", bc.abs_deviation / static_cast<double>(s.inputs))});
-        }
-        r.tables.push_back(std::move(t));
-        if (!s.outside_values.empty()) {
-            Table o{"Outputs outside [a, b)", {"value", "inputs"}, {}};
-            for (const OutsideValue& v : s.outside_values)
-                o.rows.push_back({fmt::format("{} ({:a})", v.value, v.value), std::to_string(v.inputs)});
-            r.tables.push_back(std::move(o));
-        }
+        add_evidence(r, s, grid);
         return r;
     }
 };

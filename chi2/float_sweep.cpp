@@ -1,4 +1,4 @@
-#include "validate/exhaustive_sweep.h"
+#include "chi2/float_sweep.h"
 
 #include <algorithm>
 #include <array>
@@ -14,8 +14,14 @@
 #include <mutex>
 #include <stdexcept>
 
-namespace warpcheck {
+namespace warpcheck::chi2 {
 namespace {
+
+// IEEE-754 binary32 layout (chi2 includes nothing from sampling/).
+constexpr uint32_t kFloatSignMask = 0x80000000u;
+constexpr int kFloatExponentBias = 127;
+inline uint32_t float_to_bits(float x) { return std::bit_cast<uint32_t>(x); }
+inline float bits_to_float(uint32_t b) { return std::bit_cast<float>(b); }
 
 constexpr uint64_t kChunkSize = uint64_t{1} << 22;  // inputs per chunk: fixed, so counts ignore threads
 constexpr std::size_t kBlockSize = 1024;            // outputs evaluated per call of f
@@ -562,4 +568,4 @@ SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, fl
     return s;
 }
 
-}  // namespace warpcheck
+}  // namespace warpcheck::chi2
