@@ -18,6 +18,15 @@ struct UnitInterval {  // the identity warp on [0,1): healthy
     float invert(float x) const { return x; }
 };
 
+void add_healthy(warpcheck::Registry& registry, const char* family) {
+    registry.add_case(warpcheck::make_warp_case({.family = family,
+                                                 .params = {},
+                                                 .description = "identity on [0,1)",
+                                                 .input = warpcheck::InputKind::Uniform1D,
+                                                 .domain = warpcheck::chi2::Domain::interval(0, 1)},
+                                                UnitInterval{}));
+}
+
 template <class Misbehave>
 void add(warpcheck::Registry& registry, const char* family, Misbehave misbehave) {
     registry.add_case(warpcheck::make_warp_case(
@@ -36,12 +45,7 @@ void add(warpcheck::Registry& registry, const char* family, Misbehave misbehave)
 }  // namespace
 
 void warpcheck_register(warpcheck::Registry& registry) {
-    registry.add_case(warpcheck::make_warp_case({.family = "healthy_a",
-                                                 .params = {},
-                                                 .description = "identity on [0,1)",
-                                                 .input = warpcheck::InputKind::Uniform1D,
-                                                 .domain = warpcheck::chi2::Domain::interval(0, 1)},
-                                                UnitInterval{}));
+    add_healthy(registry, "healthy_a");
     add(registry, "hostile_segfault", [] { std::raise(SIGSEGV); });
     add(registry, "hostile_abort", [] { std::abort(); });
     add(registry, "hostile_exit", [] { std::exit(0); });
@@ -56,10 +60,5 @@ void warpcheck_register(warpcheck::Registry& registry) {
         static std::vector<std::vector<char>> hoard;
         for (;;) hoard.emplace_back(std::size_t{16} << 20);
     });
-    registry.add_case(warpcheck::make_warp_case({.family = "healthy_b",
-                                                 .params = {},
-                                                 .description = "identity on [0,1)",
-                                                 .input = warpcheck::InputKind::Uniform1D,
-                                                 .domain = warpcheck::chi2::Domain::interval(0, 1)},
-                                                UnitInterval{}));
+    add_healthy(registry, "healthy_b");
 }

@@ -31,7 +31,9 @@ fail() { echo "FAIL: $*"; cat "$work/stderr.txt"; exit 1; }
 errors=$(grep -c "^ERROR" "$work/table.txt")
 [ "$errors" -eq "${#expected[@]}" ] || fail "$errors ERROR rows, expected ${#expected[@]}"
 row() { grep -A3 "$1" "$work/table.txt" "$work/hostile.json" | grep -q "$2" || fail "$1 does not say '$2'"; }
-row hostile_exit "called exit(0) before returning a result"
+# (LeakSanitizer may turn exit(0)'s status into its own.)
+[ "${3:-}" = --no-crashes ] && row hostile_exit "before returning a result" \
+  || row hostile_exit "called exit(0) before returning a result"
 row hostile_busy_loop "over its CPU time budget of 1 s"
 row hostile_sleep "did not finish within 10 s of wall time"
 if [ "${3:-}" != --no-crashes ]; then

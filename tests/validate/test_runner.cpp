@@ -71,34 +71,6 @@ TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
     EXPECT_NE(run.results[0].rerun_command.find("--filter 'thrower' --check roundtrip"), std::string::npos);
 }
 
-// A rejection loop that never accepts must not hang the run: its worker is
-// killed when its CPU time budget runs out, and the other checks finish.
-TEST(Runner, SamplerThatNeverTerminatesIsAnErrorAfterItsBudget) {
-    auto stuck = make_warp_case({"never_accepts", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                                [](Point2f u) {
-                                    volatile float candidate = u.x;
-                                    while (candidate < 2.0f) candidate = candidate * 0.5f;  // never accepts
-                                    return UniformHemisphere{}.sample(u);
-                                },
-                                [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
-                                [](Vector3f x) { return UniformHemisphere{}.invert(x); });
-    const auto check = make_roundtrip_check();
-    auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, UniformHemisphere{});
-    RunOptions options;
-    options.samples = 100'000;
-    options.threads = 2;
-    options.check_time_budget = 1.0;
-    Isolation isolation;
-    isolation.enabled = true;
-    const RunResult run = run_jobs({{stuck.get(), check.get()}, {fine.get(), check.get()}}, options, {}, isolation);
-    ASSERT_EQ(run.results.size(), 2u);
-    EXPECT_EQ(run.results[0].verdict, Verdict::Error);
-    EXPECT_NE(run.results[0].message.find("over its CPU time budget of 1 s"), std::string::npos)
-        << run.results[0].message;
-    EXPECT_EQ(run.results[1].verdict, Verdict::Pass) << run.results[1].message;
-    EXPECT_EQ(run.info.abandoned_checks, 1);
-}
-
 // Figures must be bit-identical for any thread count, and for a case run alone
 // or among others. One case of each family, so every check type takes part:
 // consistency, roundtrip, chi2, tabulated, exhaustive, binade.
