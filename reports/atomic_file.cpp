@@ -1,10 +1,13 @@
 #include "reports/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -31,12 +34,31 @@ fs::path temporary_path_for(const fs::path& target) {
     return folder / fmt::format(".{}.tmp-{}-{}", target.filename().string(), ::getpid(), counter++);
 }
 
+// The temporary file being written, for the signal handler: a fixed buffer,
+// since a handler may not allocate. One write at a time is in progress.
+std::array<char, 4096> g_temporary_name{};
+std::atomic<bool> g_temporary_active{false};
+
+extern "C" void remove_temporary_and_reraise(int sig) {
+    if (g_temporary_active.load()) ::unlink(g_temporary_name.data());
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
 /// Closes and deletes the temporary file unless released.
 struct TemporaryFile {
     fs::path path;
     int fd = -1;
     bool keep = false;
+    explicit TemporaryFile(fs::path p) : path(std::move(p)) {
+        const std::string& name = path.native();
+        if (name.size() < g_temporary_name.size()) {
+            std::memcpy(g_temporary_name.data(), name.c_str(), name.size() + 1);
+            g_temporary_active = true;
+        }
+    }
     ~TemporaryFile() {
+        g_temporary_active = false;
         if (fd >= 0) ::close(fd);
         if (!keep) {
             std::error_code ignored;
@@ -45,14 +67,61 @@ struct TemporaryFile {
     }
 };
 
+/// Follows symbolic links one at a time, so that a dangling link leads to the
+/// file it would create.
+fs::path follow_links(fs::path p) {
+    std::error_code ec;
+    for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+        const fs::path next = fs::read_symlink(p, ec);
+        if (ec) break;
+        p = next.is_absolute() ? next : p.parent_path() / next;
+    }
+    return p;
+}
+
 }  // namespace
+
+std::string resolved_output_path(const std::string& path) {
+    std::error_code ec;
+    const fs::path p = follow_links(fs::absolute(path, ec));
+    const fs::path canonical = fs::weakly_canonical(p, ec);
+    return (ec ? p : canonical).lexically_normal().string();
+}
+
+std::string output_path_problem(const std::string& path) {
+    if (path.empty()) return "empty path";
+    const fs::path target = follow_links(fs::path(path));
+    struct stat st {};
+    if (::stat(target.c_str(), &st) == 0) {
+        if (S_ISDIR(st.st_mode)) return "it is a directory";
+        if (!S_ISREG(st.st_mode)) return "it is not a regular file (a device, FIFO or socket)";
+    }
+    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return "folder " + dir.string() + " does not exist";
+    if (::access(dir.c_str(), W_OK) != 0) return "folder " + dir.string() + " is not writable";
+    return {};
+}
+
+void remove_temporary_files_on_signals() {
+    for (int sig : {SIGINT, SIGTERM}) {
+        struct sigaction action {};
+        action.sa_handler = remove_temporary_and_reraise;
+        sigemptyset(&action.sa_mask);
+        sigaction(sig, &action, nullptr);
+    }
+}
 
 void write_file_atomically(const std::string& path, std::string_view contents) {
     if (path.empty()) fail(path, "empty path");
-    const fs::path target(path);
-    if (!target.has_filename()) fail(path, "not a file name");
+    if (!fs::path(path).has_filename()) fail(path, "not a file name");
+    // Through a symbolic link to its target: the link is the user's, and stays.
+    const fs::path target = follow_links(fs::path(path));
     std::error_code ec;
     if (fs::is_directory(target, ec)) fail(path, "is a directory");
+    struct stat existing {};
+    const bool exists = ::stat(target.c_str(), &existing) == 0;
+    if (exists && !S_ISREG(existing.st_mode)) fail(path, "not a regular file (a device, FIFO or socket)");
 
     TemporaryFile temporary{temporary_path_for(target)};
     temporary.fd = ::open(temporary.path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
@@ -60,6 +129,8 @@ void write_file_atomically(const std::string& path, std::string_view contents) {
         temporary.keep = true;  // nothing was created
         fail(path, std::strerror(errno));
     }
+    // A file replaced keeps its permissions (a report kept private stays private).
+    if (exists && ::fchmod(temporary.fd, existing.st_mode & 07777) != 0) fail(path, std::strerror(errno));
     const char* data = contents.data();
     std::size_t left = contents.size();
     while (left > 0) {

@@ -8,9 +8,23 @@
 
 namespace warpcheck {
 
-/// Replaces the file at `path` with `contents` atomically. On any failure the
-/// target is left as it was, the temporary file is removed, and ReportError
-/// (reports/outputs.h) is thrown: "cannot write <path>: <reason>".
+/// Replaces the file at `path` with `contents` atomically. A symbolic link is
+/// followed: its target is replaced and the link stays. An existing file keeps
+/// its permissions. On any failure the target is left as it was, the temporary
+/// file is removed, and ReportError (reports/outputs.h) is thrown:
+/// "cannot write <path>: <reason>" (a device, FIFO or socket is refused).
 void write_file_atomically(const std::string& path, std::string_view contents);
+
+/// Where a write to `path` lands: the path with its symbolic links followed
+/// (also a dangling link's target), made absolute.
+std::string resolved_output_path(const std::string& path);
+
+/// Empty if `path` could be written by write_file_atomically (its folder exists
+/// and is writable; it is not a folder, device, FIFO or socket), else why not.
+std::string output_path_problem(const std::string& path);
+
+/// Installs SIGINT and SIGTERM handlers that remove the temporary file of a
+/// write in progress before the process ends as the signal says.
+void remove_temporary_files_on_signals();
 
 }  // namespace warpcheck

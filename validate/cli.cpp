@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cmath>
@@ -13,11 +14,14 @@
 #include <iostream>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "reports/atomic_file.h"
 #include "reports/outputs.h"
+#include "reports/render.h"
 #include "reports/progress.h"
 #include "reports/terminal_table.h"
 #include "validate/runner.h"
@@ -35,28 +39,56 @@ struct CliOptions {
     std::vector<std::string> filters;
     std::vector<std::string> checks;
     std::string report_path, json_path, junit_path;
+    bool no_isolation = false;
+    uint64_t memory_limit_mib = 8192;
 };
 
-// An output path is usable when its folder exists and is writable; checked
-// before the run so that a typo does not cost a whole run.
-bool output_path_usable(const std::string& path, std::string& why) {
-    namespace fs = std::filesystem;
-    const fs::path p(path);
-    std::error_code ec;
-    if (fs::is_directory(p, ec)) {
-        why = "it is a directory";
-        return false;
+struct Output {
+    const char* option;
+    const std::string* path;
+    std::string (*render)(const RunResult&);
+};
+
+std::vector<Output> requested_outputs(const CliOptions& o) {
+    std::vector<Output> outputs;
+    for (const Output& out : {Output{"--report", &o.report_path, render_html}, Output{"--json", &o.json_path, render_json},
+                              Output{"--junit", &o.junit_path, render_junit}})
+        if (!out.path->empty()) outputs.push_back(out);
+    return outputs;
+}
+
+// Every output is probed before the run, so that a typo does not cost a whole
+// run: '-' (standard output) at most once, each path writable, no two outputs
+// landing in the same file. Returns the problem, or empty.
+std::string output_problem(const std::vector<Output>& outputs) {
+    std::set<std::string> targets;
+    int to_stdout = 0;
+    for (const Output& out : outputs) {
+        if (*out.path == "-") {
+            if (++to_stdout > 1) return "only one output can be '-' (standard output)";
+            continue;
+        }
+        if (const std::string why = output_path_problem(*out.path); !why.empty())
+            return fmt::format("cannot write '{}' ({}): {}", *out.path, out.option, why);
+        if (!targets.insert(resolved_output_path(*out.path)).second)
+            return fmt::format("'{}' ({}) is the same file as another output", *out.path, out.option);
     }
-    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    if (!fs::is_directory(dir, ec)) {
-        why = "folder " + dir.string() + " does not exist";
-        return false;
+    return {};
+}
+
+// Writes every output it can, even after one failed; false if any failed.
+bool write_outputs(const std::vector<Output>& outputs, const RunResult& run) {
+    bool ok = true;
+    for (const Output& out : outputs) {
+        try {
+            if (*out.path == "-") std::cout << out.render(run) << std::flush;
+            else write_file_atomically(*out.path, out.render(run));
+        } catch (const std::exception& e) {
+            std::cerr << "validate: " << out.option << ": " << e.what() << "\n";
+            ok = false;
+        }
     }
-    if (access(dir.c_str(), W_OK) != 0) {
-        why = "folder " + dir.string() + " is not writable";
-        return false;
-    }
-    return true;
+    return ok;
 }
 
 // CLI::Range lets NaN through (every comparison with NaN is false): a value
@@ -106,6 +138,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     // A reader that closes early (`validate --all | head`) must not kill the run
     // before the reports are written; a failed write to stdout is reported below.
     std::signal(SIGPIPE, SIG_IGN);
+    remove_temporary_files_on_signals();
     CliOptions o;
     CLI::App app{"warpcheck validate: statistical and exhaustive checks of sampling routines (warps).\n"
                  "Exit status: 0 all passed, 1 a check failed or errored, 2 bad usage.",
@@ -132,12 +165,27 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
     app.add_flag("--include-flawed", o.run.include_flawed,
                  "Also run the cases that demonstrate known flaws (e.g. u * 2^-32 reaching 1.0); they fail");
-    app.add_option("--report", o.report_path, "Write a self-contained HTML report")->type_name("FILE");
-    app.add_option("--json", o.json_path, "Write the results as JSON")->type_name("FILE");
-    app.add_option("--junit", o.junit_path, "Write the results as JUnit XML")->type_name("FILE");
+    // A symbolic link is written through to its target; '-' is standard output
+    // (for one of the three; the table then goes to standard error).
+    app.add_option("--report", o.report_path, "Write a self-contained HTML report ('-': standard output)")
+        ->type_name("FILE");
+    app.add_option("--json", o.json_path, "Write the results as JSON ('-': standard output)")->type_name("FILE");
+    app.add_option("--junit", o.junit_path, "Write the results as JUnit XML ('-': standard output)")
+        ->type_name("FILE");
     app.add_option("--time-budget", o.run.check_time_budget,
-                   "Seconds one check may take before it is reported as an error and abandoned")
+                   "CPU seconds one check may use (rounded up to whole seconds) before its worker is killed and the "
+                   "check reported as an error; a worker asleep for 10x the budget in wall time is killed too. With "
+                   "--no-isolation the check is only asked to stop after this many wall seconds, and a warp that "
+                   "never returns hangs the run")
         ->check(kFinite & CLI::Range(0.1, 86400.0))
+        ->capture_default_str();
+    app.add_flag("--no-isolation", o.no_isolation,
+                 "Run the checks in this process instead of one worker process per check (for debuggers): a "
+                 "crash, exit() or endless loop in a warp then takes the whole run down");
+    app.add_option("--memory-limit", o.memory_limit_mib,
+                   "Address space in MiB each check's worker may use (0: no limit); a check over it is an error. "
+                   "Not applied under AddressSanitizer")
+        ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 30))
         ->capture_default_str();
     app.add_flag("--failures-only", o.failures_only, "Print only the rows that did not pass");
     app.add_option("--color", o.color, "Colour the table: auto, always, never")
@@ -180,12 +228,10 @@ int run_cli(int argc, char** argv, const Registry& registry) {
             return kExitUsage;
         }
     }
-    for (const auto* path : {&o.report_path, &o.json_path, &o.junit_path}) {
-        std::string why;
-        if (!path->empty() && !output_path_usable(*path, why)) {
-            std::cerr << fmt::format("validate: cannot write '{}': {}\n", *path, why);
-            return kExitUsage;
-        }
+    const std::vector<Output> outputs = requested_outputs(o);
+    if (const std::string problem = output_problem(outputs); !problem.empty()) {
+        std::cerr << "validate: " << problem << "\n";
+        return kExitUsage;
     }
 
     if (o.list) {
@@ -200,7 +246,10 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         return kExitUsage;
     }
 
-    RunResult run = run_jobs(jobs, o.run, stderr_progress());
+    Isolation isolation;
+    isolation.enabled = !o.no_isolation;
+    isolation.memory_limit = o.memory_limit_mib << 20;
+    RunResult run = run_jobs(jobs, o.run, stderr_progress(), isolation);
     std::ostringstream command;
     for (int i = 0; i < argc; ++i) command << (i ? " " : "") << argv[i];
     run.info.command_line = command.str();
@@ -209,16 +258,11 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     TableStyle style;
     style.color = o.color == "always" || (o.color == "auto" && isatty(STDOUT_FILENO));
     style.failures_only = o.failures_only;
-    print_table(run, std::cout, style);
-
-    try {
-        if (!o.report_path.empty()) write_html_report(run, o.report_path);
-        if (!o.json_path.empty()) write_json_report(run, o.json_path);
-        if (!o.junit_path.empty()) write_junit_report(run, o.junit_path);
-    } catch (const std::exception& e) {
-        std::cerr << "validate: " << e.what() << "\n";
-        return kExitUsage;
-    }
+    // With a report on standard output, the table goes to standard error.
+    const bool report_to_stdout =
+        std::any_of(outputs.begin(), outputs.end(), [](const Output& out) { return *out.path == "-"; });
+    print_table(run, report_to_stdout ? std::cerr : std::cout, style);
+    if (!write_outputs(outputs, run)) return kExitUsage;
     // A pipe whose reader left early (`| head`) is the reader's choice, not an
     // error: the exit status then still says what the checks said.
     std::cout.flush();
@@ -228,15 +272,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         std::cerr << "validate: could not write the table to standard output\n";
         return kExitUsage;
     }
-    const int status = run.all_passed() ? kExitPass : kExitFail;
-    if (run.info.abandoned_checks > 0) {
-        // A thread is still stuck in a warp that never returned; it uses the
-        // registry, so leave without running destructors.
-        std::cout.flush();
-        std::cerr.flush();
-        std::_Exit(status);
-    }
-    return status;
+    return run.all_passed() ? kExitPass : kExitFail;
 }
 
 }  // namespace warpcheck

@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <atomic>
 #include <condition_variable>
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <fmt/format.h>
@@ -95,86 +97,67 @@ std::string shell_quote(const std::string& s) {
 
 namespace {
 
-CheckResult error_result(std::string message) {
-    CheckResult r;
-    r.verdict = Verdict::Error;
-    r.summary = "error";
-    r.message = std::move(message);
-    return r;
-}
+using Clock = std::chrono::steady_clock;
 
-CheckResult run_one_job(const Job& job, const CheckContext& ctx) {
-    try {
-        return job.check->run(*job.warp, ctx);
-    } catch (const CheckCancelled& e) {
-        return error_result(e.what());
-    } catch (const std::exception& e) {
-        return error_result(fmt::format("the check could not run: {}", e.what()));
-    } catch (...) {
-        return error_result("the check could not run: unknown exception");
-    }
-}
-
-// Everything the job threads touch lives here, shared with them: a thread that
-// is abandoned (stuck in a warp that never returns) keeps it alive on its own.
-struct RunState {
-    struct Slot {
-        std::atomic<bool> cancel{false};
-        bool started = false, finished = false, abandoned = false;
-        std::chrono::steady_clock::time_point start;
-        CheckResult result;
-    };
-
-    RunState(const std::vector<Job>& j, const RunOptions& o, unsigned threads)
-        : jobs(j), options(o), pool(std::make_shared<ThreadPool>(threads)), slots(j.size()) {}
-
-    std::vector<Job> jobs;
-    RunOptions options;
-    std::shared_ptr<ThreadPool> pool;
-    std::vector<Slot> slots;
+// Jobs on `threads` job threads of this process, which share one pool for the
+// work within a job, while the calling thread watches the clock. A check over
+// its budget can only be asked to stop (CheckContext::throw_if_cancelled) and
+// is waited for: a warp that never returns hangs an in-process run.
+std::vector<CheckResult> run_jobs_in_process(const std::vector<Job>& jobs, const RunOptions& options,
+                                             unsigned threads, const ProgressCallback& progress) {
+    const std::size_t n = jobs.size();
+    std::vector<CheckResult> results(n);
+    std::vector<std::atomic<bool>> cancel(n);
+    std::vector<std::optional<Clock::time_point>> running(n);
     std::mutex mutex;
     std::condition_variable changed;
-    std::size_t next = 0;      // next job to hand out
-    std::size_t done = 0;      // finished or abandoned
-    unsigned live_threads = 0;  // job threads not abandoned and not yet exited
-    std::vector<std::size_t> current_job;  // per job thread: the job it runs
-};
-
-void job_thread(std::shared_ptr<RunState> state, ProgressCallback progress, std::size_t id) {
-    for (;;) {
-        std::size_t i;
-        {
-            std::lock_guard lock(state->mutex);
-            if (state->next == state->jobs.size()) {
-                --state->live_threads;
-                state->changed.notify_all();
-                return;
+    std::size_t next = 0, done = 0;
+    ThreadPool pool(threads);  // outlives the job threads below
+    auto job_thread = [&] {
+        for (;;) {
+            std::size_t i;
+            {
+                std::lock_guard lock(mutex);
+                if (next == n) return;
+                i = next++;
+                running[i] = Clock::now();
             }
-            i = state->next++;
-            state->current_job[id] = i;
-            state->slots[i].started = true;
-            state->slots[i].start = std::chrono::steady_clock::now();
+            const CheckContext ctx(options, pool, job_stream(*jobs[i].warp, *jobs[i].check, options.seed), &cancel[i]);
+            CheckResult r = run_job_here(jobs[i], ctx);
+            std::lock_guard lock(mutex);
+            r.seconds = std::chrono::duration<double>(Clock::now() - *running[i]).count();
+            if (cancel[i]) {
+                r.verdict = Verdict::Error;
+                r.summary = "error: over time budget";
+                r.message = fmt::format("did not finish within its time budget of {} s (wall time, in-process run)",
+                                        options.check_time_budget);
+            }
+            results[i] = std::move(r);
+            running[i].reset();
+            ++done;
+            if (progress) progress(done, n, jobs[i].check->name() + " " + jobs[i].warp->name());
+            changed.notify_all();
         }
-        const Job& job = state->jobs[i];
-        auto& slot = state->slots[i];
-        const CheckContext ctx(state->options, *state->pool, job_stream(*job.warp, *job.check, state->options.seed),
-                               &slot.cancel);
-        CheckResult r = run_one_job(job, ctx);
-        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - slot.start).count();
-        std::lock_guard lock(state->mutex);
-        if (slot.abandoned) return;  // reported already; a replacement thread took over
-        slot.result = std::move(r);
-        slot.finished = true;
-        ++state->done;
-        if (progress) progress(state->done, state->jobs.size(), job.check->name() + " " + job.warp->name());
-        state->changed.notify_all();
+    };
+    std::vector<std::jthread> job_threads;
+    for (std::size_t t = 0; t < std::min<std::size_t>(threads, n); ++t) job_threads.emplace_back(job_thread);
+    const auto budget = std::chrono::duration<double>(options.check_time_budget);
+    std::unique_lock lock(mutex);
+    while (done < n) {
+        changed.wait_for(lock, std::chrono::milliseconds(50));
+        for (std::size_t i = 0; i < n; ++i)
+            if (running[i] && Clock::now() - *running[i] > budget) cancel[i] = true;
     }
+    lock.unlock();
+    job_threads.clear();  // joins
+    return results;
 }
 
 }  // namespace
 
-RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, const ProgressCallback& progress) {
-    const auto start = std::chrono::steady_clock::now();
+RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, const ProgressCallback& progress,
+                   const Isolation& isolation) {
+    const auto start = Clock::now();
     const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
 
     RunResult run;
@@ -185,68 +168,21 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
     run.info.machine = machine_description();
     run.info.started_at = utc_now();
 
-    // Jobs run on their own threads, `threads` at a time, while this thread
-    // watches the clock: a job over its budget is reported as an error, told
-    // to stop, and left behind, and a fresh thread takes its place. Within a
-    // job, work is split over the shared pool; a caller always works on its own
-    // loop, so jobs progress even when pool threads are stuck.
-    auto state = std::make_shared<RunState>(jobs, options, threads);
-    std::vector<std::thread> job_threads;
-    std::vector<bool> stuck;
-    auto spawn = [&] {  // with state->mutex held
-        ++state->live_threads;
-        state->current_job.push_back(jobs.size());
-        stuck.push_back(false);
-        job_threads.emplace_back(job_thread, state, progress, job_threads.size());
-    };
-    const auto budget = std::chrono::duration<double>(options.check_time_budget);
-    {
-        std::unique_lock lock(state->mutex);
-        for (unsigned t = 0; t < std::min<std::size_t>(threads, jobs.size()); ++t) spawn();
-        while (state->done < jobs.size() || state->live_threads > 0) {
-            // Wake for every finished job, and at least every 50 ms to look at the clock.
-            state->changed.wait_for(lock, std::chrono::milliseconds(50));
-            const auto now = std::chrono::steady_clock::now();
-            for (std::size_t i = 0; i < jobs.size(); ++i) {
-                auto& slot = state->slots[i];
-                if (!slot.started || slot.finished || slot.abandoned || now - slot.start < budget) continue;
-                slot.abandoned = true;
-                slot.cancel = true;
-                slot.result = error_result(fmt::format(
-                    "did not finish within the time budget of {} s (a sampler that never terminates?); "
-                    "the check was abandoned",
-                    options.check_time_budget));
-                slot.result.summary = "error: over time budget";
-                slot.result.seconds = options.check_time_budget;
-                ++state->done;
-                ++run.info.abandoned_checks;
-                --state->live_threads;  // the stuck thread no longer counts
-                for (std::size_t t = 0; t < job_threads.size(); ++t)
-                    if (state->current_job[t] == i) stuck[t] = true;
-                if (progress) progress(state->done, jobs.size(), jobs[i].check->name() + " " + jobs[i].warp->name());
-                if (state->next < jobs.size()) spawn();
-            }
-        }
-        run.results.reserve(jobs.size());
-        for (std::size_t i = 0; i < jobs.size(); ++i) {
-            CheckResult r = std::move(state->slots[i].result);
-            const StreamId stream = job_stream(*jobs[i].warp, *jobs[i].check, options.seed);
-            r.case_name = jobs[i].warp->name();
-            r.check_name = jobs[i].check->name();
-            r.stream_seed = stream.seed;
-            r.stream_sequence = stream.sequence;
-            r.rerun_command = fmt::format("validate --filter {} --check {} --seed {} --samples {}",
-                                          shell_quote(r.case_name), r.check_name, options.seed, options.samples);
-            run.results.push_back(std::move(r));
-        }
+    run.results = isolation.enabled
+                      ? run_jobs_isolated(jobs, options, isolation, threads, progress, run.info.abandoned_checks)
+                      : run_jobs_in_process(jobs, options, threads, progress);
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        CheckResult& r = run.results[i];
+        const StreamId stream = job_stream(*jobs[i].warp, *jobs[i].check, options.seed);
+        r.case_name = jobs[i].warp->name();
+        r.check_name = jobs[i].check->name();
+        r.stream_seed = stream.seed;
+        r.stream_sequence = stream.sequence;
+        r.rerun_command = fmt::format("validate --filter {} --check {} --seed {} --samples {}",
+                                      shell_quote(r.case_name), r.check_name, options.seed, options.samples);
     }
-    for (std::size_t t = 0; t < job_threads.size(); ++t) {
-        if (stuck[t]) job_threads[t].detach();  // it holds `state`, so what it uses stays alive
-        else job_threads[t].join();
-    }
-
     apply_multiple_test_correction(run, options.alpha);
-    run.info.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run.info.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return run;
 }
 

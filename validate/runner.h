@@ -12,6 +12,7 @@
 #include "validate/registry.h"
 #include "reports/progress_callback.h"
 #include "reports/result.h"
+#include "validate/worker.h"
 
 namespace warpcheck {
 
@@ -31,9 +32,13 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
                              const std::vector<std::string>& check_names, const RunOptions& options);
 
 /// Runs the jobs and returns their results in job order. Exceptions from a check
-/// become Error results; the run goes on. Statistical results get their verdict
-/// from the Šidák-corrected level over all results that carry a p-value.
-RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, const ProgressCallback& progress = {});
+/// become Error results; the run goes on. With isolation, so do crashes, exits,
+/// runaway allocation and checks over their CPU time budget (validate/worker.h);
+/// without, a check over its budget is asked to stop and waited for. Statistical
+/// results get their verdict from the Šidák-corrected level over all results
+/// that carry a p-value. The figures are the same either way.
+RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, const ProgressCallback& progress = {},
+                   const Isolation& isolation = {});
 
 /// Applies the Šidák-corrected level (chi2/multiple_testing.h) to every result with a p-value: a p-value below the level,
 /// or NaN, fails.

@@ -1,3 +1,5 @@
+#include <sys/stat.h>
+
 #include <filesystem>
 
 #include <gmock/gmock.h>
@@ -71,6 +73,47 @@ TEST(AtomicFile, FailureLeavesTheTargetAsItWas) {
     }
     EXPECT_TRUE(fs::is_directory(target));
     EXPECT_EQ(read_file((target / "inside.txt").string()), "kept");
+    EXPECT_EQ(entries(dir.path()), 1u);
+}
+
+TEST(AtomicFile, SymlinkIsWrittenThroughAndKept) {
+    TempDir dir;
+    const fs::path target = dir.path() / "target.txt", link = dir.path() / "link.txt";
+    write_file_atomically(target.string(), "old");
+    fs::create_symlink("target.txt", link);  // relative, as users make them
+    write_file_atomically(link.string(), "new");
+    EXPECT_TRUE(fs::is_symlink(link));
+    EXPECT_EQ(read_file(target.string()), "new");
+    EXPECT_EQ(resolved_output_path(link.string()), resolved_output_path(target.string()));
+    // A dangling link creates the file it points at.
+    fs::create_symlink("made.txt", dir.path() / "dangling.txt");
+    write_file_atomically((dir.path() / "dangling.txt").string(), "made");
+    EXPECT_EQ(read_file((dir.path() / "made.txt").string()), "made");
+    EXPECT_TRUE(fs::is_symlink(dir.path() / "dangling.txt"));
+}
+
+TEST(AtomicFile, ReplacedFileKeepsItsPermissions) {
+    TempDir dir;
+    const std::string path = dir.file("private.json");
+    write_file_atomically(path, "a");
+    ASSERT_EQ(::chmod(path.c_str(), 0600), 0);
+    write_file_atomically(path, "b");
+    struct stat st {};
+    ASSERT_EQ(::stat(path.c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, 0600u);
+    EXPECT_EQ(read_file(path), "b");
+}
+
+TEST(AtomicFile, SpecialFilesAreRefused) {
+    TempDir dir;
+    const std::string fifo = dir.file("fifo");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_THAT(output_path_problem(fifo), HasSubstr("not a regular file"));
+    EXPECT_THROW(write_file_atomically(fifo, "x"), ReportError);
+    EXPECT_THAT(output_path_problem("/dev/null"), HasSubstr("not a regular file"));
+    EXPECT_THAT(output_path_problem(dir.path().string()), HasSubstr("directory"));
+    EXPECT_THAT(output_path_problem(dir.file("missing/x")), HasSubstr("does not exist"));
+    EXPECT_EQ(output_path_problem(dir.file("fine.json")), "");
     EXPECT_EQ(entries(dir.path()), 1u);
 }
 

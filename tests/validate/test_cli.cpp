@@ -1,6 +1,13 @@
 // The validate command: exit statuses and messages for good and bad input.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 #include "support/run_command.h"
 
 namespace warpcheck {
@@ -71,6 +78,84 @@ TEST(Cli, BadInputExitsTwoWithAMessage) {
         EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
         EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
     }
+}
+
+// A full case name with commas in its parameters is one filter, not three.
+TEST(Cli, FilterIsTakenVerbatim) {
+    const auto r =
+        run_validate("--filter 'trowbridge_reitz_visible[ax=0.3,ay=0.05,theta_o=60]' --check roundtrip --samples 10000");
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("1 checks: 1 passed"), std::string::npos) << r.output;
+}
+
+namespace fs = std::filesystem;
+
+// A scratch folder for the output tests, removed afterwards.
+struct Scratch {
+    fs::path dir = fs::temp_directory_path() / ("warpcheck-cli-" + std::to_string(::getpid()));
+    Scratch() {
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    ~Scratch() {
+        std::error_code ignored;
+        fs::remove_all(dir, ignored);
+    }
+    std::string operator/(const std::string& name) const { return (dir / name).string(); }
+};
+
+std::string contents(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+constexpr const char* kQuickRun = "--filter uniform_cone --check roundtrip --samples 10000 ";
+
+TEST(CliOutputs, SymlinkIsWrittenThroughAndPermissionsAreKept) {
+    Scratch scratch;
+    const std::string target = scratch / "results.json", link = scratch / "latest.json";
+    { std::ofstream(target) << "old"; }
+    ::chmod(target.c_str(), 0600);
+    fs::create_symlink(target, link);
+    const auto r = run_validate(std::string(kQuickRun) + "--json " + link);
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::is_symlink(link)) << "the link stays a link";
+    EXPECT_NE(contents(target).find("\"results\""), std::string::npos) << contents(target);
+    struct stat st {};
+    ASSERT_EQ(::stat(target.c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, 0600u);
+}
+
+TEST(CliOutputs, SpecialFilesAndClashesAreRefusedBeforeTheRun) {
+    Scratch scratch;
+    const std::string fifo = scratch / "fifo";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::string a = scratch / "a.json";
+    fs::create_symlink(a, scratch / "b.json");
+    struct Case {
+        std::string args, message;
+    };
+    const Case cases[] = {
+        {"--json " + fifo, "not a regular file (a device, FIFO or socket)"},
+        {"--junit /dev/null", "not a regular file"},
+        {"--json " + a + " --junit " + (scratch.dir / "." / "a.json").string(), "is the same file as another output"},
+        {"--json " + a + " --report " + scratch / "b.json", "is the same file as another output"},
+        {"--json - --junit -", "only one output can be '-'"},
+    };
+    for (const Case& c : cases) {
+        const auto r = run_validate(std::string(kQuickRun) + c.args);
+        EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_EQ(r.output.find("roundtrip"), std::string::npos) << "no check ran: " << r.output;
+    }
+}
+
+TEST(CliOutputs, DashIsStandardOutput) {
+    const auto r = testing::run_command("{ " + std::string(WARPCHECK_VALIDATE_EXE) + " " + kQuickRun + "--json - 2>/dev/null; }");
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.rfind("{", 0), 0u) << "only the JSON on stdout: " << r.output.substr(0, 200);
 }
 
 TEST(Cli, HelpAndVersionExitZero) {

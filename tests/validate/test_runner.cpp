@@ -71,36 +71,6 @@ TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
     EXPECT_NE(run.results[0].rerun_command.find("--filter 'thrower' --check roundtrip"), std::string::npos);
 }
 
-// A rejection loop that never accepts must not hang the run: the check is
-// reported as an error when its time budget runs out, and the others finish.
-TEST(Runner, SamplerThatNeverTerminatesIsAnErrorAfterItsBudget) {
-    // Leaked on purpose: the abandoned thread keeps spinning inside sample()
-    // until the process exits, so what it uses must never be destroyed.
-    static const WarpCase* stuck = make_warp_case(
-                                       {"never_accepts", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                                       [](Point2f u) {
-                                           volatile float candidate = u.x;
-                                           while (candidate < 2.0f)
-                                               candidate = candidate * 0.5f;  // rejection that never accepts
-                                           return UniformHemisphere{}.sample(u);
-                                       },
-                                       [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
-                                       [](Vector3f x) { return UniformHemisphere{}.invert(x); })
-                                       .release();
-    static const Check* check = make_roundtrip_check().release();
-    auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, UniformHemisphere{});
-    RunOptions options;
-    options.samples = 100'000;
-    options.threads = 2;
-    options.check_time_budget = 1.0;
-    const RunResult run = run_jobs({{stuck, check}, {fine.get(), check}}, options);
-    ASSERT_EQ(run.results.size(), 2u);
-    EXPECT_EQ(run.results[0].verdict, Verdict::Error);
-    EXPECT_NE(run.results[0].message.find("time budget"), std::string::npos) << run.results[0].message;
-    EXPECT_EQ(run.results[1].verdict, Verdict::Pass) << run.results[1].message;
-    EXPECT_EQ(run.info.abandoned_checks, 1);
-}
-
 // Figures must be bit-identical for any thread count, and for a case run alone
 // or among others. One case of each family, so every check type takes part:
 // consistency, roundtrip, chi2, tabulated, exhaustive, binade.
@@ -119,10 +89,11 @@ TEST(Runner, ResultsDoNotDependOnThreadsOrSelection) {
     RunOptions options;
     options.samples = 150'000;
     options.check_time_budget = testing::kTestTimeBudget;
+    Isolation isolation;  // in-process unless a test below turns it on
     using Figures = std::map<std::string, std::vector<Figure>>;
     auto figures_of = [&](unsigned threads, const std::vector<std::string>& filter) {
         options.threads = threads;
-        const RunResult run = run_jobs(select_jobs(registry, filter, {}, options), options);
+        const RunResult run = run_jobs(select_jobs(registry, filter, {}, options), options, {}, isolation);
         Figures out;
         for (const auto& r : run.results) {
             auto& v = out[r.case_name + "/" + r.check_name];
@@ -158,6 +129,10 @@ TEST(Runner, ResultsDoNotDependOnThreadsOrSelection) {
     const Figures alone = figures_of(2, {"trowbridge_reitz_visible[ax=0.3,ay=0.05,theta_o=60]"});
     ASSERT_FALSE(alone.empty());
     expect_identical(alone, one, false);
+    // One worker process per check: the same figures, the level included.
+    isolation.enabled = true;
+    expect_identical(one, figures_of(1, subset), true);
+    expect_identical(one, figures_of(3, subset), true);
 }
 
 TEST(Registry, NamesAndMatching) {
