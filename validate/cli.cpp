@@ -138,7 +138,11 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     app.add_option("--time-budget", o.run.check_time_budget,
                    "Seconds one check may take before it is reported as an error and abandoned")
         ->check(kFinite & CLI::Range(0.1, 86400.0))
-        ->capture_default_str();
+        ->capture_default_str()
+        ->each([&o](const std::string&) { o.run.time_budget_set = true; });
+    app.add_option("--max-float-bias", o.run.max_float_bias,
+                   "Fail an exhaustive sweep when a float's count is off its ideal by more than this factor")
+        ->check(kFinite & CLI::Range(1.0, 1e300));
     app.add_flag("--failures-only", o.failures_only, "Print only the rows that did not pass");
     app.add_option("--color", o.color, "Colour the table: auto, always, never")
         ->check(CLI::IsMember({"auto", "always", "never"}))
