@@ -51,16 +51,22 @@ int64_t ordered_key(float x) {
     return (b & kFloatSignMask) ? -static_cast<int64_t>(b & ~kFloatSignMask) - 1 : static_cast<int64_t>(b);
 }
 
+struct FailureExample {
+    float u = 0.0f, x = 0.0f, back = 0.0f;
+};
+struct BadPdfExample {
+    float u = 0.0f, x = 0.0f;
+    double pdf = 0.0;
+};
+
 struct ChunkStats {
-    uint64_t failures = 0, bad_pdf = 0, steps_up = 0, steps_down = 0;
+    Tally<FailureExample> failures;  // first in u (the index is u's bit pattern)
+    Tally<BadPdfExample> bad_pdf;
+    uint64_t steps_up = 0, steps_down = 0;
     uint64_t boundary_zero = 0;               // pdf exactly 0 at an output on the domain's boundary
     uint64_t max_up_ulps = 0, max_down_ulps = 0;  // largest step in each direction, in ulps of the output
     double max_error = 0.0;
     float first_x = 0.0f, last_x = 0.0f;
-    bool have_failure = false, have_bad_pdf = false;
-    float failure_u = 0.0f, failure_x = 0.0f, failure_back = 0.0f;
-    float bad_pdf_u = 0.0f, bad_pdf_x = 0.0f;
-    double bad_pdf_value = 0.0;
 };
 
 // ---- compute: one chunk of consecutive floats u, then the chunks in order ----
@@ -82,25 +88,11 @@ void count_step(ChunkStats& s, float previous, float x) {
 void check_one(ChunkStats& s, const chi2::Domain& domain, double tol, float u, float x, float back, double pdf) {
     const double err = std::abs(static_cast<double>(back) - u);
     if (!(err <= s.max_error)) s.max_error = err;  // NaN sticks
-    if (!(err <= tol)) {
-        if (!s.have_failure) {
-            s.have_failure = true;
-            s.failure_u = u;
-            s.failure_x = x;
-            s.failure_back = back;
-        }
-        ++s.failures;
-    }
+    if (!(err <= tol)) s.failures.add(float_to_bits(u), {u, x, back});
     if (pdf == 0.0 && domain.on_boundary(chi2::DomainPoint{static_cast<double>(x), 0.0, 0.0})) {
         ++s.boundary_zero;
     } else if (!(std::isfinite(pdf) && pdf > 0.0)) {
-        if (!s.have_bad_pdf) {
-            s.have_bad_pdf = true;
-            s.bad_pdf_u = u;
-            s.bad_pdf_x = x;
-            s.bad_pdf_value = pdf;
-        }
-        ++s.bad_pdf;
+        s.bad_pdf.add(float_to_bits(u), {u, x, pdf});
     }
 }
 
@@ -144,28 +136,15 @@ ChunkStats merge_chunks(const std::vector<ChunkStats>& stats) {
     for (std::size_t c = 0; c < stats.size(); ++c) {
         const ChunkStats& s = stats[c];
         if (c > 0) count_step(t, stats[c - 1].last_x, s.first_x);
-        t.failures += s.failures;
-        t.bad_pdf += s.bad_pdf;
+        t.failures.merge(s.failures);
+        t.bad_pdf.merge(s.bad_pdf);
         t.boundary_zero += s.boundary_zero;
         t.max_up_ulps = std::max(t.max_up_ulps, s.max_up_ulps);
         t.max_down_ulps = std::max(t.max_down_ulps, s.max_down_ulps);
         t.steps_up += s.steps_up;
         t.steps_down += s.steps_down;
         if (!(s.max_error <= t.max_error)) t.max_error = s.max_error;
-        if (s.have_failure && !t.have_failure) {
-            t.have_failure = true;
-            t.failure_u = s.failure_u;
-            t.failure_x = s.failure_x;
-            t.failure_back = s.failure_back;
-        }
-        if (s.have_bad_pdf && !t.have_bad_pdf) {
-            t.have_bad_pdf = true;
-            t.bad_pdf_u = s.bad_pdf_u;
-            t.bad_pdf_x = s.bad_pdf_x;
-            t.bad_pdf_value = s.bad_pdf_value;
-        }
     }
-
     return t;
 }
 
@@ -178,8 +157,8 @@ CheckResult judge(const ChunkStats& t, double tol) {
     r.figures = {{"inputs", static_cast<double>(kUnitFloats)},
                  {"max_error", t.max_error},
                  {"tolerance", tol},
-                 {"roundtrip_failures", static_cast<double>(t.failures)},
-                 {"bad_pdf", static_cast<double>(t.bad_pdf)},
+                 {"roundtrip_failures", static_cast<double>(t.failures.count)},
+                 {"bad_pdf", static_cast<double>(t.bad_pdf.count)},
                  {"steps_up", static_cast<double>(t.steps_up)},
                  {"steps_down", static_cast<double>(t.steps_down)}};
     // The direction is that of the majority of steps; the others step back.
@@ -191,19 +170,23 @@ CheckResult judge(const ChunkStats& t, double tol) {
     r.figures.push_back({"max_step_back_ulps", static_cast<double>(max_back)});
     r.figures.push_back({"wobble_tolerance_ulps", static_cast<double>(kWobbleUlps)});
     const bool non_monotone = max_back > kWobbleUlps;
-    r.verdict = t.failures == 0 && t.bad_pdf == 0 && !non_monotone ? Verdict::Pass : Verdict::Fail;
+    r.verdict = t.failures.count == 0 && t.bad_pdf.count == 0 && !non_monotone ? Verdict::Pass : Verdict::Fail;
     r.summary = fmt::format("max |du| {:.2e} over all {} floats", t.max_error, kUnitFloats);
     if (steps_back > 0)
         r.summary += fmt::format(", {} steps back (largest {} ulps)", steps_back, max_back);
     if (t.boundary_zero > 0) r.summary += fmt::format(", {} zero pdfs on the boundary", t.boundary_zero);
     std::vector<std::string> why;
-    if (t.failures > 0)
+    if (t.failures.first) {
+        const FailureExample& e = *t.failures.first;
         why.push_back(fmt::format("{} inputs come back further than {:.3g}, first u = {:a} -> x = {} -> {:a}",
-                                  t.failures, tol, t.failure_u, t.failure_x, t.failure_back));
-    if (t.bad_pdf > 0)
-        why.push_back(fmt::format("{} samples with a pdf that is not finite and positive, first u = {:a} -> x = "
-                                  "{} (pdf {})",
-                                  t.bad_pdf, t.bad_pdf_u, t.bad_pdf_x, t.bad_pdf_value));
+                                  t.failures.count, tol, e.u, e.x, e.back));
+    }
+    if (t.bad_pdf.first) {
+        const BadPdfExample& e = *t.bad_pdf.first;
+        why.push_back(fmt::format("{} samples with a pdf that is not finite and positive (off the domain's "
+                                  "boundary), first u = {:a} -> x = {} (pdf {})",
+                                  t.bad_pdf.count, e.u, e.x, e.pdf));
+    }
     if (non_monotone)
         why.push_back(fmt::format("sample is not monotone: {} steps up and {} steps down between consecutive "
                                   "floats u, stepping back by up to {} ulps (rounding wobble is at most {})",
