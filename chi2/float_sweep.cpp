@@ -70,9 +70,36 @@ struct GroupCounts {
     uint64_t min_odd = std::numeric_limits<uint64_t>::max(), max_odd = 0;
     uint64_t n_ge = 0, s_ge = 0, n_lt = 0, s_lt = 0;  // multiplicities >= / < the ideal: count and sum
     uint64_t edge = 0;  // multiplicity of the binade's first float (its power of two); not in min/max above
+    // A key with each extreme above ([0] even, [1] odd): on ties the smaller
+    // key, after the first in input order within a chunk, so that the merge
+    // does not depend on which thread ran which chunk.
+    uint32_t min_key[2] = {0, 0}, max_key[2] = {0, 0};
+    // Smallest and largest key produced (the reach); lo > hi when none is.
+    uint32_t lo_key = std::numeric_limits<uint32_t>::max(), hi_key = 0;
+
+    void merge_keys(const GroupCounts& o) {
+        const uint64_t mine_min[2] = {min_even, min_odd}, mine_max[2] = {max_even, max_odd};
+        const uint64_t their_min[2] = {o.min_even, o.min_odd}, their_max[2] = {o.max_even, o.max_odd};
+        for (int p = 0; p < 2; ++p) {
+            if (their_min[p] < mine_min[p] || (their_min[p] == mine_min[p] && o.min_key[p] < min_key[p]))
+                min_key[p] = o.min_key[p];
+            if (their_max[p] > mine_max[p] || (their_max[p] == mine_max[p] && o.max_key[p] < max_key[p]))
+                max_key[p] = o.max_key[p];
+        }
+    }
 
     void merge(const GroupCounts& o) {
+        if (o.distinct > 0) {
+            if (distinct == 0) {
+                std::copy(o.min_key, o.min_key + 2, min_key);
+                std::copy(o.max_key, o.max_key + 2, max_key);
+            } else {
+                merge_keys(o);
+            }
+        }
         edge = std::max(edge, o.edge);
+        lo_key = std::min(lo_key, o.lo_key);
+        hi_key = std::max(hi_key, o.hi_key);
         distinct += o.distinct;
         inputs += o.inputs;
         min_even = std::min(min_even, o.min_even);
@@ -109,18 +136,25 @@ struct RunCounter {
         group_inputs_all[static_cast<std::size_t>(g)] += m;
         if (key >= frame->key_a && key < frame->key_b) {
             GroupCounts& c = groups[static_cast<std::size_t>(g)];
+            c.lo_key = std::min(c.lo_key, key);
+            c.hi_key = std::max(c.hi_key, key);
             ++c.distinct;
             c.inputs += m;
             // Significand parity: bits & 1, and a negative key is ~bits.
             const bool odd = ((key ^ (key >> 31)) & 1u) == 0;
             if (key == group_key_lo(g)) {
                 c.edge = m;
-            } else if (odd) {
-                c.min_odd = std::min(c.min_odd, m);
-                c.max_odd = std::max(c.max_odd, m);
             } else {
-                c.min_even = std::min(c.min_even, m);
-                c.max_even = std::max(c.max_even, m);
+                GroupCounts one;
+                one.distinct = 1;
+                (odd ? one.min_odd : one.min_even) = m;
+                (odd ? one.max_odd : one.max_even) = m;
+                one.min_key[odd] = one.max_key[odd] = key;
+                c.merge_keys(one);
+                c.min_odd = std::min(c.min_odd, one.min_odd);
+                c.max_odd = std::max(c.max_odd, one.max_odd);
+                c.min_even = std::min(c.min_even, one.min_even);
+                c.max_even = std::max(c.max_even, one.max_even);
             }
             if (m >= frame->ideal_ceiling[static_cast<std::size_t>(g)]) {
                 ++c.n_ge;
@@ -287,9 +321,18 @@ private:
             // Branch-free: parities and the side of the ideal alternate run by run.
             ++distinct_;
             inputs_ += m;
+            lo_key_ = std::min(lo_key_, key);
+            hi_key_ = std::max(hi_key_, key);
             const uint32_t odd = (key ^ parity_flip_) & 1u;
-            min_[odd] = std::min(min_[odd], m);
-            max_[odd] = std::max(max_[odd], m);
+            // Rarely taken (a new extreme); the first in input order is kept.
+            if (m < min_[odd]) {
+                min_[odd] = m;
+                min_key_[odd] = key;
+            }
+            if (m > max_[odd]) {
+                max_[odd] = m;
+                max_key_[odd] = key;
+            }
             const uint64_t ge = m >= ceiling_ ? 1 : 0;
             n_ge_ += ge;
             s_ge_ += m & (0 - ge);
@@ -325,7 +368,13 @@ private:
         c.max_even = max_[0];
         c.min_odd = min_[1];
         c.max_odd = max_[1];
+        std::copy(min_key_, min_key_ + 2, c.min_key);
+        std::copy(max_key_, max_key_ + 2, c.max_key);
         c.n_ge = n_ge_;
+        c.lo_key = lo_key_;
+        c.hi_key = hi_key_;
+        lo_key_ = std::numeric_limits<uint32_t>::max();
+        hi_key_ = 0;
         c.s_ge = s_ge_;
         c.n_lt = distinct_ - n_ge_;
         c.s_lt = s_all_ - s_ge_;
@@ -342,6 +391,8 @@ private:
     uint64_t distinct_ = 0, inputs_ = 0, n_ge_ = 0, s_ge_ = 0, s_all_ = 0;
     uint64_t min_[2] = {std::numeric_limits<uint64_t>::max(), std::numeric_limits<uint64_t>::max()};
     uint64_t max_[2] = {0, 0};
+    uint32_t min_key_[2] = {0, 0}, max_key_[2] = {0, 0};
+    uint32_t lo_key_ = std::numeric_limits<uint32_t>::max(), hi_key_ = 0;
     int group_ = -1;
     uint32_t fast_lo_ = 0, fast_size_ = 0, parity_flip_ = 0;
     uint64_t ceiling_ = 0;
@@ -387,138 +438,13 @@ const BinadeCount* SweepSummary::binade(int sign, int exponent) const {
     return nullptr;
 }
 
-SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, float b,
-                              const ParallelFor& parallel_for) {
-    if (!(std::isfinite(a) && std::isfinite(b) && a < b))
-        throw std::invalid_argument("exhaustive_sweep: needs finite a < b");
-    if (count == 0 || count > (uint64_t{1} << 32))
-        throw std::invalid_argument("exhaustive_sweep: needs 1 <= count <= 2^32");
+namespace {
 
-    SweepFrame frame;
-    frame.key_a = float_key(a);
-    frame.key_b = float_key(b);
-    const double width = static_cast<double>(b) - static_cast<double>(a);
-    for (int g = 0; g < kGroups; ++g) {
-        const double ideal = group_spacing(g) * static_cast<double>(count) / width;
-        frame.ideal[static_cast<std::size_t>(g)] = ideal;
-        frame.ideal_ceiling[static_cast<std::size_t>(g)] =
-            ideal > 1e19 ? std::numeric_limits<uint64_t>::max() : static_cast<uint64_t>(std::ceil(ideal));
-    }
-
-    // Pass 1: runs of equal outputs, chunk by chunk.
-    const auto chunks = static_cast<std::size_t>((count + kChunkSize - 1) / kChunkSize);
-    std::vector<ChunkEnds> ends(chunks);
-    RunCounter total(frame);
-    std::mutex total_mutex;
-    parallel_for(chunks, [&](std::size_t c) {
-        auto local = std::make_unique<RunCounter>(frame);
-        const uint64_t first = c * kChunkSize;
-        ends[c] = ChunkScanner(frame, *local).scan(f, first, std::min(kChunkSize, count - first));
-        std::lock_guard lock(total_mutex);
-        total.merge(*local);
-    });
-    uint64_t steps_down = 0;
-    {
-        bool have_carry = false;
-        Run carry;
-        for (const ChunkEnds& e : ends) {
-            steps_down += e.steps_down;
-            Run head = e.head;
-            if (have_carry) {
-                if (carry.key == head.key) {
-                    head.count += carry.count;
-                } else {
-                    total.add(carry.key, carry.count);
-                    steps_down += head.key < carry.key;
-                }
-            }
-            if (e.single) {
-                carry = head;
-            } else {
-                total.add(head.key, head.count);
-                carry = e.tail;
-            }
-            have_carry = true;
-        }
-        total.add(carry.key, carry.count);
-    }
-
+// The summary: per binade, floats in the interval, never produced, deviation
+// from the ideal; the outside outputs; the total variation distance.
+SweepSummary summarize(const SweepFrame& frame, const RunCounter& total, uint64_t count) {
     SweepSummary s;
     s.inputs = count;
-    s.non_monotone_steps = steps_down;
-
-    if (steps_down > 0) {
-        // Equal outputs may not be adjacent: recount exactly.
-        s.exact_fallback = true;
-        const std::array<uint64_t, kGroups> touched = total.group_inputs_all;
-        total = RunCounter(frame);
-        if (count <= kSortLimit) {
-            std::vector<uint32_t> keys(static_cast<std::size_t>(count));
-            parallel_for(chunks, [&](std::size_t c) {
-                const uint64_t first = c * kChunkSize;
-                const uint64_t n = std::min(kChunkSize, count - first);
-                std::vector<float> values(kBlockSize);
-                for (uint64_t done = 0; done < n; done += kBlockSize) {
-                    const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
-                    f(first + done, len, values.data());
-                    to_keys(values.data(), len, keys.data() + first + done);
-                }
-            });
-            radix_sort(keys);
-            std::size_t i = 0;
-            while (i < keys.size()) {
-                std::size_t j = i + 1;
-                while (j < keys.size() && keys[j] == keys[i]) ++j;
-                total.add(keys[i], j - i);
-                i = j;
-            }
-        } else {
-            // Histogram passes over windows of touched binades.
-            std::vector<int> touched_groups;
-            for (int g = 0; g < kGroups; ++g)
-                if (touched[static_cast<std::size_t>(g)] > 0) touched_groups.push_back(g);
-            constexpr std::size_t kGroupKeys = std::size_t{1} << 23;
-            std::vector<uint32_t> counts(kWindowGroups * kGroupKeys);
-            for (std::size_t w = 0; w < touched_groups.size(); w += kWindowGroups) {
-                const std::size_t groups_here = std::min<std::size_t>(kWindowGroups, touched_groups.size() - w);
-                std::array<int, kGroups> slot;
-                slot.fill(-1);
-                for (std::size_t k = 0; k < groups_here; ++k)
-                    slot[static_cast<std::size_t>(touched_groups[w + k])] = static_cast<int>(k);
-                std::fill(counts.begin(), counts.end(), 0u);
-                parallel_for(chunks, [&](std::size_t c) {
-                    const uint64_t first = c * kChunkSize;
-                    const uint64_t n = std::min(kChunkSize, count - first);
-                    std::vector<float> values(kBlockSize);
-                    std::vector<uint32_t> keys(kBlockSize);
-                    for (uint64_t done = 0; done < n; done += kBlockSize) {
-                        const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
-                        f(first + done, len, values.data());
-                        to_keys(values.data(), len, keys.data());
-                        for (std::size_t i = 0; i < len; ++i) {
-                            const int g = group_of(keys[i]);
-                            const int sl = slot[static_cast<std::size_t>(g)];
-                            if (sl < 0) continue;
-                            const std::size_t index = static_cast<std::size_t>(sl) * kGroupKeys +
-                                                      (keys[i] - static_cast<uint32_t>(group_key_lo(g)));
-                            std::atomic_ref<uint32_t>(counts[index]).fetch_add(1, std::memory_order_relaxed);
-                        }
-                    }
-                });
-                // A non-monotone f has two outputs at least, so no count reaches 2^32.
-                for (std::size_t k = 0; k < groups_here; ++k) {
-                    const int g = touched_groups[w + k];
-                    const auto lo = static_cast<uint32_t>(group_key_lo(g));
-                    const uint64_t size = group_key_hi(g) - group_key_lo(g);
-                    for (uint64_t i = 0; i < size; ++i) {
-                        const uint32_t m = counts[k * kGroupKeys + i];
-                        if (m != 0) total.add(lo + static_cast<uint32_t>(i), m);
-                    }
-                }
-            }
-        }
-    }
-
     // Per binade: floats in the interval, never produced, deviation from ideal.
     double abs_dev_total = 0.0;
     for (int g = 0; g < kGroups; ++g) {
@@ -527,6 +453,10 @@ SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, fl
         const GroupCounts& c = total.groups[static_cast<std::size_t>(g)];
         s.distinct_inside += c.distinct;
         if (lo >= hi) continue;
+        if (c.distinct > 0) {
+            if (s.distinct_inside == c.distinct) s.lowest_inside = key_float(c.lo_key);
+            s.highest_inside = key_float(c.hi_key);
+        }
         BinadeCount bc;
         bc.sign = g >= 256 ? 1 : -1;
         const int field = group_exponent_field(g);
@@ -543,6 +473,16 @@ SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, fl
         bc.min_odd = has_odd ? c.min_odd : 0;
         bc.max_odd = c.max_odd;
         bc.edge_multiplicity = c.edge;
+        // The extreme floats apart from the binade's first one (edge_multiplicity).
+        const int most = c.max_odd > c.max_even || (c.max_odd == c.max_even && c.max_key[1] < c.max_key[0]);
+        const int least = has_odd && (!has_even || c.min_odd < c.min_even ||
+                                      (c.min_odd == c.min_even && c.min_key[1] < c.min_key[0]));
+        if (has_even || has_odd) {
+            bc.most_produced = key_float(c.max_key[most]);
+            bc.most_multiplicity = most ? c.max_odd : c.max_even;
+            bc.least_produced = key_float(c.min_key[least]);
+            bc.least_multiplicity = least ? c.min_odd : c.min_even;
+        }
         bc.max_multiplicity = std::max({c.max_even, c.max_odd, c.edge});
         const bool edge_inside = group_key_lo(g) >= frame.key_a;
         bc.min_multiplicity = c.distinct < bc.floats
@@ -565,6 +505,162 @@ SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, fl
     s.distinct = s.distinct_inside + s.outside_distinct;
     for (const auto& [k, m] : total.outside) s.outside_values.push_back({key_float(k), m});
     s.tv_distance = 0.5 * (abs_dev_total + static_cast<double>(s.outside_inputs)) / static_cast<double>(count);
+    return s;
+}
+
+// Each binade's ideal multiplicity for `count` inputs over [a,b).
+SweepFrame make_frame(uint64_t count, float a, float b) {
+    SweepFrame frame;
+    frame.key_a = float_key(a);
+    frame.key_b = float_key(b);
+    const double width = static_cast<double>(b) - static_cast<double>(a);
+    for (int g = 0; g < kGroups; ++g) {
+        const double ideal = group_spacing(g) * static_cast<double>(count) / width;
+        frame.ideal[static_cast<std::size_t>(g)] = ideal;
+        frame.ideal_ceiling[static_cast<std::size_t>(g)] =
+            ideal > 1e19 ? std::numeric_limits<uint64_t>::max() : static_cast<uint64_t>(std::ceil(ideal));
+    }
+
+    return frame;
+}
+
+uint64_t chunk_count(uint64_t count) { return (count + kChunkSize - 1) / kChunkSize; }
+
+// Pass 1: runs of equal outputs, chunk by chunk, then the runs that cross chunk
+// borders in chunk order. Returns the steps down (0: the counts are exact).
+uint64_t count_runs(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, RunCounter& total) {
+    const SweepFrame& frame = *total.frame;
+    const auto chunks = static_cast<std::size_t>(chunk_count(count));
+    std::vector<ChunkEnds> ends(chunks);
+    std::mutex total_mutex;
+    parallel_for(chunks, [&](std::size_t c) {
+        auto local = std::make_unique<RunCounter>(frame);
+        const uint64_t first = c * kChunkSize;
+        ends[c] = ChunkScanner(frame, *local).scan(f, first, std::min(kChunkSize, count - first));
+        std::lock_guard lock(total_mutex);
+        total.merge(*local);
+    });
+    uint64_t steps_down = 0;
+    bool have_carry = false;
+    Run carry;
+    for (const ChunkEnds& e : ends) {
+        steps_down += e.steps_down;
+        Run head = e.head;
+        if (have_carry) {
+            if (carry.key == head.key) {
+                head.count += carry.count;
+            } else {
+                total.add(carry.key, carry.count);
+                steps_down += head.key < carry.key;
+            }
+        }
+        if (e.single) {
+            carry = head;
+        } else {
+            total.add(head.key, head.count);
+            carry = e.tail;
+        }
+        have_carry = true;
+    }
+    total.add(carry.key, carry.count);
+    return steps_down;
+}
+
+// Exact recount of a non-monotone f with at most kSortLimit inputs: sort all outputs.
+void recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, RunCounter& total) {
+    const auto chunks = static_cast<std::size_t>(chunk_count(count));
+    std::vector<uint32_t> keys(static_cast<std::size_t>(count));
+    parallel_for(chunks, [&](std::size_t c) {
+        const uint64_t first = c * kChunkSize;
+        const uint64_t n = std::min(kChunkSize, count - first);
+        std::vector<float> values(kBlockSize);
+        for (uint64_t done = 0; done < n; done += kBlockSize) {
+            const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
+            f(first + done, len, values.data());
+            to_keys(values.data(), len, keys.data() + first + done);
+        }
+    });
+    radix_sort(keys);
+    std::size_t i = 0;
+    while (i < keys.size()) {
+        std::size_t j = i + 1;
+        while (j < keys.size() && keys[j] == keys[i]) ++j;
+        total.add(keys[i], j - i);
+        i = j;
+    }
+}
+
+// Exact recount of a non-monotone f: histogram passes over windows of the
+// binades it touched.
+void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for,
+                     const std::array<uint64_t, kGroups>& touched, RunCounter& total) {
+    const auto chunks = static_cast<std::size_t>(chunk_count(count));
+    std::vector<int> touched_groups;
+    for (int g = 0; g < kGroups; ++g)
+        if (touched[static_cast<std::size_t>(g)] > 0) touched_groups.push_back(g);
+    constexpr std::size_t kGroupKeys = std::size_t{1} << 23;
+    std::vector<uint32_t> counts(kWindowGroups * kGroupKeys);
+    for (std::size_t w = 0; w < touched_groups.size(); w += kWindowGroups) {
+        const std::size_t groups_here = std::min<std::size_t>(kWindowGroups, touched_groups.size() - w);
+        std::array<int, kGroups> slot;
+        slot.fill(-1);
+        for (std::size_t k = 0; k < groups_here; ++k)
+            slot[static_cast<std::size_t>(touched_groups[w + k])] = static_cast<int>(k);
+        std::fill(counts.begin(), counts.end(), 0u);
+        parallel_for(chunks, [&](std::size_t c) {
+            const uint64_t first = c * kChunkSize;
+            const uint64_t n = std::min(kChunkSize, count - first);
+            std::vector<float> values(kBlockSize);
+            std::vector<uint32_t> keys(kBlockSize);
+            for (uint64_t done = 0; done < n; done += kBlockSize) {
+                const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
+                f(first + done, len, values.data());
+                to_keys(values.data(), len, keys.data());
+                for (std::size_t i = 0; i < len; ++i) {
+                    const int g = group_of(keys[i]);
+                    const int sl = slot[static_cast<std::size_t>(g)];
+                    if (sl < 0) continue;
+                    const std::size_t index = static_cast<std::size_t>(sl) * kGroupKeys +
+                                              (keys[i] - static_cast<uint32_t>(group_key_lo(g)));
+                    std::atomic_ref<uint32_t>(counts[index]).fetch_add(1, std::memory_order_relaxed);
+                }
+            }
+        });
+        // A non-monotone f has two outputs at least, so no count reaches 2^32.
+        for (std::size_t k = 0; k < groups_here; ++k) {
+            const int g = touched_groups[w + k];
+            const auto lo = static_cast<uint32_t>(group_key_lo(g));
+            const uint64_t size = group_key_hi(g) - group_key_lo(g);
+            for (uint64_t i = 0; i < size; ++i) {
+                const uint32_t m = counts[k * kGroupKeys + i];
+                if (m != 0) total.add(lo + static_cast<uint32_t>(i), m);
+            }
+        }
+    }
+}
+
+}  // namespace
+
+SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, float b,
+                              const ParallelFor& parallel_for) {
+    if (!(std::isfinite(a) && std::isfinite(b) && a < b))
+        throw std::invalid_argument("exhaustive_sweep: needs finite a < b");
+    if (count == 0 || count > (uint64_t{1} << 32))
+        throw std::invalid_argument("exhaustive_sweep: needs 1 <= count <= 2^32");
+
+    const SweepFrame frame = make_frame(count, a, b);
+    RunCounter total(frame);
+    const uint64_t steps_down = count_runs(f, count, parallel_for, total);
+    if (steps_down > 0) {
+        // Equal outputs may not be adjacent: recount exactly.
+        const std::array<uint64_t, kGroups> touched = total.group_inputs_all;
+        total = RunCounter(frame);
+        if (count <= kSortLimit) recount_sorted(f, count, parallel_for, total);
+        else recount_windows(f, count, parallel_for, touched, total);
+    }
+    SweepSummary s = summarize(frame, total, count);
+    s.non_monotone_steps = steps_down;
+    s.exact_fallback = steps_down > 0;
     return s;
 }
 

@@ -49,6 +49,11 @@ struct BinadeCount {
     /// changes, so round-to-nearest gives it a share of both spacings): its
     /// multiplicity, 0 if not produced or not in the interval.
     uint64_t edge_multiplicity = 0;
+    /// Among its produced floats other than the first: one with the largest
+    /// multiplicity and one with the smallest (the first in order on ties), and
+    /// those multiplicities; 0 when none is produced.
+    float most_produced = 0.0f, least_produced = 0.0f;
+    uint64_t most_multiplicity = 0, least_multiplicity = 0;
     /// Over the other produced floats with an even (odd) significand; 0/0 when
     /// there are none.
     uint64_t min_even = 0, max_even = 0, min_odd = 0, max_odd = 0;
@@ -81,6 +86,8 @@ struct SweepSummary {
     /// measure: half the sum over all floats of |count/inputs - ideal/inputs|,
     /// outside outputs included (their ideal is 0).
     double tv_distance = 0.0;
+    /// The reach: smallest and largest output inside [a,b) (both 0 when none is).
+    float lowest_inside = 0.0f, highest_inside = 0.0f;
     std::vector<OutsideValue> outside_values;  ///< the 16 smallest outside outputs, increasing
     std::vector<BinadeCount> binades;          ///< every binade meeting [a,b), in increasing order
 

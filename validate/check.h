@@ -30,6 +30,14 @@ struct RunOptions {
     /// Seconds one check may take before it is reported as an error and
     /// abandoned (a sampler that never terminates must not hang the run).
     double check_time_budget = 60.0;
+    /// Whether the user set check_time_budget (--time-budget): then it binds
+    /// every check; otherwise heavy sweeps may take their own larger default
+    /// (Check::time_budget).
+    bool time_budget_set = false;
+    /// --max-float-bias R: the exhaustive check fails when a float's count is
+    /// off its ideal by more than a factor R beyond one input of rounding slack
+    /// (exhaustive_check.cpp defines the factor). 0: bias is only reported.
+    double max_float_bias = 0.0;
 };
 
 /// Thrown inside a check that the runner has cancelled.
@@ -111,6 +119,10 @@ public:
     /// Whether the result is the same for every seed (it enumerates instead of
     /// drawing random inputs): such checks cannot give a false positive by chance.
     virtual bool uses_seed() const { return true; }
+    /// Seconds this check may take before the runner reports it as an error:
+    /// the run's budget, unless the check knows it needs more for a correct
+    /// warp (a full 2^32 sweep) and the user did not set --time-budget.
+    virtual double time_budget(const RunOptions& options) const { return options.check_time_budget; }
     /// Runs the check. The runner fills in the names, stream, timing and rerun
     /// command, and turns an exception into an Error verdict.
     virtual CheckResult run(const WarpCase& warp, const CheckContext& ctx) const = 0;

@@ -178,7 +178,8 @@ int run_cli(int argc, char** argv, const Registry& registry) {
                    "--no-isolation the check is only asked to stop after this many wall seconds, and a warp that "
                    "never returns hangs the run")
         ->check(kFinite & CLI::Range(0.1, 86400.0))
-        ->capture_default_str();
+        ->capture_default_str()
+        ->each([&o](const std::string&) { o.run.time_budget_set = true; });
     app.add_flag("--no-isolation", o.no_isolation,
                  "Run the checks in this process instead of one worker process per check (for debuggers): a "
                  "crash, exit() or endless loop in a warp then takes the whole run down");
@@ -187,6 +188,9 @@ int run_cli(int argc, char** argv, const Registry& registry) {
                    "Not applied under AddressSanitizer")
         ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 30))
         ->capture_default_str();
+    app.add_option("--max-float-bias", o.run.max_float_bias,
+                   "Fail an exhaustive sweep when a float's count is off its ideal by more than this factor")
+        ->check(kFinite & CLI::Range(1.0, 1e6));
     app.add_flag("--failures-only", o.failures_only, "Print only the rows that did not pass");
     app.add_option("--color", o.color, "Colour the table: auto, always, never")
         ->check(CLI::IsMember({"auto", "always", "never"}))

@@ -130,7 +130,7 @@ std::vector<CheckResult> run_jobs_in_process(const std::vector<Job>& jobs, const
                 r.verdict = Verdict::Error;
                 r.summary = "error: over time budget";
                 r.message = fmt::format("did not finish within its time budget of {} s (wall time, in-process run)",
-                                        options.check_time_budget);
+                                        jobs[i].check->time_budget(options));
             }
             results[i] = std::move(r);
             running[i].reset();
@@ -141,12 +141,13 @@ std::vector<CheckResult> run_jobs_in_process(const std::vector<Job>& jobs, const
     };
     std::vector<std::jthread> job_threads;
     for (std::size_t t = 0; t < std::min<std::size_t>(threads, n); ++t) job_threads.emplace_back(job_thread);
-    const auto budget = std::chrono::duration<double>(options.check_time_budget);
     std::unique_lock lock(mutex);
     while (done < n) {
         changed.wait_for(lock, std::chrono::milliseconds(50));
-        for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto budget = std::chrono::duration<double>(jobs[i].check->time_budget(options));
             if (running[i] && Clock::now() - *running[i] > budget) cancel[i] = true;
+        }
     }
     lock.unlock();
     job_threads.clear();  // joins
@@ -180,6 +181,7 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
         r.stream_sequence = stream.sequence;
         r.rerun_command = fmt::format("validate --filter {} --check {} --seed {} --samples {}",
                                       shell_quote(r.case_name), r.check_name, options.seed, options.samples);
+        if (options.max_float_bias > 0.0) r.rerun_command += fmt::format(" --max-float-bias {}", options.max_float_bias);
     }
     apply_multiple_test_correction(run, options.alpha);
     run.info.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -94,6 +94,14 @@ void limit_worker(const RunOptions& options, const Isolation& isolation) {
 #endif
 }
 
+// The run's options as one job sees them: its check's own time budget
+// (Check::time_budget: the full sweeps default to one derived from their work).
+RunOptions budgeted(const Job& job, const RunOptions& options) {
+    RunOptions o = options;
+    o.check_time_budget = job.check->time_budget(options);
+    return o;
+}
+
 // The body of a worker process: run the job, send the result as its length and
 // its bytes, leave without running the parent's atexit handlers or destructors.
 [[noreturn]] void worker_main(const Job& job, const RunOptions& options, const Isolation& isolation,
@@ -204,7 +212,7 @@ private:
         if (pid < 0) throw std::runtime_error(fmt::format("fork: {}", std::strerror(errno)));
         if (pid == 0) {
             ::close(fds[0]);
-            worker_main(jobs_[job], options_, isolation_, threads_per_worker_, fds[1]);
+            worker_main(jobs_[job], budgeted(jobs_[job], options_), isolation_, threads_per_worker_, fds[1]);
         }
         ::close(fds[1]);
         running_.push_back({pid, fds[0], job, Clock::now(), false, {}});
@@ -234,9 +242,10 @@ private:
 
     // Collects the workers that ended; kills those past the wall-clock backstop.
     void reap() {
-        const auto backstop = std::chrono::duration<double>(kWallBackstopFactor *
-                                                            std::ceil(options_.check_time_budget));
         for (auto it = running_.begin(); it != running_.end();) {
+            const RunOptions job_options = budgeted(jobs_[it->job], options_);
+            const auto backstop = std::chrono::duration<double>(kWallBackstopFactor *
+                                                                std::ceil(job_options.check_time_budget));
             if (!it->killed_for_wall_time && Clock::now() - it->start > backstop) {
                 ::kill(it->pid, SIGKILL);
                 it->killed_for_wall_time = true;
@@ -249,7 +258,7 @@ private:
                 continue;
             }
             bool over_budget = false;
-            results_[it->job] = result_of(*it, status, usage, options_, over_budget);
+            results_[it->job] = result_of(*it, status, usage, job_options, over_budget);
             over_budget_ += over_budget;
             ++done_;
             if (progress_)

@@ -294,7 +294,7 @@ TEST(BinadeCheck, SeesThe257Over255AlternationOfThe32BitMultiply) {
     EXPECT_LT(*r.figure("parity_p_value"), 1e-12);
 }
 
-TEST(ExhaustiveRoundtripCheck, RunsOnlyWhenAskedAndSeesANonMonotoneLerp) {
+TEST(ExhaustiveRoundtripCheck, RunsOnlyWhenAskedAndReportsTheWobbleOfALerp) {
     RunOptions options;
     EXPECT_FALSE(make_exhaustive_roundtrip_check()->runs_by_default(options));
     options.exhaustive = true;
@@ -305,8 +305,10 @@ TEST(ExhaustiveRoundtripCheck, RunsOnlyWhenAskedAndSeesANonMonotoneLerp) {
     // by the exhaustive tests of the 32-bit samplers).
     GTEST_SKIP() << "full sweep of every float in [0,1): run in the release test build";
 #endif
+    // Its steps down are rounding wobble within the stated tolerance (issue 12):
+    // reported, not failed (test_exhaustive_verdicts.cpp has the failing twin).
     const CheckResult r = testing::run_check(*make_exhaustive_roundtrip_check(), builtin_case("lerp_blend[a=1,b=3]"));
-    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     EXPECT_EQ(*r.figure("inputs"), 1'065'353'216.0);
     EXPECT_GT(*r.figure("steps_down"), 0.0);
     EXPECT_EQ(*r.figure("roundtrip_failures"), 0.0);

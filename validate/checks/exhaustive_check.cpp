@@ -7,7 +7,12 @@
 // - FAIL if any output lies outside the half-open [a,b) (1.0 from [0,1), b
 //   from a lerp), NaN included;
 // - FAIL if a sampler that claims to be monotone in its input steps down;
-// - otherwise PASS, with the bias as figures: distinct outputs, floats never
+// - FAIL if the outputs' reach [lowest, highest] leaves more ideal mass
+//   outside it than one input's (1 / inputs of the grid) (issue 12);
+// - FAIL if --max-float-bias R is set and some float's count is off its
+//   ideal by more than a factor R (bias_factor; issue 12);
+// - otherwise PASS, with the bias as figures (and the most biased floats in
+//   a table): distinct outputs, floats never
 //   produced, per-binade min/max multiplicity against the ideal, the
 //   alternation pattern, the total variation distance. A float sampler fed
 //   with 32 bits cannot reach the 2^-149 spacing of [0,1), so every one of
@@ -16,12 +21,16 @@
 //   inversion), and how large the bias is, which the figures answer exactly.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
+#include "validate/checks/evidence.h"
 #include "validate/exhaustive_sweep.h"
 
 namespace warpcheck {
@@ -92,6 +101,200 @@ void add_evidence(CheckResult& r, const SweepSummary& s, const std::string& grid
     }
 }
 
+// ---- judge ----
+
+// What the judge needs besides the counts.
+struct Sweep {
+    uint64_t inputs = 0;
+    bool claims_monotone = false;
+    std::string grid;
+    float a = 0.0f, b = 1.0f;
+    double max_float_bias = 0.0;  // 0: bias is reported, not failed
+};
+
+struct BiasedFloat {
+    float value = 0.0f;
+    uint64_t count = 0;
+    double ideal = 0.0;
+};
+
+// The bias factor of a float produced c times against its ideal m: the smallest
+// R with (m - 1) / R <= c <= R (m + 1). One input of slack each way, because
+// rounding the input grid to floats moves up to one input between neighbours
+// (the 257/255 and 3/1 alternations around ideals 256 and 2), which no sampler
+// of the grid can avoid; a float whose ideal is at most one input may be
+// missed. NaN never passes a comparison with R.
+double bias_factor(uint64_t c, double m) {
+    const double over = static_cast<double>(c) / (m + 1.0);
+    if (!(m > 1.0)) return over;
+    const double under = c > 0 ? (m - 1.0) / static_cast<double>(c) : std::numeric_limits<double>::infinity();
+    return std::max(over, under);
+}
+
+// The most biased produced floats: per binade its most and least produced
+// floats and its first float (a power of two, which also takes part of the
+// spacing below), worst first.
+WorstK<BiasedFloat> biased_floats(const SweepSummary& s) {
+    WorstK<BiasedFloat> worst(10);
+    uint64_t index = 0;
+    auto offer = [&](float x, uint64_t c, double m) {
+        if (c > 0) worst.offer(bias_factor(c, m), index, BiasedFloat{x, c, m});
+        ++index;
+    };
+    for (const BinadeCount& bc : s.binades) {
+        offer(bc.most_produced, bc.most_multiplicity, bc.ideal);
+        offer(bc.least_produced, bc.least_multiplicity, bc.ideal);
+        const float power = bc.exponent == -127 ? 0.0f : std::ldexp(1.0f, bc.exponent);
+        if (bc.sign > 0 && bc.first == power) offer(bc.first, bc.edge_multiplicity, bc.ideal);
+    }
+    return worst;
+}
+
+// Floats never produced although their ideal exceeds one input: bias factor
+// infinite (the table lists produced floats only).
+uint64_t unreached_above_one_input(const SweepSummary& s) {
+    uint64_t n = 0;
+    for (const BinadeCount& bc : s.binades)
+        if (bc.ideal > 1.0) n += bc.floats - bc.distinct;
+    return n;
+}
+
+// Ideal probability of [a,b) outside the reach [lowest, highest] (the
+// rounded-down uniform measure: highest stands for [highest, next float up)).
+double mass_outside_reach(const SweepSummary& s, float a, float b) {
+    if (s.distinct_inside == 0) return 1.0;
+    const double width = static_cast<double>(b) - a;
+    const double below = static_cast<double>(s.lowest_inside) - a;
+    const double above = static_cast<double>(b) - next_float_up(s.highest_inside);
+    return (below + above) / width;
+}
+
+// The largest relative deviation of a multiplicity from its ideal, over the
+// binades whose ideal is at least one input per float.
+double max_relative_deviation(const SweepSummary& s) {
+    double max_rel = 0.0;
+    for (const BinadeCount& bc : s.binades) {
+        if (!(bc.ideal >= 1.0)) continue;
+        const double lo = std::abs(static_cast<double>(bc.min_multiplicity) - bc.ideal) / bc.ideal;
+        const double hi = std::abs(static_cast<double>(bc.max_multiplicity) - bc.ideal) / bc.ideal;
+        max_rel = std::max({max_rel, lo, hi});
+    }
+    return max_rel;
+}
+
+void add_figures(CheckResult& r, const SweepSummary& s, float b, double max_rel) {
+    r.figures = {{"inputs", static_cast<double>(s.inputs)},
+                 {"distinct", static_cast<double>(s.distinct)},
+                 {"distinct_inside", static_cast<double>(s.distinct_inside)},
+                 {"outside_count", static_cast<double>(s.outside_distinct)},
+                 {"outside_inputs", static_cast<double>(s.outside_inputs)},
+                 {"floats_in_interval", static_cast<double>(s.floats_in_interval)},
+                 {"never_produced", static_cast<double>(s.never_produced)},
+                 {"non_monotone_steps", static_cast<double>(s.non_monotone_steps)},
+                 {"tv_distance", s.tv_distance},
+                 {"max_relative_deviation", max_rel}};
+    r.figures.push_back({"inputs_to_b", static_cast<double>(s.outside_inputs_of(b))});
+    // The top binades' extremes as figures; all of them in the table and plot.
+    const std::size_t shown = std::min<std::size_t>(s.binades.size(), 8);
+    for (std::size_t k = s.binades.size() - shown; k < s.binades.size(); ++k) {
+        const BinadeCount& bc = s.binades[k];
+        if (bc.sign < 0) continue;
+        r.figures.push_back({fmt::format("binade_{}_min", bc.exponent), static_cast<double>(bc.min_multiplicity)});
+        r.figures.push_back({fmt::format("binade_{}_max", bc.exponent), static_cast<double>(bc.max_multiplicity)});
+    }
+}
+
+// Issue 12's figures: the most biased float, the unreached floats, the reach.
+struct Findings {
+    double max_bias = 0.0;  // over produced floats
+    uint64_t unreached = 0;  // never produced although above one input: bias factor infinite
+    double mass_outside = 0.0;
+    double resolution = 0.0;  // one input's probability
+};
+
+Findings add_bias_and_reach(CheckResult& r, const SweepSummary& s, const Sweep& sw) {
+    Findings f;
+    const WorstK<BiasedFloat> worst = biased_floats(s);
+    f.unreached = unreached_above_one_input(s);
+    f.max_bias = worst.empty() ? 0.0 : worst.front().key;
+    f.mass_outside = mass_outside_reach(s, sw.a, sw.b);
+    // A sampler with N equally likely inputs cannot give a float less than 1/N,
+    // so the measure it leaves unreached at its ends may be up to one input's 1/N.
+    f.resolution = 1.0 / static_cast<double>(sw.inputs);
+    r.figures.push_back({"max_float_bias", f.max_bias});
+    if (!worst.empty()) {
+        r.figures.push_back({"most_biased_float", worst.front().item.value});
+        r.figures.push_back({"most_biased_count", static_cast<double>(worst.front().item.count)});
+        r.figures.push_back({"most_biased_ideal", worst.front().item.ideal});
+    }
+    r.figures.push_back({"unreached_above_one_input", static_cast<double>(f.unreached)});
+    r.figures.push_back({"lowest_output", s.lowest_inside});
+    r.figures.push_back({"highest_output", s.highest_inside});
+    r.figures.push_back({"mass_outside_reach", f.mass_outside});
+    r.figures.push_back({"input_resolution", f.resolution});
+    return f;
+}
+
+void add_bias_table(CheckResult& r, const WorstK<BiasedFloat>& worst) {
+    Table t{"Most biased floats (bias factor: smallest R with (ideal - 1) / R <= count <= R (ideal + 1))",
+            {"float", "count", "ideal", "bias factor"},
+            {}};
+    for (const auto& e : worst.entries())
+        t.rows.push_back({fmt::format("{} ({:a})", e.item.value, e.item.value), std::to_string(e.item.count),
+                          fmt::format("{:.6g}", e.item.ideal), fmt::format("{:.4g}", e.key)});
+    if (!t.rows.empty()) r.tables.push_back(std::move(t));
+}
+
+CheckResult judge(const SweepSummary& s, const Sweep& sw) {
+    CheckResult r;
+    r.samples = s.inputs;
+    const double max_rel = max_relative_deviation(s);
+    add_figures(r, s, sw.b, max_rel);
+    const Findings f = add_bias_and_reach(r, s, sw);
+
+    std::string outside_text;
+    for (std::size_t k = 0; k < s.outside_values.size() && k < 3; ++k)
+        outside_text += fmt::format("{}{} inputs -> {}", k ? ", " : "", s.outside_values[k].inputs,
+                                    s.outside_values[k].value);
+    r.summary = fmt::format("{} distinct", s.distinct);
+    if (s.outside_inputs > 0) r.summary += ", " + outside_text;
+    if (s.non_monotone_steps > 0) r.summary += fmt::format(", {} steps down", s.non_monotone_steps);
+    r.summary += fmt::format(", TV {:.3g}", s.tv_distance);
+
+    const bool outside = s.outside_inputs > 0;
+    const bool steps = sw.claims_monotone && s.non_monotone_steps > 0;
+    const bool short_reach = !(f.mass_outside <= f.resolution);
+    const bool biased = sw.max_float_bias > 0.0 && (f.unreached > 0 || !(f.max_bias <= sw.max_float_bias));
+    r.verdict = outside || steps || short_reach || biased ? Verdict::Fail : Verdict::Pass;
+    if (r.verdict == Verdict::Fail) {
+        std::vector<std::string> why;
+        if (outside)
+            why.push_back(fmt::format("{} of {} inputs give outputs outside [{}, {}) ({})", s.outside_inputs,
+                                      s.inputs, sw.a, sw.b, outside_text));
+        if (steps)
+            why.push_back(fmt::format("{} steps down although the sampler is monotone in its input",
+                                      s.non_monotone_steps));
+        if (short_reach)
+            why.push_back(fmt::format("outputs reach only [{}, {}]: ideal mass {:.3g} outside it, more than one "
+                                      "input's {:.3g}",
+                                      s.lowest_inside, s.highest_inside, f.mass_outside, f.resolution));
+        if (biased)
+            why.push_back(fmt::format("floats biased by up to a factor {:.4g} (--max-float-bias {}); {} floats "
+                                      "whose ideal exceeds one input never produced",
+                                      f.max_bias, sw.max_float_bias, f.unreached));
+        r.message = join_reasons(why) +
+                    ". Rule: an output outside the half-open interval, a step down of a monotone sampler, or a "
+                    "reach leaving more than one input's mass fails; bias inside the interval is reported, "
+                    "failed only beyond --max-float-bias.";
+    } else {
+        r.message = fmt::format("{}; rule: outside [a,b), steps down of a monotone sampler or a short reach "
+                                "fail, bias is reported (TV distance {:.3g}, max relative deviation {:.3g}, "
+                                "largest float bias factor {:.4g})",
+                                sw.grid, s.tv_distance, max_rel, f.max_bias);
+    }
+    return r;
+}
+
 class ExhaustiveCheck final : public Check {
 public:
     std::string name() const override { return "exhaustive"; }
@@ -105,77 +308,25 @@ public:
         return dynamic_cast<const SweepableCase*>(&warp) != nullptr || warp.input_kind() == InputKind::Bits32;
     }
 
+    double time_budget(const RunOptions& options) const override {
+        // The budget is asked before any warp is known: the largest grid, 2^32.
+        return sweep_time_budget(options, uint64_t{1} << 32);
+    }
+
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const auto* sweepable = dynamic_cast<const SweepableCase*>(&warp);
         const FloatBlockFn fn = sweepable ? sweepable->sweep_fn() : generic_bits32_fn(warp);
-        const uint64_t inputs = sweepable ? sweepable->sweep_inputs() : uint64_t{1} << 32;
-        const bool claims_monotone = sweepable ? sweepable->claims_monotone() : false;
-        const std::string grid = sweepable ? sweepable->sweep_grid() : "all 2^32 inputs";
-        const auto a = static_cast<float>(warp.domain().a);
-        const auto b = static_cast<float>(warp.domain().b);
-
-        const SweepSummary s = exhaustive_sweep(fn, inputs, a, b, ctx.executor());
-
-        CheckResult r;
-        r.samples = s.inputs;
-        // The largest relative deviation of a multiplicity from its ideal, over
-        // the binades whose ideal is at least one input per float.
-        double max_rel = 0.0;
-        for (const BinadeCount& bc : s.binades) {
-            if (!(bc.ideal >= 1.0)) continue;
-            const double lo = std::abs(static_cast<double>(bc.min_multiplicity) - bc.ideal) / bc.ideal;
-            const double hi = std::abs(static_cast<double>(bc.max_multiplicity) - bc.ideal) / bc.ideal;
-            max_rel = std::max({max_rel, lo, hi});
-        }
-        r.figures = {{"inputs", static_cast<double>(s.inputs)},
-                     {"distinct", static_cast<double>(s.distinct)},
-                     {"distinct_inside", static_cast<double>(s.distinct_inside)},
-                     {"outside_count", static_cast<double>(s.outside_distinct)},
-                     {"outside_inputs", static_cast<double>(s.outside_inputs)},
-                     {"floats_in_interval", static_cast<double>(s.floats_in_interval)},
-                     {"never_produced", static_cast<double>(s.never_produced)},
-                     {"non_monotone_steps", static_cast<double>(s.non_monotone_steps)},
-                     {"tv_distance", s.tv_distance},
-                     {"max_relative_deviation", max_rel}};
-        r.figures.push_back({"inputs_to_b", static_cast<double>(s.outside_inputs_of(b))});
-        // The top binades' extremes as figures; all of them in the table and plot.
-        const std::size_t shown = std::min<std::size_t>(s.binades.size(), 8);
-        for (std::size_t k = s.binades.size() - shown; k < s.binades.size(); ++k) {
-            const BinadeCount& bc = s.binades[k];
-            if (bc.sign < 0) continue;
-            r.figures.push_back({fmt::format("binade_{}_min", bc.exponent), static_cast<double>(bc.min_multiplicity)});
-            r.figures.push_back({fmt::format("binade_{}_max", bc.exponent), static_cast<double>(bc.max_multiplicity)});
-        }
-
-        std::string outside_text;
-        for (std::size_t k = 0; k < s.outside_values.size() && k < 3; ++k)
-            outside_text += fmt::format("{}{} inputs -> {}", k ? ", " : "", s.outside_values[k].inputs,
-                                        s.outside_values[k].value);
-        r.summary = fmt::format("{} distinct", s.distinct);
-        if (s.outside_inputs > 0) r.summary += ", " + outside_text;
-        if (s.non_monotone_steps > 0) r.summary += fmt::format(", {} steps down", s.non_monotone_steps);
-        r.summary += fmt::format(", TV {:.3g}", s.tv_distance);
-
-        const bool outside = s.outside_inputs > 0;
-        const bool steps = claims_monotone && s.non_monotone_steps > 0;
-        r.verdict = outside || steps ? Verdict::Fail : Verdict::Pass;
-        if (r.verdict == Verdict::Fail) {
-            std::string why;
-            if (outside)
-                why = fmt::format("{} of {} inputs give outputs outside [{}, {}) ({})", s.outside_inputs, s.inputs, a,
-                                  b, outside_text);
-            if (steps)
-                why += fmt::format("{}{} steps down although the sampler is monotone in its input", why.empty() ? "" : "; ",
-                                   s.non_monotone_steps);
-            r.message = why + ". Rule: an output outside the half-open interval, or a step down of a monotone "
-                              "sampler, fails; bias inside the interval is reported, not failed.";
-        } else {
-            r.message = fmt::format("{}; rule: outside [a,b) or steps down of a monotone sampler fail, bias is "
-                                    "reported (TV distance {:.3g}, max relative deviation {:.3g})",
-                                    grid, s.tv_distance, max_rel);
-        }
-
-        add_evidence(r, s, grid);
+        Sweep sw;
+        sw.inputs = sweepable ? sweepable->sweep_inputs() : uint64_t{1} << 32;
+        sw.claims_monotone = sweepable ? sweepable->claims_monotone() : false;
+        sw.grid = sweepable ? sweepable->sweep_grid() : "all 2^32 inputs";
+        sw.a = static_cast<float>(warp.domain().a);
+        sw.b = static_cast<float>(warp.domain().b);
+        sw.max_float_bias = ctx.options().max_float_bias;
+        const SweepSummary s = exhaustive_sweep(fn, sw.inputs, sw.a, sw.b, ctx.executor());
+        CheckResult r = judge(s, sw);
+        add_evidence(r, s, sw.grid);
+        add_bias_table(r, biased_floats(s));
         return r;
     }
 };

@@ -4,9 +4,14 @@
 // For each u: x = sample(u), u' = invert(x), p = pdf(x). Counted: round trips
 // further than the case's tolerance from u (NaN counts), pdfs that are not
 // finite and positive, and steps of sample in each direction between
-// consecutive floats u. Verdict: FAIL on any round-trip failure, on any bad pdf,
-// or when sample steps both up and down (a 1D inversion warp is monotone,
-// increasing or decreasing; steps in both directions break stratification).
+// consecutive floats u. A pdf of 0 is legitimate only at an output exactly on
+// the domain's boundary (chi2::Domain::on_boundary, the consistency check's
+// rule): such outputs are counted and reported (boundary_zero_pdf), not failed.
+// Verdict: FAIL on any round-trip failure, on any other pdf that is not finite
+// and positive, or when sample steps back against its direction (the direction
+// of the majority of its steps) by more than kWobbleUlps ulps (a 1D inversion
+// warp is monotone; a real step back breaks stratification, while a rounding
+// wobble of a few ulps is reported: steps_back, max_step_back_ulps).
 //
 // It goes through the warp's batch interface, ~1e9 calls: seconds per case on
 // two cores, so it runs only with --exhaustive (runs_by_default).
@@ -22,6 +27,7 @@
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/formatting.h"
+#include "validate/exhaustive_sweep.h"
 
 namespace warpcheck {
 namespace {
@@ -29,18 +35,66 @@ namespace {
 constexpr uint32_t kUnitFloats = 0x3f800000u;  // bit patterns of [0,1): 0 .. 0x3f7fffff
 constexpr uint32_t kChunk = uint32_t{1} << 20;
 constexpr std::size_t kBatch = 4096;
+// The largest step back (in ulps of the output) that is rounding wobble, not a
+// defect: a monotone formula evaluated in n correctly rounded operations, each
+// off by at most half an ulp of a value no larger than its output, is within
+// n/2 ulps of the exact monotone value at every input, so two consecutive
+// outputs can step back by at most n ulps. Lerp-like 1D warps, a + t (b - a) or
+// (1 - t) a + t b, round at most 4 times: 4 ulps. A defect such as a 6e-4 step
+// near 1 is ~5000 ulps.
+constexpr uint64_t kWobbleUlps = 4;
+
+// Position of x in the order of floats (-0 just below +0): the difference of two
+// keys is their distance in ulps.
+int64_t ordered_key(float x) {
+    const uint32_t b = float_to_bits(x);
+    return (b & kFloatSignMask) ? -static_cast<int64_t>(b & ~kFloatSignMask) - 1 : static_cast<int64_t>(b);
+}
+
+struct FailureExample {
+    float u = 0.0f, x = 0.0f, back = 0.0f;
+};
+struct BadPdfExample {
+    float u = 0.0f, x = 0.0f;
+    double pdf = 0.0;
+};
 
 struct ChunkStats {
-    uint64_t failures = 0, bad_pdf = 0, steps_up = 0, steps_down = 0;
+    Tally<FailureExample> failures;  // first in u (the index is u's bit pattern)
+    Tally<BadPdfExample> bad_pdf;
+    uint64_t steps_up = 0, steps_down = 0;
+    uint64_t boundary_zero = 0;               // pdf exactly 0 at an output on the domain's boundary
+    uint64_t max_up_ulps = 0, max_down_ulps = 0;  // largest step in each direction, in ulps of the output
     double max_error = 0.0;
     float first_x = 0.0f, last_x = 0.0f;
-    bool have_failure = false, have_bad_pdf = false;
-    float failure_u = 0.0f, failure_x = 0.0f, failure_back = 0.0f;
-    float bad_pdf_u = 0.0f, bad_pdf_x = 0.0f;
-    double bad_pdf_value = 0.0;
 };
 
 // ---- compute: one chunk of consecutive floats u, then the chunks in order ----
+
+// One consecutive step previous -> x of sample, counted in its direction with
+// its size in ulps.
+void count_step(ChunkStats& s, float previous, float x) {
+    const auto ulps = static_cast<uint64_t>(std::abs(ordered_key(x) - ordered_key(previous)));
+    if (x > previous) {
+        ++s.steps_up;
+        s.max_up_ulps = std::max(s.max_up_ulps, ulps);
+    } else if (x < previous) {
+        ++s.steps_down;
+        s.max_down_ulps = std::max(s.max_down_ulps, ulps);
+    }
+}
+
+// The round trip and pdf of one input u -> x (-> back, pdf).
+void check_one(ChunkStats& s, const chi2::Domain& domain, double tol, float u, float x, float back, double pdf) {
+    const double err = std::abs(static_cast<double>(back) - u);
+    if (!(err <= s.max_error)) s.max_error = err;  // NaN sticks
+    if (!(err <= tol)) s.failures.add(float_to_bits(u), {u, x, back});
+    if (pdf == 0.0 && domain.on_boundary(chi2::DomainPoint{static_cast<double>(x), 0.0, 0.0})) {
+        ++s.boundary_zero;
+    } else if (!(std::isfinite(pdf) && pdf > 0.0)) {
+        s.bad_pdf.add(float_to_bits(u), {u, x, pdf});
+    }
+}
 
 ChunkStats scan_chunk(const WarpCase& warp, double tol, std::size_t c) {
     ChunkStats s;
@@ -60,34 +114,13 @@ ChunkStats scan_chunk(const WarpCase& warp, double tol, std::size_t c) {
         warp.invert(xs, std::span<WarpInput>(back.data(), n));
         warp.pdf(xs, std::span<double>(pdf.data(), n));
         for (std::size_t i = 0; i < n; ++i) {
-            const float u = in[i].u[0];
-            const double err = std::abs(static_cast<double>(back[i].u[0]) - u);
-            if (!(err <= s.max_error)) s.max_error = err;  // NaN sticks
-            if (!(err <= tol)) {
-                if (!s.have_failure) {
-                    s.have_failure = true;
-                    s.failure_u = u;
-                    s.failure_x = x[i][0];
-                    s.failure_back = back[i].u[0];
-                }
-                ++s.failures;
-            }
-            if (!(std::isfinite(pdf[i]) && pdf[i] > 0.0)) {
-                if (!s.have_bad_pdf) {
-                    s.have_bad_pdf = true;
-                    s.bad_pdf_u = u;
-                    s.bad_pdf_x = x[i][0];
-                    s.bad_pdf_value = pdf[i];
-                }
-                ++s.bad_pdf;
-            }
             const float xi = x[i][0];
+            check_one(s, warp.domain(), tol, in[i].u[0], xi, back[i].u[0], pdf[i]);
             if (first) {
                 s.first_x = xi;
                 first = false;
             } else {
-                s.steps_up += xi > previous;
-                s.steps_down += xi < previous;
+                count_step(s, previous, xi);
             }
             previous = xi;
         }
@@ -102,34 +135,21 @@ ChunkStats merge_chunks(const std::vector<ChunkStats>& stats) {
     ChunkStats t;
     for (std::size_t c = 0; c < stats.size(); ++c) {
         const ChunkStats& s = stats[c];
-        if (c > 0) {
-            t.steps_up += s.first_x > stats[c - 1].last_x;
-            t.steps_down += s.first_x < stats[c - 1].last_x;
-        }
-        t.failures += s.failures;
-        t.bad_pdf += s.bad_pdf;
+        if (c > 0) count_step(t, stats[c - 1].last_x, s.first_x);
+        t.failures.merge(s.failures);
+        t.bad_pdf.merge(s.bad_pdf);
+        t.boundary_zero += s.boundary_zero;
+        t.max_up_ulps = std::max(t.max_up_ulps, s.max_up_ulps);
+        t.max_down_ulps = std::max(t.max_down_ulps, s.max_down_ulps);
         t.steps_up += s.steps_up;
         t.steps_down += s.steps_down;
         if (!(s.max_error <= t.max_error)) t.max_error = s.max_error;
-        if (s.have_failure && !t.have_failure) {
-            t.have_failure = true;
-            t.failure_u = s.failure_u;
-            t.failure_x = s.failure_x;
-            t.failure_back = s.failure_back;
-        }
-        if (s.have_bad_pdf && !t.have_bad_pdf) {
-            t.have_bad_pdf = true;
-            t.bad_pdf_u = s.bad_pdf_u;
-            t.bad_pdf_x = s.bad_pdf_x;
-            t.bad_pdf_value = s.bad_pdf_value;
-        }
     }
-
     return t;
 }
 
-// ---- judge: no tolerance but the case's own round-trip tolerance (its
-// documented float error); a bad pdf or steps in both directions fail outright ----
+// ---- judge: the case's own round-trip tolerance (its documented float error)
+// and kWobbleUlps for steps back; a bad pdf off the boundary fails outright ----
 
 CheckResult judge(const ChunkStats& t, double tol) {
     CheckResult r;
@@ -137,26 +157,40 @@ CheckResult judge(const ChunkStats& t, double tol) {
     r.figures = {{"inputs", static_cast<double>(kUnitFloats)},
                  {"max_error", t.max_error},
                  {"tolerance", tol},
-                 {"roundtrip_failures", static_cast<double>(t.failures)},
-                 {"bad_pdf", static_cast<double>(t.bad_pdf)},
+                 {"roundtrip_failures", static_cast<double>(t.failures.count)},
+                 {"bad_pdf", static_cast<double>(t.bad_pdf.count)},
                  {"steps_up", static_cast<double>(t.steps_up)},
                  {"steps_down", static_cast<double>(t.steps_down)}};
-    const bool non_monotone = t.steps_up > 0 && t.steps_down > 0;
-    r.verdict = t.failures == 0 && t.bad_pdf == 0 && !non_monotone ? Verdict::Pass : Verdict::Fail;
+    // The direction is that of the majority of steps; the others step back.
+    const bool increasing = t.steps_up >= t.steps_down;
+    const uint64_t steps_back = increasing ? t.steps_down : t.steps_up;
+    const uint64_t max_back = increasing ? t.max_down_ulps : t.max_up_ulps;
+    r.figures.push_back({"boundary_zero_pdf", static_cast<double>(t.boundary_zero)});
+    r.figures.push_back({"steps_back", static_cast<double>(steps_back)});
+    r.figures.push_back({"max_step_back_ulps", static_cast<double>(max_back)});
+    r.figures.push_back({"wobble_tolerance_ulps", static_cast<double>(kWobbleUlps)});
+    const bool non_monotone = max_back > kWobbleUlps;
+    r.verdict = t.failures.count == 0 && t.bad_pdf.count == 0 && !non_monotone ? Verdict::Pass : Verdict::Fail;
     r.summary = fmt::format("max |du| {:.2e} over all {} floats", t.max_error, kUnitFloats);
-    if (non_monotone) r.summary += fmt::format(", {} up / {} down", t.steps_up, t.steps_down);
+    if (steps_back > 0)
+        r.summary += fmt::format(", {} steps back (largest {} ulps)", steps_back, max_back);
+    if (t.boundary_zero > 0) r.summary += fmt::format(", {} zero pdfs on the boundary", t.boundary_zero);
     std::vector<std::string> why;
-    if (t.failures > 0)
+    if (t.failures.first) {
+        const FailureExample& e = *t.failures.first;
         why.push_back(fmt::format("{} inputs come back further than {:.3g}, first u = {:a} -> x = {} -> {:a}",
-                                  t.failures, tol, t.failure_u, t.failure_x, t.failure_back));
-    if (t.bad_pdf > 0)
-        why.push_back(fmt::format("{} samples with a pdf that is not finite and positive, first u = {:a} -> x = "
-                                  "{} (pdf {})",
-                                  t.bad_pdf, t.bad_pdf_u, t.bad_pdf_x, t.bad_pdf_value));
+                                  t.failures.count, tol, e.u, e.x, e.back));
+    }
+    if (t.bad_pdf.first) {
+        const BadPdfExample& e = *t.bad_pdf.first;
+        why.push_back(fmt::format("{} samples with a pdf that is not finite and positive (off the domain's "
+                                  "boundary), first u = {:a} -> x = {} (pdf {})",
+                                  t.bad_pdf.count, e.u, e.x, e.pdf));
+    }
     if (non_monotone)
         why.push_back(fmt::format("sample is not monotone: {} steps up and {} steps down between consecutive "
-                                  "floats u",
-                                  t.steps_up, t.steps_down));
+                                  "floats u, stepping back by up to {} ulps (rounding wobble is at most {})",
+                                  t.steps_up, t.steps_down, max_back, kWobbleUlps));
     r.message = join_reasons(why);
     return r;
 }
@@ -173,6 +207,7 @@ public:
         return warp.input_kind() == InputKind::Uniform1D && warp.has_inverse();
     }
     bool runs_by_default(const RunOptions& options) const override { return options.exhaustive; }
+    double time_budget(const RunOptions& options) const override { return sweep_time_budget(options, kUnitFloats); }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const double tol = warp.info().roundtrip_tolerance;
