@@ -101,7 +101,7 @@ public:
                "output float against the uniform measure";
     }
     bool applies_to(const WarpCase& warp) const override {
-        if (warp.domain().kind != chi2::DomainKind::Interval) return false;
+        if (!warp.domain().is<chi2::Interval>()) return false;
         return dynamic_cast<const SweepableCase*>(&warp) != nullptr || warp.input_kind() == InputKind::Bits32;
     }
 
@@ -111,8 +111,8 @@ public:
         const uint64_t inputs = sweepable ? sweepable->sweep_inputs() : uint64_t{1} << 32;
         const bool claims_monotone = sweepable ? sweepable->claims_monotone() : false;
         const std::string grid = sweepable ? sweepable->sweep_grid() : "all 2^32 inputs";
-        const auto a = static_cast<float>(warp.domain().a);
-        const auto b = static_cast<float>(warp.domain().b);
+        const auto a = static_cast<float>(warp.domain().a());
+        const auto b = static_cast<float>(warp.domain().b());
 
         const SweepSummary s = exhaustive_sweep(fn, inputs, a, b, ctx.executor());
 
