@@ -49,6 +49,7 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(make_exhaustive_roundtrip_check());
     registry.add_check(make_chi2_check());
     registry.add_check(make_tabulated_check());
+    registry.add_check(make_unbinned_check());
 }
 
 }  // namespace warpcheck

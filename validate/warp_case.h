@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -105,8 +106,12 @@ public:
     virtual void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const = 0;
     /// out[i] = pdf(x[i]), the density with respect to the domain's measure.
     virtual void pdf(std::span<const WarpOutput> x, std::span<double> out) const = 0;
-    /// out[i] = the input that sample maps to x[i].
+    /// out[i] = the input that sample maps to x[i]. Only where has_inverse().
     virtual void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const = 0;
+    /// Whether the warp has an inverse. Many real warps have none (visible-normal
+    /// or table-driven samplers): for them the round-trip checks do not apply,
+    /// which is not an error.
+    virtual bool has_inverse() const { return true; }
 
 private:
     WarpCaseInfo info_;
@@ -150,6 +155,9 @@ template <typename R, typename A> struct FirstArg<R (*)(A)> {
     using type = std::remove_cvref_t<A>;
 };
 
+/// The Invert of a warp without an inverse.
+struct NoInverse {};
+
 template <typename Sample, typename Pdf, typename Invert>
 class LambdaWarpCase final : public WarpCase {
     using In = typename FirstArg<Sample>::type;
@@ -168,9 +176,16 @@ public:
             out[k] = static_cast<double>(pdf_(WarpTypes<Out>::from_output(x[k])));
     }
     void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override {
-        for (std::size_t k = 0; k < x.size(); ++k)
-            out[k] = WarpTypes<In>::to_input(invert_(WarpTypes<Out>::from_output(x[k])));
+        if constexpr (std::is_same_v<Invert, NoInverse>) {
+            (void)x;
+            (void)out;
+            throw std::logic_error("warp case " + name() + " has no inverse");
+        } else {
+            for (std::size_t k = 0; k < x.size(); ++k)
+                out[k] = WarpTypes<In>::to_input(invert_(WarpTypes<Out>::from_output(x[k])));
+        }
     }
+    bool has_inverse() const override { return !std::is_same_v<Invert, NoInverse>; }
 
 private:
     Sample sample_;
@@ -191,25 +206,35 @@ std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample, Pdf p
                                                                          std::move(pdf), std::move(invert));
 }
 
-/// A warp object: a class with `sample(In)`, `pdf(Out)` and `invert(Out)`
-/// const members that are not overloaded or templates (sampling/README.md).
+/// Makes a warp case without an inverse from two callables (sample and pdf, as
+/// above): the round-trip checks do not apply to it.
+template <typename Sample, typename Pdf>
+std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample, Pdf pdf) {
+    return make_warp_case(std::move(info), std::move(sample), std::move(pdf), detail::NoInverse{});
+}
+
+/// A warp object: a class with `sample(In)` and `pdf(Out)` const members, and
+/// usually `invert(Out)`, that are not overloaded or templates (sampling/README.md).
 template <typename W>
 concept WarpObject = requires {
     typename detail::FirstArg<decltype(&W::sample)>::type;
     typename detail::FirstArg<decltype(&W::pdf)>::type;
-    &W::invert;
 };
 
 /// Makes a warp case from a warp object, e.g. make_warp_case(info, UniformCone(0.3f)):
-/// In and Out are read off the member signatures. The object is held by value;
-/// the members are called directly, so they inline into the batch loops.
+/// In and Out are read off the member signatures; a warp without an `invert`
+/// member has no inverse. The object is held by value; the members are called
+/// directly, so they inline into the batch loops.
 template <WarpObject W>
 std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, W warp) {
     using In = typename detail::FirstArg<decltype(&W::sample)>::type;
     using Out = typename detail::FirstArg<decltype(&W::pdf)>::type;
-    return make_warp_case(
-        std::move(info), [warp](In u) { return warp.sample(u); }, [warp](Out x) { return warp.pdf(x); },
-        [warp](Out x) { return warp.invert(x); });
+    auto sample = [warp](In u) { return warp.sample(u); };
+    auto pdf = [warp](Out x) { return warp.pdf(x); };
+    if constexpr (requires { &W::invert; })
+        return make_warp_case(std::move(info), sample, pdf, [warp](Out x) { return warp.invert(x); });
+    else
+        return make_warp_case(std::move(info), sample, pdf);
 }
 
 }  // namespace warpcheck

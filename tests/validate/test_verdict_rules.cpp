@@ -114,3 +114,35 @@ TEST(Inputs, RandomUniformsReachBelowTheTwoToTheMinus24Grid) {
 
 }  // namespace
 }  // namespace warpcheck
+
+namespace warpcheck {
+namespace {
+
+// A renderer's warp without an inverse (visible normals, table-driven samplers):
+// the round-trip checks do not apply, everything else runs and passes.
+TEST(NoInverse, RoundTripDoesNotApplyAndTheRestPasses) {
+    struct DiskWithoutInverse {
+        Point2f sample(Point2f u) const { return testing::twins::polar_disk(u, 1.0f); }
+        float pdf(Point2f p) const { return testing::twins::disk_pdf(p); }
+    };
+    auto warp = make_warp_case({.family = "disk_without_inverse", .description = "no inverse",
+                                .input = InputKind::Uniform2D, .domain = chi2::Domain::unit_disk()},
+                               DiskWithoutInverse{});
+    EXPECT_FALSE(warp->has_inverse());
+    auto lambdas = make_warp_case({.family = "disk_lambdas", .domain = chi2::Domain::unit_disk()},
+                                  [](Point2f u) { return testing::twins::polar_disk(u, 1.0f); }, testing::twins::disk_pdf);
+    EXPECT_FALSE(lambdas->has_inverse());
+    std::vector<WarpOutput> x(1);
+    std::vector<WarpInput> back(1);
+    EXPECT_THROW(warp->invert(x, back), std::logic_error);
+
+    const RunResult run = run_default_suite(std::move(warp));
+    ASSERT_FALSE(run.results.empty());
+    for (const auto& r : run.results) {
+        EXPECT_NE(r.check_name, "roundtrip");
+        EXPECT_EQ(r.verdict, Verdict::Pass) << r.check_name << ": " << r.message;
+    }
+}
+
+}  // namespace
+}  // namespace warpcheck

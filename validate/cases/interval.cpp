@@ -35,6 +35,7 @@ public:
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override { inner_->sample(in, out); }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override { inner_->pdf(x, out); }
     void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override { inner_->invert(x, out); }
+    bool has_inverse() const override { return inner_->has_inverse(); }
 
     FloatBlockFn sweep_fn() const override { return fn_; }
     uint64_t sweep_inputs() const override { return inputs_; }

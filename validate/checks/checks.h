@@ -26,5 +26,7 @@ std::unique_ptr<Check> make_chi2_check();
 /// sample(u) and the density against the inversion method on a 65536-bucket
 /// PiecewiseConstant1D of the density, with bucket-derived tolerances.
 std::unique_ptr<Check> make_tabulated_check();
+/// "unbinned": KS, Kuiper and Anderson-Darling tests of every marginal against its CDF from the pdf.
+std::unique_ptr<Check> make_unbinned_check();
 
 }  // namespace warpcheck

@@ -18,8 +18,12 @@
 #include <fmt/format.h>
 
 #include "chi2/chi2_test.h"
+#include "chi2/local_residual.h"
+#include "chi2/min_p.h"
+#include "chi2/power.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
+#include "validate/checks/power_level.h"
 
 namespace warpcheck {
 namespace {
@@ -146,7 +150,10 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
 /// engine and fail here; the p-value is judged by the runner at the
 /// Sidak-corrected level of the whole run (its size: the family-wise alpha).
 void judge(CheckResult& r, const chi2::Chi2Outcome& o) {
-    if (o.dof() >= 1) r.p_value = o.p_value();
+    // Pearson's statistic and the largest cell residual, one p-value (chi2/min_p.h).
+    const double local_p = chi2::largest_cell_residual(o.histogram.counts, o.expected, r.samples).p_value;
+    if (o.dof() >= 1)
+        r.p_value = chi2::weighted_min_p({o.p_value(), local_p}, {1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare});
     r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}", o.statistic(), o.dof(), o.p_value());
     if (!o.errors.empty()) {
         r.verdict = Verdict::Error;
@@ -186,6 +193,18 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning
     };
     if (binning.domain().is<chi2::HalfLine>())
         r.figures.push_back({"half_line_scale", binning.resolution().half_line_scale});
+    // The localised statistic (chi2/local_residual.h) and the stated power: the
+    // noncentrality, and the tilt of a marginal (chi2/power.h), that Pearson's
+    // statistic detects 90% of the time at the planned level (power_level.h).
+    const chi2::LocalResidual local = chi2::largest_cell_residual(h.counts, o.expected, samples);
+    const double level = (1.0 - chi2::kLocalLevelShare) * power_level(RunOptions{}, 1);  // default alpha
+    const double lambda = chi2::pearson_noncentrality_for_power(o.dof(), level);
+    r.figures.insert(r.figures.end(), {{"local_max_residual", local.residual},
+                                       {"local_cell", static_cast<double>(local.cell)},
+                                       {"local_p_value", local.p_value},
+                                       {"power_noncentrality", lambda},
+                                       {"power_tilt_eps", chi2::pearson_tilt_for_noncentrality(lambda, samples)},
+                                       {"power_level", level}});
 }
 
 /// The evidence part: heatmaps (2D) or count and residual curves (1D), and the

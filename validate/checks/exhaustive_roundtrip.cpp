@@ -169,7 +169,9 @@ public:
         return "1D warps, every float u of [0,1): invert(sample(u)) vs u, monotone sample, finite positive pdf "
                "(--exhaustive)";
     }
-    bool applies_to(const WarpCase& warp) const override { return warp.input_kind() == InputKind::Uniform1D; }
+    bool applies_to(const WarpCase& warp) const override {
+        return warp.input_kind() == InputKind::Uniform1D && warp.has_inverse();
+    }
     bool runs_by_default(const RunOptions& options) const override { return options.exhaustive; }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {

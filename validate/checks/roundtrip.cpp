@@ -335,7 +335,7 @@ public:
     std::string description() const override {
         return "invert(sample(u)) == u over a seeded stream plus edge inputs (exact for raw-bit inputs)";
     }
-    bool applies_to(const WarpCase&) const override { return true; }
+    bool applies_to(const WarpCase& warp) const override { return warp.has_inverse(); }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const InputKind kind = warp.input_kind();

@@ -1,0 +1,42 @@
+#include "chi2/local_residual.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <boost/math/distributions/binomial.hpp>
+
+namespace warpcheck::chi2 {
+
+namespace {
+
+double two_sided_binomial_p(uint64_t observed, double expected, uint64_t n) {
+    const double p = std::clamp(expected / static_cast<double>(n), 0.0, 1.0);
+    if (p >= 1.0) return 1.0;
+    const boost::math::binomial_distribution<double> law(static_cast<double>(n), p);
+    const double k = static_cast<double>(observed);
+    const double lower = boost::math::cdf(law, k);
+    const double upper = observed == 0 ? 1.0 : boost::math::cdf(boost::math::complement(law, k - 1.0));
+    return std::min(1.0, 2.0 * std::min(lower, upper));
+}
+
+}  // namespace
+
+LocalResidual largest_cell_residual(std::span<const uint64_t> counts, std::span<const double> expected, uint64_t n) {
+    LocalResidual out;
+    if (n == 0) return out;
+    for (std::size_t c = 0; c < counts.size() && c < expected.size(); ++c) {
+        if (!(expected[c] > 0.0)) continue;
+        ++out.cells_tested;
+        const double p = two_sided_binomial_p(counts[c], expected[c], n);
+        if (out.cells_tested == 1 || p < out.cell_p_value) {
+            out.cell = c;
+            out.cell_p_value = p;
+            out.residual = (static_cast<double>(counts[c]) - expected[c]) / std::sqrt(expected[c]);
+        }
+    }
+    const double m = static_cast<double>(out.cells_tested);
+    out.p_value = out.cells_tested == 0 ? 1.0 : -std::expm1(m * std::log1p(-out.cell_p_value));
+    return out;
+}
+
+}  // namespace warpcheck::chi2
