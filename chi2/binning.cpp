@@ -2,29 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 namespace warpcheck::chi2 {
 
 namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-bool has_phi(DomainKind kind) { return kind == DomainKind::Disk || kind == DomainKind::SphericalCap; }
 
 int clamp_index(double f, int n) {
     // f may be slightly negative or reach n for points within the tolerance.
     if (!(f >= 0.0)) return 0;
     const auto i = static_cast<long long>(f);
     return i >= n ? n - 1 : static_cast<int>(i);
-}
-
-/// phi in [0, 2 pi) with the exact atan2.
-double exact_phi(double x, double y) {
-    double phi = std::atan2(y, x);
-    if (phi < 0.0) phi += kTwoPi;
-    return phi >= kTwoPi ? 0.0 : phi;
 }
 
 }  // namespace
@@ -71,70 +63,49 @@ Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domai
     if (resolution_.half_line_scale == 0.0) resolution_.half_line_scale = 1.0;
     if (!(resolution_.half_line_scale > 0.0) || !std::isfinite(resolution_.half_line_scale))
         throw std::invalid_argument("half-line scale must be positive and finite");
+    const BinResolution defaults = std::visit([](const auto& k) { return k.default_resolution(); }, domain_.shape());
     auto pick = [](int requested, int fallback) { return requested > 0 ? requested : fallback; };
-    switch (domain_.kind) {
-        case DomainKind::Interval:
-            dims_ = 1;
-            cols_ = pick(resolution_.first, 200);
-            bounds_ = {domain_.a, domain_.b, 0.0, 1.0};
-            break;
-        case DomainKind::HalfLine:
-            dims_ = 1;
-            cols_ = pick(resolution_.first, 200);
-            bounds_ = {0.0, 1.0, 0.0, 1.0};
-            break;
-        case DomainKind::Box:
-            dims_ = 2;
-            cols_ = pick(resolution_.first, 32);
-            rows_ = pick(resolution_.second, 32);
-            bounds_ = {domain_.x0, domain_.x1, domain_.y0, domain_.y1};
-            break;
-        case DomainKind::Disk:
-            dims_ = 2;
-            cols_ = pick(resolution_.first, 32);
-            rows_ = pick(resolution_.second, 32);
-            bounds_ = {0.0, kTwoPi, 0.0, 1.0};
-            break;
-        case DomainKind::SphericalCap:
-            dims_ = 2;
-            cols_ = pick(resolution_.first, 32);
-            rows_ = pick(resolution_.second, 32);
-            bounds_ = {0.0, kTwoPi, domain_.z_min, 1.0};
-            break;
-    }
+    dims_ = domain_.point_dimension() == 1 ? 1 : 2;
+    cols_ = pick(resolution_.first, defaults.first);
+    rows_ = dims_ == 1 ? 1 : pick(resolution_.second, defaults.second);
+    bounds_ = std::visit([](const auto& k) { return k.parameter_bounds(); }, domain_.shape());
     const Domain::Slack slack = domain_.slack();  // the one membership tolerance
     tol_x_ = slack.x;
     tol_y_ = slack.y;
     if (dims_ == 1 && resolution_.second > 1) throw std::invalid_argument("1D domains take one resolution value");
     if (cell_count() > (std::size_t{1} << 26)) throw std::invalid_argument("bin resolution too large");
     du_ = (bounds_.u1 - bounds_.u0) / cols_;
-    if (domain_.kind == DomainKind::Interval) {
-        interval_edges_.resize(static_cast<std::size_t>(cols_) + 1);
-        interval_edges_.front() = bounds_.u0;
-        interval_edges_.back() = bounds_.u1;
-        for (int j = 1; j < cols_; ++j) {
-            const double e = bounds_.u0 + (bounds_.u1 - bounds_.u0) * j / cols_;
-            float f = static_cast<float>(e);
-            if (static_cast<double>(f) < e) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-            interval_edges_[static_cast<std::size_t>(j)] = static_cast<double>(f);
-        }
-    }
+    if (domain_.is<Interval>()) build_interval_edges();
     dv_ = (bounds_.v1 - bounds_.v0) / rows_;
-    if (has_phi(domain_.kind) && cols_ % 8 == 0) {
-        octant_cols_ = cols_ / 8;
-        tan_edges_.resize(static_cast<std::size_t>(octant_cols_) + 1);
-        for (int k = 0; k < octant_cols_; ++k) tan_edges_[static_cast<std::size_t>(k)] = std::tan(k * du_);
-        tan_edges_.back() = std::numeric_limits<double>::infinity();
-        // Edges are at least du apart in t (tan' >= 1): with a lookup cell of
-        // du / 2 or less, the comparison loop below runs at most twice.
-        const int cells = std::max(256, 4 * octant_cols_);
-        lookup_scale_ = cells;
-        edge_lookup_.resize(static_cast<std::size_t>(cells) + 1);
-        int j = 0;
-        for (int m = 0; m <= cells; ++m) {
-            while (j + 1 < octant_cols_ && tan_edges_[static_cast<std::size_t>(j) + 1] <= m / lookup_scale_) ++j;
-            edge_lookup_[static_cast<std::size_t>(m)] = j;
-        }
+    if (domain_.azimuthal() && cols_ % 8 == 0) build_phi_table();
+}
+
+void Binning::build_interval_edges() {
+    interval_edges_.resize(static_cast<std::size_t>(cols_) + 1);
+    interval_edges_.front() = bounds_.u0;
+    interval_edges_.back() = bounds_.u1;
+    for (int j = 1; j < cols_; ++j) {
+        const double e = bounds_.u0 + (bounds_.u1 - bounds_.u0) * j / cols_;
+        float f = static_cast<float>(e);
+        if (static_cast<double>(f) < e) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+        interval_edges_[static_cast<std::size_t>(j)] = static_cast<double>(f);
+    }
+}
+
+void Binning::build_phi_table() {
+    octant_cols_ = cols_ / 8;
+    tan_edges_.resize(static_cast<std::size_t>(octant_cols_) + 1);
+    for (int k = 0; k < octant_cols_; ++k) tan_edges_[static_cast<std::size_t>(k)] = std::tan(k * du_);
+    tan_edges_.back() = std::numeric_limits<double>::infinity();
+    // Edges are at least du apart in t (tan' >= 1): with a lookup cell of
+    // du / 2 or less, the comparison loop below runs at most twice.
+    const int cells = std::max(256, 4 * octant_cols_);
+    lookup_scale_ = cells;
+    edge_lookup_.resize(static_cast<std::size_t>(cells) + 1);
+    int j = 0;
+    for (int m = 0; m <= cells; ++m) {
+        while (j + 1 < octant_cols_ && tan_edges_[static_cast<std::size_t>(j) + 1] <= m / lookup_scale_) ++j;
+        edge_lookup_[static_cast<std::size_t>(m)] = j;
     }
 }
 
@@ -180,62 +151,46 @@ ParamRect Binning::cell_rect(std::size_t cell) const {
 
 double Binning::cell_measure(std::size_t cell) const {
     const ParamRect r = cell_rect(cell);
-    switch (domain_.kind) {
-        case DomainKind::Interval: return r.u1 - r.u0;
-        case DomainKind::HalfLine: {
-            if (r.u1 >= 1.0) return std::numeric_limits<double>::infinity();
-            const double s = resolution_.half_line_scale;
-            return s * r.u1 / (1.0 - r.u1) - s * r.u0 / (1.0 - r.u0);
-        }
-        case DomainKind::Box:
-        case DomainKind::SphericalCap: return (r.u1 - r.u0) * (r.v1 - r.v0);
-        case DomainKind::Disk: return 0.5 * (r.u1 - r.u0) * (r.v1 - r.v0);
-    }
-    return 0.0;
+    return std::visit([&](const auto& k) { return k.cell_measure(r, resolution_); }, domain_.shape());
 }
 
 DomainPoint Binning::point_at(double u, double v) const {
-    switch (domain_.kind) {
-        case DomainKind::Interval: return {u, 0.0, 0.0};
-        case DomainKind::HalfLine: return {domain_.a + resolution_.half_line_scale * u / (1.0 - u), 0.0, 0.0};
-        case DomainKind::Box: return {u, v, 0.0};
-        case DomainKind::Disk: {
-            const double r = std::sqrt(v);
-            return {r * std::cos(u), r * std::sin(u), 0.0};
-        }
-        case DomainKind::SphericalCap: {
-            const double s = std::sqrt(std::max(0.0, 1.0 - v * v));
-            return {s * std::cos(u), s * std::sin(u), v};
-        }
-    }
-    return {};
+    return std::visit(
+        [&](const auto& k) -> DomainPoint {
+            if constexpr (std::decay_t<decltype(k)>::kAzimuthal) {
+                const auto [radius, height] = k.ring(v);  // as the quadrature's grids compute it
+                return {radius * std::cos(u), radius * std::sin(u), height};
+            } else {
+                return k.point_at(u, v, resolution_);
+            }
+        },
+        domain_.shape());
+}
+
+std::array<double, 2> Binning::ring(double v) const {
+    return std::visit(
+        [&](const auto& k) -> std::array<double, 2> {
+            if constexpr (std::decay_t<decltype(k)>::kAzimuthal) return k.ring(v);
+            else throw std::logic_error("Binning::ring: " + k.describe() + " is not azimuthal");
+        },
+        domain_.shape());
 }
 
 double Binning::jacobian(double u, double v) const {
-    (void)v;
-    switch (domain_.kind) {
-        case DomainKind::HalfLine: return resolution_.half_line_scale / ((1.0 - u) * (1.0 - u));
-        case DomainKind::Disk: return 0.5;
-        default: return 1.0;
-    }
+    return std::visit([&](const auto& k) { return k.jacobian(u, v, resolution_); }, domain_.shape());
 }
 
 std::array<double, 2> Binning::parameters_of(const DomainPoint& p) const {
-    switch (domain_.kind) {
-        case DomainKind::Interval: return {p[0], 0.5};
-        case DomainKind::HalfLine: {
-            const double d = std::max(0.0, p[0] - domain_.a);
-            return {d / (resolution_.half_line_scale + d), 0.5};
-        }
-        case DomainKind::Box: return {p[0], p[1]};
-        case DomainKind::Disk: return {exact_phi(p[0], p[1]), p[0] * p[0] + p[1] * p[1]};
-        case DomainKind::SphericalCap: return {exact_phi(p[0], p[1]), p[2]};
-    }
-    return {};
+    return std::visit(
+        [&](const auto& k) -> std::array<double, 2> {
+            if constexpr (std::decay_t<decltype(k)>::kAzimuthal) return {exact_phi(p[0], p[1]), k.v_of(p)};
+            else return k.parameters_of(p, resolution_);
+        },
+        domain_.shape());
 }
 
 std::size_t Binning::cell_at_parameters(double u, double v) const {
-    if (has_phi(domain_.kind)) {
+    if (domain_.azimuthal()) {
         u = std::fmod(u, kTwoPi);
         if (u < 0.0) u += kTwoPi;
     }
@@ -257,10 +212,9 @@ std::ptrdiff_t Binning::cell_of(const DomainPoint& p) const {
 std::size_t Binning::snap_from_zero_cell(double u, double v, std::size_t cell, std::span<const unsigned char> zero_cells,
                                          uint64_t& snapped) const {
     // Tolerance in parameter units: the coordinate slack, and 2 pi times it for phi.
-    const double tu = has_phi(domain_.kind) ? kTwoPi * kDomainTolerance
-                      : domain_.kind == DomainKind::HalfLine ? kDomainTolerance
-                                                              : tol_x_;
-    const double tv = dims_ == 1 ? 0.0 : tol_y_;
+    const auto [tu, tv_kind] = std::visit([&](const auto& k) { return k.parameter_slack({tol_x_, tol_y_}); },
+                                           domain_.shape());
+    const double tv = dims_ == 1 ? 0.0 : tv_kind;
     static constexpr int kSteps[8][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
     for (const auto& s : kSteps) {
         if (dims_ == 1 && s[1] != 0) continue;
@@ -275,14 +229,7 @@ std::size_t Binning::snap_from_zero_cell(double u, double v, std::size_t cell, s
 
 // Whether parameters (u, v) lie exactly on the domain's boundary (Domain::on_boundary).
 bool Binning::on_parameter_boundary(double u, double v) const {
-    switch (domain_.kind) {
-        case DomainKind::Interval: return u <= domain_.a || u >= domain_.b;
-        case DomainKind::HalfLine: return u <= 0.0;
-        case DomainKind::Box: return u <= domain_.x0 || u >= domain_.x1 || v <= domain_.y0 || v >= domain_.y1;
-        case DomainKind::Disk: return v >= 1.0;
-        case DomainKind::SphericalCap: return domain_.z_min > -1.0 && v <= domain_.z_min;
-    }
-    return false;
+    return std::visit([&](const auto& k) { return k.on_parameter_boundary(u, v); }, domain_.shape());
 }
 
 template <typename Point>
@@ -326,74 +273,36 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
     };
     const std::size_t cols = static_cast<std::size_t>(cols_);
 
-    switch (domain_.kind) {
-        case DomainKind::Interval: {
-            const double lo = domain_.a - tol_x_, hi = domain_.b + tol_x_;
+    // One loop per kind (std::visit outside it): NaN first, then membership,
+    // then the cell. Azimuthal kinds get phi's column from the table or the
+    // fast atan2 and their row from v; the others map the point to (u, v).
+    const Domain::Slack slack{tol_x_, tol_y_};
+    std::visit(
+        [&](const auto& kind) {
+            using Kind = std::decay_t<decltype(kind)>;
             for (const auto& p : points) {
-                const double x = p[0];
-                if (x != x) { ++hist.nan; continue; }
-                if (!(x >= lo && x <= hi)) { ++hist.outside; continue; }
-                add(static_cast<std::size_t>(interval_column(x)), x, 0.5);
-            }
-            break;
-        }
-        case DomainKind::HalfLine: {
-            const double s = resolution_.half_line_scale;
-            for (const auto& p : points) {
-                const double x = p[0];
-                if (x != x) { ++hist.nan; continue; }
-                if (!(x >= domain_.a - tol_x_) || std::isinf(x)) { ++hist.outside; continue; }
-                const double d = std::max(0.0, x - domain_.a);
-                const double t = d / (s + d);
-                add(static_cast<std::size_t>(clamp_index(t * inv_du, cols_)), t, 0.5);
-            }
-            break;
-        }
-        case DomainKind::Box: {
-            for (const auto& p : points) {
-                const double x = p[0], y = p[1];
-                if (x != x || y != y) { ++hist.nan; continue; }
-                if (!(x >= domain_.x0 - tol_x_ && x <= domain_.x1 + tol_x_ && y >= domain_.y0 - tol_y_ &&
-                      y <= domain_.y1 + tol_y_)) {
-                    ++hist.outside;
-                    continue;
+                constexpr int n = Kind::kPointDimension;
+                const DomainPoint q{p[0], n > 1 ? p[1] : 0.0, n > 2 ? p[2] : 0.0};
+                if (q[0] != q[0] || q[1] != q[1] || q[2] != q[2]) { ++hist.nan; continue; }
+                bool inside = false;
+                if constexpr (requires { kind.bin_contains(q, slack); }) inside = kind.bin_contains(q, slack);
+                else inside = kind.contains(q, slack);
+                if (!inside) { ++hist.outside; continue; }
+                if constexpr (Kind::kAzimuthal) {
+                    const double v = kind.v_of(q);
+                    const auto col = static_cast<std::size_t>(phi_column(q[0], q[1]));
+                    const auto row = static_cast<std::size_t>(clamp_index((v - bounds_.v0) * inv_dv, rows_));
+                    add_phi(row * cols + col, q[0], q[1], v);
+                } else {
+                    const auto [u, v] = kind.parameters_of(q, resolution_);
+                    const int c = interval_edges_.empty() ? clamp_index((u - bounds_.u0) * inv_du, cols_)
+                                                          : interval_column(u);
+                    const auto row = static_cast<std::size_t>(clamp_index((v - bounds_.v0) * inv_dv, rows_));
+                    add(row * cols + static_cast<std::size_t>(c), u, v);
                 }
-                const auto col = static_cast<std::size_t>(clamp_index((x - bounds_.u0) * inv_du, cols_));
-                const auto row = static_cast<std::size_t>(clamp_index((y - bounds_.v0) * inv_dv, rows_));
-                add(row * cols + col, x, y);
             }
-            break;
-        }
-        case DomainKind::Disk: {
-            const double r2_max = (1.0 + tol_x_) * (1.0 + tol_x_);  // Domain::contains, squared
-            for (const auto& p : points) {
-                const double x = p[0], y = p[1];
-                if (x != x || y != y) { ++hist.nan; continue; }
-                const double r2 = x * x + y * y;
-                if (!(r2 <= r2_max)) { ++hist.outside; continue; }
-                const auto col = static_cast<std::size_t>(phi_column(x, y));
-                const auto row = static_cast<std::size_t>(clamp_index(r2 * inv_dv, rows_));
-                add_phi(row * cols + col, x, y, r2);
-            }
-            break;
-        }
-        case DomainKind::SphericalCap: {
-            // |len - 1| <= tol  <=>  len^2 within [(1 - tol)^2, (1 + tol)^2].
-            const double len2_lo = (1.0 - tol_x_) * (1.0 - tol_x_);  // Domain::contains, squared
-            const double len2_hi = (1.0 + tol_x_) * (1.0 + tol_x_);
-            const double z_lo = domain_.z_min - tol_x_, z0 = domain_.z_min;
-            for (const auto& p : points) {
-                const double x = p[0], y = p[1], z = p[2];
-                if (x != x || y != y || z != z) { ++hist.nan; continue; }
-                const double len2 = x * x + y * y + z * z;
-                if (!(len2 >= len2_lo && len2 <= len2_hi && z >= z_lo)) { ++hist.outside; continue; }
-                const auto col = static_cast<std::size_t>(phi_column(x, y));
-                const auto row = static_cast<std::size_t>(clamp_index((z - z0) * inv_dv, rows_));
-                add_phi(row * cols + col, x, y, z);
-            }
-            break;
-        }
-    }
+        },
+        domain_.shape());
 }
 
 void Binning::bin(std::span<const std::array<float, 3>> points, Histogram& hist,
@@ -406,32 +315,21 @@ void Binning::bin(std::span<const DomainPoint> points, Histogram& hist, std::spa
 }
 
 std::string Binning::u_label() const {
-    switch (domain_.kind) {
-        case DomainKind::Interval: return "x";
-        case DomainKind::HalfLine: return "x";
-        case DomainKind::Box: return "x";
-        case DomainKind::Disk:
-        case DomainKind::SphericalCap: return "phi";
-    }
-    return "u";
+    return std::visit([](const auto& k) { return k.u_label(); }, domain_.shape());
 }
 
 std::string Binning::v_label() const {
-    switch (domain_.kind) {
-        case DomainKind::Box: return "y";
-        case DomainKind::Disk: return "r^2";
-        case DomainKind::SphericalCap: return "cos theta";
-        default: return "";
-    }
+    return std::visit([](const auto& k) { return k.v_label(); }, domain_.shape());
 }
 
 double Binning::cell_position(std::size_t cell) const {
     const ParamRect r = cell_rect(cell);
-    if (domain_.kind == DomainKind::HalfLine) {
-        const double t = r.u1 >= 1.0 ? r.u0 : 0.5 * (r.u0 + r.u1);
-        return point_at(t, 0.5)[0];
-    }
-    return 0.5 * (r.u0 + r.u1);
+    return std::visit(
+        [&](const auto& k) {
+            if constexpr (std::decay_t<decltype(k)>::kAzimuthal) return 0.5 * (r.u0 + r.u1);
+            else return k.cell_position(r, resolution_);
+        },
+        domain_.shape());
 }
 
 }  // namespace warpcheck::chi2

@@ -2,13 +2,8 @@
 // parameters (u, v), how a parameter point maps to a domain point and measure,
 // and the fast classification of samples into cells.
 //
-// Parameters per domain (cell measure = du dv * jacobian):
-//   Interval      u = x                              jacobian 1
-//   HalfLine      u = t, x = a + s t / (1 - t)       jacobian s / (1 - t)^2
-//                 (the last cell, t in [t_last, 1), is the tail to infinity)
-//   Box           (u, v) = (x, y)                    jacobian 1
-//   Disk          (u, v) = (phi, r^2)                jacobian 1/2 (r dr dphi = d(r^2) dphi / 2)
-//   SphericalCap  (u, v) = (phi, z = cos theta)      jacobian 1 (dA = dphi dz on the unit sphere)
+// Each domain kind defines its parameters (chi2/domain_kinds.h); Binning
+// divides their rectangle uniformly and asks the kind for the rest.
 // Cells are numbered row-major: index = row * cols + col, row along v.
 #pragma once
 
@@ -22,12 +17,6 @@
 #include "chi2/domain.h"
 
 namespace warpcheck::chi2 {
-
-/// A rectangle of parameter space.
-struct ParamRect {
-    double u0 = 0.0, u1 = 1.0;
-    double v0 = 0.0, v1 = 1.0;
-};
 
 /// Counts of one histogram: per cell, plus the samples that fell in no cell.
 struct Histogram {
@@ -75,6 +64,9 @@ public:
     /// The domain point at parameters (u, v) and the measure density there.
     DomainPoint point_at(double u, double v) const;
     double jacobian(double u, double v) const;
+    /// Azimuthal domains only (Domain::azimuthal): the radius and height of the
+    /// ring at parameter v, so that point_at(u, v) = (r cos u, r sin u, z).
+    std::array<double, 2> ring(double v) const;
 
     /// Parameters of a point of the domain (no tolerance handling): the inverse of point_at.
     std::array<double, 2> parameters_of(const DomainPoint& p) const;
@@ -104,6 +96,8 @@ public:
 private:
     template <typename Point>
     void bin_impl(std::span<const Point> points, Histogram& hist, std::span<const unsigned char> zero_cells) const;
+    void build_interval_edges();
+    void build_phi_table();
     bool on_parameter_boundary(double u, double v) const;
     std::size_t snap_from_zero_cell(double u, double v, std::size_t cell, std::span<const unsigned char> zero_cells,
                                     uint64_t& snapped) const;

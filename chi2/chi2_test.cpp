@@ -69,7 +69,7 @@ namespace {
 /// 1.2e-7 apart and 0.002 from each other). Estimated from the end cells'
 /// average density; on other domains the band is below 2^-24 of the unit scale.
 double boundary_band_mass(const Binning& binning, const CellIntegrals& q) {
-    if (binning.domain().kind != DomainKind::Interval || q.probability.empty()) return 0.0;
+    if (!binning.domain().is<Interval>() || q.probability.empty()) return 0.0;
     double band = 0.0;
     for (const std::size_t cell : {std::size_t{0}, q.probability.size() - 1}) {
         const ParamRect r = binning.cell_rect(cell);

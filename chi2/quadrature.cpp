@@ -130,19 +130,15 @@ private:
             for (std::size_t i = 0; i < kNodes; ++i) points_[i] = binning_.point_at(us[i], 0.5);
             return;
         }
-        const DomainKind kind = binning_.domain().kind;
-        if (kind == DomainKind::Disk || kind == DomainKind::SphericalCap) {
-            // (phi, v) grids: one cos/sin per phi node and one radius per v node.
+        if (binning_.domain().azimuthal()) {
+            // (phi, v) grids: one cos/sin per phi node and one ring per v node.
             std::array<double, kNodes> c{}, s{};
             for (std::size_t i = 0; i < kNodes; ++i) {
                 c[i] = std::cos(us[i]);
                 s[i] = std::sin(us[i]);
             }
             for (std::size_t j = 0; j < kNodes; ++j) {
-                const double v = vs[j];
-                const bool cap = kind == DomainKind::SphericalCap;
-                const double radius = cap ? std::sqrt(std::max(0.0, 1.0 - v * v)) : std::sqrt(v);
-                const double z = cap ? v : 0.0;
+                const auto [radius, z] = binning_.ring(vs[j]);
                 for (std::size_t i = 0; i < kNodes; ++i) points_[j * kNodes + i] = {radius * c[i], radius * s[i], z};
             }
             return;

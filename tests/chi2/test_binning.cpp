@@ -4,6 +4,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -42,20 +43,14 @@ class BinningTest : public ::testing::TestWithParam<DomainCase> {};
 /// A random point of the domain (not uniformly distributed; coverage only).
 DomainPoint random_point(const Domain& d, Pcg32& rng) {
     const double u = rng.next_double(), v = rng.next_double();
-    switch (d.kind) {
-        case DomainKind::Interval: return {d.a + (d.b - d.a) * u, 0, 0};
-        case DomainKind::HalfLine: return {d.a - std::log1p(-u) * 3.0, 0, 0};
-        case DomainKind::Box: return {d.x0 + (d.x1 - d.x0) * u, d.y0 + (d.y1 - d.y0) * v, 0};
-        case DomainKind::Disk: {
-            const double r = std::sqrt(u), phi = 2 * std::numbers::pi * v;
-            return {r * std::cos(phi), r * std::sin(phi), 0};
-        }
-        case DomainKind::SphericalCap: {
-            const double z = d.z_min + (1 - d.z_min) * u, s = std::sqrt(1 - z * z), phi = 2 * std::numbers::pi * v;
-            return {s * std::cos(phi), s * std::sin(phi), z};
-        }
-    }
-    return {};
+    if (const auto* i = std::get_if<Interval>(&d.shape())) return {i->a + (i->b - i->a) * u, 0, 0};
+    if (const auto* h = std::get_if<HalfLine>(&d.shape())) return {h->a - std::log1p(-u) * 3.0, 0, 0};
+    if (const auto* b = std::get_if<Box>(&d.shape()))
+        return {b->x0 + (b->x1 - b->x0) * u, b->y0 + (b->y1 - b->y0) * v, 0};
+    const double phi = 2 * std::numbers::pi * v;
+    if (d.is<Disk>()) return {std::sqrt(u) * std::cos(phi), std::sqrt(u) * std::sin(phi), 0};
+    const double z_min = d.as<SphericalCap>().z_min, z = z_min + (1 - z_min) * u, s = std::sqrt(1 - z * z);
+    return {s * std::cos(phi), s * std::sin(phi), z};
 }
 
 TEST_P(BinningTest, CellMeasuresSumToDomainMeasure) {
@@ -67,14 +62,14 @@ TEST_P(BinningTest, CellMeasuresSumToDomainMeasure) {
         EXPECT_GT(m, 0.0) << c;
         sum += m;
     }
-    if (b.domain().kind == DomainKind::HalfLine) {
+    if (b.domain().is<HalfLine>()) {
         // Finite cells end where the tail cell starts; the tail is infinite.
         const std::size_t tail = b.cell_count() - 1;
         EXPECT_TRUE(std::isinf(b.cell_measure(tail)));
         double finite = 0.0;
         for (std::size_t c = 0; c < tail; ++c) finite += b.cell_measure(c);
         const double tail_start = b.point_at(b.cell_rect(tail).u0, 0.5)[0];
-        EXPECT_NEAR(finite, tail_start - b.domain().a, 1e-9 * tail_start);
+        EXPECT_NEAR(finite, tail_start - b.domain().a(), 1e-9 * tail_start);
     } else {
         EXPECT_NEAR(sum, b.domain().measure(), 1e-12 * b.domain().measure());
     }

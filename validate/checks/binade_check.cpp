@@ -99,7 +99,7 @@ struct Counts {
 
 // Adds every sample to its binade in `cells`; returns the samples outside [a,b).
 uint64_t count_binades(const WarpCase& warp, const CheckContext& ctx, uint64_t samples, std::vector<Cell>& cells) {
-    const double a = warp.domain().a, b = warp.domain().b;
+    const double a = warp.domain().a(), b = warp.domain().b();
     std::map<int, std::size_t> index;
     for (std::size_t k = 0; k < cells.size(); ++k) index[cells[k].key] = k;
     auto chunks = map_input_chunks<Counts>(ctx, warp.input_kind(), samples, false, [&](std::size_t, auto inputs) {
@@ -265,11 +265,11 @@ public:
                "binades (at least 2^24 samples)";
     }
     bool applies_to(const WarpCase& warp) const override {
-        return warp.input_kind() == InputKind::Bits64 && warp.domain().kind == chi2::DomainKind::Interval;
+        return warp.input_kind() == InputKind::Bits64 && warp.domain().is<chi2::Interval>();
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
-        const double a = warp.domain().a, b = warp.domain().b;
+        const double a = warp.domain().a(), b = warp.domain().b();
         std::vector<Cell> cells = cells_of(a, b);
         const uint64_t samples = std::max(ctx.options().samples, kMinSamples);
         const uint64_t outside = count_binades(warp, ctx, samples, cells);

@@ -32,7 +32,7 @@ namespace {
 /// the scale of the density at the start (1/rate for an exponential), so that
 /// its cells follow the distribution whatever its rate.
 double half_line_scale(const WarpCase& warp) {
-    const std::vector<WarpOutput> start = {{static_cast<float>(warp.domain().a), 0.0f, 0.0f}};
+    const std::vector<WarpOutput> start = {{static_cast<float>(warp.domain().a()), 0.0f, 0.0f}};
     std::vector<double> density(1);
     warp.pdf(start, density);
     const double s = 1.0 / density[0];
@@ -191,7 +191,7 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning
         {"snapped_at_support_edge", static_cast<double>(h.snapped)},
         {"samples", static_cast<double>(samples)},
     };
-    if (binning.domain().kind == chi2::DomainKind::HalfLine)
+    if (binning.domain().is<chi2::HalfLine>())
         r.figures.push_back({"half_line_scale", binning.resolution().half_line_scale});
     // The localised statistic (chi2/local_residual.h) and the stated power: the
     // noncentrality, and the tilt of a marginal (chi2/power.h), that Pearson's
@@ -228,7 +228,7 @@ public:
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         chi2::BinResolution resolution = warp.info().chi2_resolution;
-        if (warp.domain().kind == chi2::DomainKind::HalfLine && resolution.half_line_scale == 0.0)
+        if (warp.domain().is<chi2::HalfLine>() && resolution.half_line_scale == 0.0)
             resolution.half_line_scale = half_line_scale(warp);
         const chi2::Binning binning(warp.domain(), resolution);
         const chi2::Chi2Outcome outcome = compute(warp, ctx, binning);

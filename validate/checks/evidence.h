@@ -39,7 +39,7 @@ public:
         if (entries_.size() == k_ && !before(r, index, entries_.back())) return;
         Entry e{key, index, std::move(item)};
         auto at = std::upper_bound(entries_.begin(), entries_.end(), e,
-                                   [this](const Entry& a, const Entry& b) { return before(rank(a.key), a.index, b); });
+                                   [](const Entry& a, const Entry& b) { return before(rank(a.key), a.index, b); });
         entries_.insert(at, std::move(e));
         if (entries_.size() > k_) entries_.pop_back();
     }

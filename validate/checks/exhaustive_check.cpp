@@ -304,7 +304,7 @@ public:
                "output float against the uniform measure";
     }
     bool applies_to(const WarpCase& warp) const override {
-        if (warp.domain().kind != chi2::DomainKind::Interval) return false;
+        if (!warp.domain().is<chi2::Interval>()) return false;
         return dynamic_cast<const SweepableCase*>(&warp) != nullptr || warp.input_kind() == InputKind::Bits32;
     }
 
@@ -320,8 +320,8 @@ public:
         sw.inputs = sweepable ? sweepable->sweep_inputs() : uint64_t{1} << 32;
         sw.claims_monotone = sweepable ? sweepable->claims_monotone() : false;
         sw.grid = sweepable ? sweepable->sweep_grid() : "all 2^32 inputs";
-        sw.a = static_cast<float>(warp.domain().a);
-        sw.b = static_cast<float>(warp.domain().b);
+        sw.a = static_cast<float>(warp.domain().a());
+        sw.b = static_cast<float>(warp.domain().b());
         sw.max_float_bias = ctx.options().max_float_bias;
         const SweepSummary s = exhaustive_sweep(fn, sw.inputs, sw.a, sw.b, ctx.executor());
         CheckResult r = judge(s, sw);

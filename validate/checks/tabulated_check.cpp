@@ -49,9 +49,9 @@ bool resolve(const WarpCase& warp, View& view) {
         }
         return true;
     }
-    if (info.input == InputKind::Uniform1D && d.kind == chi2::DomainKind::Interval) {
-        view.m.lo = d.a;
-        view.m.hi = d.b;
+    if (info.input == InputKind::Uniform1D && d.is<chi2::Interval>()) {
+        view.m.lo = d.a();
+        view.m.hi = d.b();
         view.m.label = std::string(1, 'x');  // not = "x": GCC 12 reports a false -Wrestrict there
         view.use_warp_pdf = true;
         return true;

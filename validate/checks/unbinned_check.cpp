@@ -61,7 +61,7 @@ struct Marginal {
 /// Whether parameter `axis` of the domain is an azimuth (a circle: where it
 /// starts is arbitrary). The one place this check looks at the domain's kind.
 bool is_azimuth(const chi2::Domain& domain, int axis) {
-    return axis == 0 && (domain.kind == chi2::DomainKind::Disk || domain.kind == chi2::DomainKind::SphericalCap);
+    return axis == 0 && domain.azimuthal();
 }
 
 /// The test that judges a marginal. Kuiper on an azimuth: the only one of the
@@ -94,9 +94,9 @@ chi2::ParallelFor parallel(const CheckContext& ctx) {
 /// density's scale at the start), else 1.
 double half_line_scale(const WarpCase& warp) {
     double s = warp.info().chi2_resolution.half_line_scale;
-    if (s > 0.0 || warp.domain().kind != chi2::DomainKind::HalfLine) return s;
+    if (s > 0.0 || !warp.domain().is<chi2::HalfLine>()) return s;
     std::vector<double> density(1);
-    warp.pdf(std::vector<WarpOutput>{{static_cast<float>(warp.domain().a), 0.0f, 0.0f}}, density);
+    warp.pdf(std::vector<WarpOutput>{{static_cast<float>(warp.domain().a()), 0.0f, 0.0f}}, density);
     s = 1.0 / density[0];
     return std::isfinite(s) && s > 0.0 ? s : 1.0;
 }

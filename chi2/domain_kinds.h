@@ -1,0 +1,201 @@
+// The kinds of domain, one struct each: its geometry (measure, membership,
+// boundary, name) and its binning parameterisation (the parameter rectangle
+// (u, v) that the chi-square cells divide uniformly, and the maps between it and
+// the domain). chi2/domain.h lists what a kind must provide.
+//
+// Parameters per kind (cell measure = du dv * jacobian):
+//   Interval      u = x                              jacobian 1
+//   HalfLine      u = t, x = a + s t / (1 - t)       jacobian s / (1 - t)^2
+//                 (the last cell, t in [t_last, 1), is the tail to infinity)
+//   Box           (u, v) = (x, y)                    jacobian 1
+//   Disk          (u, v) = (phi, r^2)                jacobian 1/2 (r dr dphi = d(r^2) dphi / 2)
+//   SphericalCap  (u, v) = (phi, z = cos theta)      jacobian 1 (dA = dphi dz on the unit sphere)
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "chi2/domain_parts.h"
+
+namespace warpcheck::chi2 {
+
+/// [a, b], length measure.
+struct Interval {
+    double a = 0.0, b = 1.0;
+
+    static constexpr int kPointDimension = 1;
+    static constexpr bool kAzimuthal = false;
+    double measure() const { return b - a; }
+    DomainSlack slack() const { return {kDomainTolerance * std::max({b - a, std::abs(a), std::abs(b)}), 0.0}; }
+    bool contains(const DomainPoint& p, const DomainSlack& s) const { return p[0] >= a - s.x && p[0] <= b + s.x; }
+    bool on_boundary(const DomainPoint& p) const { return p[0] == a || p[0] == b; }
+    std::string describe() const { return "interval [" + std::to_string(a) + ", " + std::to_string(b) + "]"; }
+
+    BinResolution default_resolution() const { return {200, 1}; }
+    ParamRect parameter_bounds() const { return {a, b, 0.0, 1.0}; }
+    DomainPoint point_at(double u, double /*v*/, const BinResolution&) const { return {u, 0.0, 0.0}; }
+    double jacobian(double, double, const BinResolution&) const { return 1.0; }
+    std::array<double, 2> parameters_of(const DomainPoint& p, const BinResolution&) const { return {p[0], 0.5}; }
+    double cell_measure(const ParamRect& r, const BinResolution&) const { return r.u1 - r.u0; }
+    bool on_parameter_boundary(double u, double /*v*/) const { return u <= a || u >= b; }
+    std::array<double, 2> parameter_slack(const DomainSlack& s) const { return {s.x, 0.0}; }
+    std::string u_label() const { return "x"; }
+    std::string v_label() const { return ""; }
+    double cell_position(const ParamRect& r, const BinResolution&) const { return 0.5 * (r.u0 + r.u1); }
+};
+
+/// [a, inf), length measure; binned through t = d / (s + d), d = x - a.
+struct HalfLine {
+    double a = 0.0;
+
+    static constexpr int kPointDimension = 1;
+    static constexpr bool kAzimuthal = false;
+    double measure() const { return std::numeric_limits<double>::infinity(); }
+    DomainSlack slack() const { return {kDomainTolerance * std::max(1.0, std::abs(a)), 0.0}; }
+    bool contains(const DomainPoint& p, const DomainSlack& s) const { return p[0] >= a - s.x && std::isfinite(p[0]); }
+    bool on_boundary(const DomainPoint& p) const { return p[0] == a; }
+    std::string describe() const { return "half-line [" + std::to_string(a) + ", inf)"; }
+
+    BinResolution default_resolution() const { return {200, 1}; }
+    ParamRect parameter_bounds() const { return {0.0, 1.0, 0.0, 1.0}; }
+    DomainPoint point_at(double u, double /*v*/, const BinResolution& r) const {
+        return {a + r.half_line_scale * u / (1.0 - u), 0.0, 0.0};
+    }
+    double jacobian(double u, double /*v*/, const BinResolution& r) const {
+        return r.half_line_scale / ((1.0 - u) * (1.0 - u));
+    }
+    std::array<double, 2> parameters_of(const DomainPoint& p, const BinResolution& r) const {
+        const double d = std::max(0.0, p[0] - a);
+        return {d / (r.half_line_scale + d), 0.5};
+    }
+    double cell_measure(const ParamRect& r, const BinResolution& res) const {
+        if (r.u1 >= 1.0) return std::numeric_limits<double>::infinity();  // the tail cell
+        const double s = res.half_line_scale;
+        return s * r.u1 / (1.0 - r.u1) - s * r.u0 / (1.0 - r.u0);
+    }
+    bool on_parameter_boundary(double u, double /*v*/) const { return u <= 0.0; }
+    /// t = d / (s + d) moves by at most d/s per unit of d: the relative tolerance in t.
+    std::array<double, 2> parameter_slack(const DomainSlack&) const { return {kDomainTolerance, 0.0}; }
+    std::string u_label() const { return "x"; }
+    std::string v_label() const { return ""; }
+    /// The centre of a cell in x, and for the tail cell its left edge.
+    double cell_position(const ParamRect& r, const BinResolution& res) const {
+        const double t = r.u1 >= 1.0 ? r.u0 : 0.5 * (r.u0 + r.u1);
+        return point_at(t, 0.5, res)[0];
+    }
+};
+
+/// [x0, x1] x [y0, y1], area measure.
+struct Box {
+    double x0 = 0.0, x1 = 1.0;
+    double y0 = 0.0, y1 = 1.0;
+
+    static constexpr int kPointDimension = 2;
+    static constexpr bool kAzimuthal = false;
+    double measure() const { return (x1 - x0) * (y1 - y0); }
+    DomainSlack slack() const {
+        return {kDomainTolerance * std::max({x1 - x0, std::abs(x0), std::abs(x1)}),
+                kDomainTolerance * std::max({y1 - y0, std::abs(y0), std::abs(y1)})};
+    }
+    bool contains(const DomainPoint& p, const DomainSlack& s) const {
+        return p[0] >= x0 - s.x && p[0] <= x1 + s.x && p[1] >= y0 - s.y && p[1] <= y1 + s.y;
+    }
+    bool on_boundary(const DomainPoint& p) const { return p[0] == x0 || p[0] == x1 || p[1] == y0 || p[1] == y1; }
+    std::string describe() const { return "box"; }
+
+    BinResolution default_resolution() const { return {32, 32}; }
+    ParamRect parameter_bounds() const { return {x0, x1, y0, y1}; }
+    DomainPoint point_at(double u, double v, const BinResolution&) const { return {u, v, 0.0}; }
+    double jacobian(double, double, const BinResolution&) const { return 1.0; }
+    std::array<double, 2> parameters_of(const DomainPoint& p, const BinResolution&) const { return {p[0], p[1]}; }
+    double cell_measure(const ParamRect& r, const BinResolution&) const { return (r.u1 - r.u0) * (r.v1 - r.v0); }
+    bool on_parameter_boundary(double u, double v) const { return u <= x0 || u >= x1 || v <= y0 || v >= y1; }
+    std::array<double, 2> parameter_slack(const DomainSlack& s) const { return {s.x, s.y}; }
+    std::string u_label() const { return "x"; }
+    std::string v_label() const { return "y"; }
+    double cell_position(const ParamRect& r, const BinResolution&) const { return 0.5 * (r.u0 + r.u1); }
+};
+
+/// Azimuthal kinds (kAzimuthal) have u = phi in [0, 2 pi) and a point
+/// (radius(v) cos phi, radius(v) sin phi, height(v)); Binning finds their phi
+/// column by its own fast atan2 and asks them only for v (v_of).
+inline constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+/// phi in [0, 2 pi) with the exact atan2.
+inline double exact_phi(double x, double y) {
+    double phi = std::atan2(y, x);
+    if (phi < 0.0) phi += kTwoPi;
+    return phi >= kTwoPi ? 0.0 : phi;
+}
+
+/// The unit disk, area measure; binned in (phi, r^2), equal-area rows.
+struct Disk {
+    static constexpr int kPointDimension = 2;
+    static constexpr bool kAzimuthal = true;
+    double measure() const { return std::numbers::pi; }
+    DomainSlack slack() const { return {kDomainTolerance, kDomainTolerance}; }
+    bool contains(const DomainPoint& p, const DomainSlack& s) const { return std::hypot(p[0], p[1]) <= 1.0 + s.x; }
+    /// contains() squared, without the square root, for the binning loop.
+    bool bin_contains(const DomainPoint& p, const DomainSlack& s) const {
+        return p[0] * p[0] + p[1] * p[1] <= (1.0 + s.x) * (1.0 + s.x);
+    }
+    bool on_boundary(const DomainPoint& p) const { return p[0] * p[0] + p[1] * p[1] >= 1.0; }
+    std::string describe() const { return "unit disk"; }
+
+    BinResolution default_resolution() const { return {32, 32}; }
+    ParamRect parameter_bounds() const { return {0.0, kTwoPi, 0.0, 1.0}; }
+    /// The ring at parameter v: its radius and height.
+    std::array<double, 2> ring(double v) const { return {std::sqrt(v), 0.0}; }
+    double v_of(const DomainPoint& p) const { return p[0] * p[0] + p[1] * p[1]; }
+    double jacobian(double, double, const BinResolution&) const { return 0.5; }
+    double cell_measure(const ParamRect& r, const BinResolution&) const {
+        return 0.5 * (r.u1 - r.u0) * (r.v1 - r.v0);
+    }
+    bool on_parameter_boundary(double /*u*/, double v) const { return v >= 1.0; }
+    std::array<double, 2> parameter_slack(const DomainSlack& s) const { return {kTwoPi * kDomainTolerance, s.y}; }
+    std::string u_label() const { return "phi"; }
+    std::string v_label() const { return "r^2"; }
+};
+
+/// Directions with z >= z_min, solid angle (sphere: z_min = -1, hemisphere: 0);
+/// binned in (phi, z = cos theta), equal solid-angle rows.
+struct SphericalCap {
+    double z_min = -1.0;
+
+    static constexpr int kPointDimension = 3;
+    static constexpr bool kAzimuthal = true;
+    double measure() const { return 2.0 * std::numbers::pi * (1.0 - z_min); }
+    DomainSlack slack() const { return {kDomainTolerance, kDomainTolerance}; }
+    bool contains(const DomainPoint& p, const DomainSlack& s) const {
+        const double len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        return std::abs(len - 1.0) <= s.x && p[2] >= z_min - s.x;
+    }
+    /// contains() with |len - 1| <= tol as len^2 in [(1 - tol)^2, (1 + tol)^2], for the binning loop.
+    bool bin_contains(const DomainPoint& p, const DomainSlack& s) const {
+        const double len2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+        return len2 >= (1.0 - s.x) * (1.0 - s.x) && len2 <= (1.0 + s.x) * (1.0 + s.x) && p[2] >= z_min - s.x;
+    }
+    bool on_boundary(const DomainPoint& p) const { return z_min > -1.0 && p[2] <= z_min; }
+    std::string describe() const {
+        if (z_min == -1.0) return "sphere";
+        if (z_min == 0.0) return "hemisphere";
+        return "spherical cap z >= " + std::to_string(z_min);
+    }
+
+    BinResolution default_resolution() const { return {32, 32}; }
+    ParamRect parameter_bounds() const { return {0.0, kTwoPi, z_min, 1.0}; }
+    std::array<double, 2> ring(double v) const { return {std::sqrt(std::max(0.0, 1.0 - v * v)), v}; }
+    double v_of(const DomainPoint& p) const { return p[2]; }
+    double jacobian(double, double, const BinResolution&) const { return 1.0; }
+    double cell_measure(const ParamRect& r, const BinResolution&) const { return (r.u1 - r.u0) * (r.v1 - r.v0); }
+    bool on_parameter_boundary(double /*u*/, double v) const { return z_min > -1.0 && v <= z_min; }
+    std::array<double, 2> parameter_slack(const DomainSlack& s) const { return {kTwoPi * kDomainTolerance, s.y}; }
+    std::string u_label() const { return "phi"; }
+    std::string v_label() const { return "cos theta"; }
+};
+
+}  // namespace warpcheck::chi2
