@@ -108,7 +108,7 @@ std::string render_json(const RunResult& run) {
     const RunInfo& info = run.info;
     Json results = Json::array();
     for (const CheckResult& r : run.results) results.push_back(result_json(r));
-    const Json document = {
+    Json document = {
         {"schema_version", kJsonSchemaVersion},
         {"tool", {{"name", "warpcheck"}, {"version", info.tool_version}}},
         {"run",
@@ -130,6 +130,8 @@ std::string render_json(const RunResult& run) {
           {"errors", run.count(Verdict::Error)}}},
         {"results", std::move(results)},
     };
+    if (info.shard_count > 0)
+        document["run"]["shard"] = {{"index", info.shard_index}, {"count", info.shard_count}, {"jobs", info.run_jobs}};
     // Invalid UTF-8 in a name or message becomes U+FFFD rather than an exception.
     return document.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
 }

@@ -131,6 +131,12 @@ struct RunInfo {
     /// Checks given up on after their time budget; their threads may still be
     /// running, so a program should exit soon after such a run.
     int abandoned_checks = 0;
+    /// Which part of a sharded run this is (validate --shard I/N): shard
+    /// shard_index of shard_count, 1-based; 0 of 0 for a whole run.
+    unsigned shard_index = 0;
+    unsigned shard_count = 0;
+    /// The (case, check) jobs of the whole run, all shards together.
+    uint64_t run_jobs = 0;
 };
 
 struct RunResult {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -38,6 +39,13 @@ struct RunOptions {
     /// off its ideal by more than a factor R beyond one input of rounding slack
     /// (exhaustive_check.cpp defines the factor). 0: bias is only reported.
     double max_float_bias = 0.0;
+    /// How many statistical tests the Šidák correction covers: those of the
+    /// whole run when only part of it runs here (a shard, one gtest test);
+    /// unset, those among the jobs run.
+    std::optional<int> family_tests;
+    /// The command that reruns a case, as it was invoked (argv[0]): a program
+    /// built on warpcheck::main reruns itself, not `validate`.
+    std::string program = "validate";
 };
 
 /// Thrown inside a check that the runner has cancelled.
@@ -119,6 +127,12 @@ public:
     /// Whether the result is the same for every seed (it enumerates instead of
     /// drawing random inputs): such checks cannot give a false positive by chance.
     virtual bool uses_seed() const { return true; }
+    /// Whether the check is a statistical test, whose results carry a p-value
+    /// that the runner judges at the Šidák-corrected level. The family is the
+    /// number of such jobs in the run, fixed before any result is known, so
+    /// that a shard of the run, or one job of it, is judged at the level of
+    /// the whole run (a job that errors, or finds nothing to test, still counts).
+    virtual bool statistical() const { return false; }
     /// Seconds this check may take before the runner reports it as an error:
     /// the run's budget, unless the check knows it needs more for a correct
     /// warp (a full 2^32 sweep) and the user did not set --time-budget.

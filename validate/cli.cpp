@@ -11,7 +11,9 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -20,10 +22,12 @@
 #include <fmt/format.h>
 
 #include "reports/atomic_file.h"
+#include "reports/json_input.h"
 #include "reports/outputs.h"
 #include "reports/render.h"
 #include "reports/progress.h"
 #include "reports/terminal_table.h"
+#include "validate/merge.h"
 #include "validate/runner.h"
 #include "warpcheck/version.h"
 
@@ -41,6 +45,10 @@ struct CliOptions {
     std::string report_path, json_path, junit_path;
     bool no_isolation = false;
     uint64_t memory_limit_mib = 8192;
+    bool list_jobs = false;
+    std::optional<std::string> shard_spec;
+    Shard shard;
+    std::vector<std::string> merge_paths;
 };
 
 struct Output {
@@ -132,17 +140,8 @@ void list_cases(const Registry& registry, const std::vector<Job>& jobs, std::ost
     }
 }
 
-}  // namespace
 
-int run_cli(int argc, char** argv, const Registry& registry) {
-    // A reader that closes early (`validate --all | head`) must not kill the run
-    // before the reports are written; a failed write to stdout is reported below.
-    std::signal(SIGPIPE, SIG_IGN);
-    remove_temporary_files_on_signals();
-    CliOptions o;
-    CLI::App app{"warpcheck validate: statistical and exhaustive checks of sampling routines (warps).\n"
-                 "Exit status: 0 all passed, 1 a check failed or errored, 2 bad usage.",
-                 "validate"};
+void add_selection_options(CLI::App& app, CliOptions& o) {
     app.add_flag("--all", o.all, "Run every warp case");
     app.add_option("--filter", o.filters,
                    "Run the cases whose name contains PATTERN (or matches it as a glob with * and ?; "
@@ -150,6 +149,24 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         ->type_name("PATTERN");
     app.add_option("--check", o.checks, "Run only this check (repeatable); see --list for names")->type_name("NAME");
     app.add_flag("--list", o.list, "List the checks and the warp cases (those selected by --filter), then exit");
+    app.add_flag("--list-jobs", o.list_jobs,
+                 "List the (case, check) jobs the selection would run (of the --shard, if given), one per line: "
+                 "the check, a tab, the case; then exit");
+    app.add_option("--shard",
+                   "Run only part I of N of the selected (case, check) jobs (1 <= I <= N), judged at the Sidak level "
+                   "of the whole selection: the N shards' --json files merge (--merge) into the whole run")
+        ->type_name("I/N")
+        ->each([&o](const std::string& spec) { o.shard_spec = spec; });
+    app.add_option("--merge", o.merge_paths,
+                   "Combine the --json files of the shards of one run into its table and reports, then exit")
+        ->type_name("FILE...")
+        ->expected(1, -1);
+    app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
+    app.add_flag("--include-flawed", o.run.include_flawed,
+                 "Also run the cases that demonstrate known flaws (e.g. u * 2^-32 reaching 1.0); they fail");
+}
+
+void add_run_options(CLI::App& app, CliOptions& o) {
     app.add_option("--seed", o.run.seed, "Global seed; every (case, check) stream derives from it")
         ->check(kSeed)
         ->capture_default_str();
@@ -162,16 +179,6 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     app.add_option("--alpha", o.run.alpha, "Family-wise significance level over all statistical tests of the run")
         ->check(kFinite & CLI::Range(1e-12, 0.5))
         ->capture_default_str();
-    app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
-    app.add_flag("--include-flawed", o.run.include_flawed,
-                 "Also run the cases that demonstrate known flaws (e.g. u * 2^-32 reaching 1.0); they fail");
-    // A symbolic link is written through to its target; '-' is standard output
-    // (for one of the three; the table then goes to standard error).
-    app.add_option("--report", o.report_path, "Write a self-contained HTML report ('-': standard output)")
-        ->type_name("FILE");
-    app.add_option("--json", o.json_path, "Write the results as JSON ('-': standard output)")->type_name("FILE");
-    app.add_option("--junit", o.junit_path, "Write the results as JUnit XML ('-': standard output)")
-        ->type_name("FILE");
     app.add_option("--time-budget", o.run.check_time_budget,
                    "CPU seconds one check may use (rounded up to whole seconds) before its worker is killed and the "
                    "check reported as an error; a worker asleep for 10x the budget in wall time is killed too. With "
@@ -191,74 +198,54 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     app.add_option("--max-float-bias", o.run.max_float_bias,
                    "Fail an exhaustive sweep when a float's count is off its ideal by more than this factor")
         ->check(kFinite & CLI::Range(1.0, 1e6));
+}
+
+void add_output_options(CLI::App& app, CliOptions& o) {
+    // A symbolic link is written through to its target; '-' is standard output
+    // (for one of the three; the table then goes to standard error).
+    app.add_option("--report", o.report_path, "Write a self-contained HTML report ('-': standard output)")
+        ->type_name("FILE");
+    app.add_option("--json", o.json_path, "Write the results as JSON ('-': standard output)")->type_name("FILE");
+    app.add_option("--junit", o.junit_path, "Write the results as JUnit XML ('-': standard output)")
+        ->type_name("FILE");
     app.add_flag("--failures-only", o.failures_only, "Print only the rows that did not pass");
     app.add_option("--color", o.color, "Colour the table: auto, always, never")
         ->check(CLI::IsMember({"auto", "always", "never"}))
         ->capture_default_str();
-    app.set_version_flag("--version", "warpcheck validate " WARPCHECK_VERSION);
+}
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForVersion& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "validate: " << e.what() << "\nRun 'validate --help' for the options.\n";
-        return kExitUsage;
-    }
-
-    if (!o.all && o.filters.empty() && !o.list) {
-        std::cerr << "validate: nothing selected: use --all, --filter PATTERN or --list\n";
-        return kExitUsage;
-    }
-    if (o.all && !o.filters.empty()) {
-        std::cerr << "validate: --all and --filter exclude each other\n";
-        return kExitUsage;
+/// What is wrong with the selection, or empty.
+std::string selection_problem(CliOptions& o, const Registry& registry) {
+    if (!o.merge_paths.empty())
+        return o.all || !o.filters.empty() || o.list || o.list_jobs || o.shard_spec
+                   ? "--merge takes the shards' results files, not a selection (--all, --filter, --list, --shard)"
+                   : "";
+    if (!o.all && o.filters.empty() && !o.list && !o.list_jobs)
+        return "nothing selected: use --all, --filter PATTERN or --list";
+    if (o.all && !o.filters.empty()) return "--all and --filter exclude each other";
+    if (o.shard_spec) {
+        const auto shard = parse_shard(*o.shard_spec);
+        if (!shard)
+            return fmt::format("--shard: '{}' is not a shard: give I/N, part I of N with 1 <= I <= N (e.g. 2/4)",
+                               *o.shard_spec);
+        o.shard = *shard;
     }
     for (const auto& name : o.checks) {
-        if (!registry.find_check(name)) {
-            std::string names;
-            for (const auto& c : registry.checks()) names += " " + c->name();
-            std::cerr << fmt::format("validate: unknown check '{}'; the checks are:{}\n", name, names);
-            return kExitUsage;
-        }
+        if (registry.find_check(name)) continue;
+        std::string names;
+        for (const auto& c : registry.checks()) names += " " + c->name();
+        return fmt::format("unknown check '{}'; the checks are:{}", name, names);
     }
     for (const auto& pattern : o.filters) {
         bool any = false;
         for (const auto& c : registry.cases()) any = any || name_matches(c->name(), pattern);
-        if (!any) {
-            std::cerr << fmt::format("validate: no warp case matches '{}'; 'validate --list' shows them all\n", pattern);
-            return kExitUsage;
-        }
+        if (!any) return fmt::format("no warp case matches '{}'; 'validate --list' shows them all", pattern);
     }
-    const std::vector<Output> outputs = requested_outputs(o);
-    if (const std::string problem = output_problem(outputs); !problem.empty()) {
-        std::cerr << "validate: " << problem << "\n";
-        return kExitUsage;
-    }
+    return {};
+}
 
-    if (o.list) {
-        RunOptions everything = o.run;  // list the known-flawed cases too, marked
-        everything.include_flawed = true;
-        list_cases(registry, select_jobs(registry, o.filters, o.checks, everything), std::cout);
-        return kExitPass;
-    }
-    const std::vector<Job> jobs = select_jobs(registry, o.filters, o.checks, o.run);
-    if (jobs.empty()) {
-        std::cerr << "validate: the selected checks apply to none of the selected cases\n";
-        return kExitUsage;
-    }
-
-    Isolation isolation;
-    isolation.enabled = !o.no_isolation;
-    isolation.memory_limit = o.memory_limit_mib << 20;
-    RunResult run = run_jobs(jobs, o.run, stderr_progress(), isolation);
-    std::ostringstream command;
-    for (int i = 0; i < argc; ++i) command << (i ? " " : "") << argv[i];
-    run.info.command_line = command.str();
-    run.info.tool_version = WARPCHECK_VERSION;
-
+/// Prints the table and writes the outputs; the exit status.
+int present(const RunResult& run, const CliOptions& o, const std::vector<Output>& outputs) {
     TableStyle style;
     style.color = o.color == "always" || (o.color == "auto" && isatty(STDOUT_FILENO));
     style.failures_only = o.failures_only;
@@ -277,6 +264,108 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         return kExitUsage;
     }
     return run.all_passed() ? kExitPass : kExitFail;
+}
+
+std::string command_line(int argc, char** argv) {
+    std::ostringstream command;
+    for (int i = 0; i < argc; ++i) command << (i ? " " : "") << argv[i];
+    return command.str();
+}
+
+/// --merge: the shards' JSON files read, checked and combined.
+int run_merge(const CliOptions& o, const std::vector<Output>& outputs, const std::string& command) {
+    std::vector<ShardFile> shards;
+    RunResult merged;
+    try {
+        for (const std::string& path : o.merge_paths) {
+            std::ifstream in(path, std::ios::binary);
+            std::ostringstream text;
+            if (!(in && text << in.rdbuf())) throw MergeError(fmt::format("{}: cannot be read", path));
+            try {
+                shards.push_back({path, parse_json_results(text.str())});
+            } catch (const JsonInputError& e) {
+                throw MergeError(fmt::format("{}: {}", path, e.what()));
+            }
+        }
+        merged = merge_shards(shards);
+    } catch (const MergeError& e) {
+        std::cerr << "validate: --merge: " << e.what() << "\n";
+        return kExitUsage;
+    }
+    merged.info.command_line = command;
+    return present(merged, o, outputs);
+}
+
+/// Runs the selection (or its shard) and presents it.
+int run_selection(const CliOptions& o, const Registry& registry, const std::vector<Output>& outputs,
+                  const std::string& command) {
+    const std::vector<Job> all_jobs = select_jobs(registry, o.filters, o.checks, o.run);
+    const std::vector<Job> jobs = shard_jobs(all_jobs, o.shard);
+    if (o.list_jobs) {
+        for (const Job& job : jobs) std::cout << job.check->name() << '\t' << job.warp->name() << '\n';
+        return kExitPass;
+    }
+    if (all_jobs.empty()) {
+        std::cerr << "validate: the selected checks apply to none of the selected cases\n";
+        return kExitUsage;
+    }
+    RunOptions options = o.run;
+    options.family_tests = statistical_tests(all_jobs);  // a shard is judged as part of the whole run
+    Isolation isolation;
+    isolation.enabled = !o.no_isolation;
+    isolation.memory_limit = o.memory_limit_mib << 20;
+    RunResult run = run_jobs(jobs, options, stderr_progress(), isolation);
+    run.info.command_line = command;
+    run.info.tool_version = WARPCHECK_VERSION;
+    if (o.shard_spec) {
+        run.info.shard_index = o.shard.index;
+        run.info.shard_count = o.shard.count;
+        run.info.run_jobs = all_jobs.size();
+    }
+    return present(run, o, outputs);
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv, const Registry& registry) {
+    // A reader that closes early (`validate --all | head`) must not kill the run
+    // before the reports are written; a failed write to stdout is reported below.
+    std::signal(SIGPIPE, SIG_IGN);
+    remove_temporary_files_on_signals();
+    CliOptions o;
+    if (argc > 0 && argv[0] && *argv[0]) o.run.program = argv[0];
+    CLI::App app{"warpcheck validate: statistical and exhaustive checks of sampling routines (warps).\n"
+                 "Exit status: 0 all passed, 1 a check failed or errored, 2 bad usage.",
+                 "validate"};
+    add_selection_options(app, o);
+    add_run_options(app, o);
+    add_output_options(app, o);
+    app.set_version_flag("--version", "warpcheck validate " WARPCHECK_VERSION);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "validate: " << e.what() << "\nRun 'validate --help' for the options.\n";
+        return kExitUsage;
+    }
+    const std::vector<Output> outputs = requested_outputs(o);
+    std::string problem = selection_problem(o, registry);
+    if (problem.empty()) problem = output_problem(outputs);
+    if (!problem.empty()) {
+        std::cerr << "validate: " << problem << "\n";
+        return kExitUsage;
+    }
+    if (!o.merge_paths.empty()) return run_merge(o, outputs, command_line(argc, argv));
+    if (o.list) {
+        RunOptions everything = o.run;  // list the known-flawed cases too, marked
+        everything.include_flawed = true;
+        list_cases(registry, select_jobs(registry, o.filters, o.checks, everything), std::cout);
+        return kExitPass;
+    }
+    return run_selection(o, registry, outputs, command_line(argc, argv));
 }
 
 }  // namespace warpcheck

@@ -48,9 +48,35 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
     return jobs;
 }
 
-void apply_multiple_test_correction(RunResult& run, double family_alpha) {
+std::optional<Shard> parse_shard(std::string_view spec) {
+    const auto slash = spec.find('/');
+    const auto number = [](std::string_view text) -> std::optional<unsigned> {
+        if (text.empty() || text.size() > 7 || text.find_first_not_of("0123456789") != std::string_view::npos)
+            return std::nullopt;
+        unsigned v = 0;
+        for (char c : text) v = v * 10 + static_cast<unsigned>(c - '0');
+        return v;
+    };
+    if (slash == std::string_view::npos) return std::nullopt;
+    const auto index = number(spec.substr(0, slash)), count = number(spec.substr(slash + 1));
+    if (!index || !count || *index < 1 || *index > *count || *count > 1'000'000) return std::nullopt;
+    return Shard{*index, *count};
+}
+
+std::vector<Job> shard_jobs(const std::vector<Job>& jobs, Shard shard) {
+    std::vector<Job> part;
+    for (std::size_t i = shard.index - 1; i < jobs.size(); i += shard.count) part.push_back(jobs[i]);
+    return part;
+}
+
+int statistical_tests(const std::vector<Job>& jobs) {
+    return static_cast<int>(std::count_if(jobs.begin(), jobs.end(), [](const Job& j) { return j.check->statistical(); }));
+}
+
+void apply_multiple_test_correction(RunResult& run, double family_alpha, std::optional<int> family_tests) {
     int tests = 0;
     for (const auto& r : run.results) tests += r.p_value.has_value();
+    if (family_tests) tests = *family_tests;
     const double level = chi2::sidak_level(family_alpha, tests);
     run.info.family_alpha = family_alpha;
     run.info.statistical_tests = tests;
@@ -91,6 +117,13 @@ std::string shell_quote(const std::string& s) {
     std::string q = "'";
     for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
+}
+
+/// A program's path as typed when the shell takes it as it is, else quoted.
+std::string shell_word(const std::string& s) {
+    const bool plain = !s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                         "0123456789_-+./:=@%,") == std::string::npos;
+    return plain ? s : shell_quote(s);
 }
 
 }  // namespace
@@ -179,11 +212,11 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
         r.check_name = jobs[i].check->name();
         r.stream_seed = stream.seed;
         r.stream_sequence = stream.sequence;
-        r.rerun_command = fmt::format("validate --filter {} --check {} --seed {} --samples {}",
+        r.rerun_command = fmt::format("{} --filter {} --check {} --seed {} --samples {}", shell_word(options.program),
                                       shell_quote(r.case_name), r.check_name, options.seed, options.samples);
         if (options.max_float_bias > 0.0) r.rerun_command += fmt::format(" --max-float-bias {}", options.max_float_bias);
     }
-    apply_multiple_test_correction(run, options.alpha);
+    apply_multiple_test_correction(run, options.alpha, options.family_tests.value_or(statistical_tests(jobs)));
     run.info.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return run;
 }

@@ -5,7 +5,9 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "validate/check.h"
@@ -31,6 +33,24 @@ StreamId job_stream(const WarpCase& warp, const Check& check, uint64_t seed);
 std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::string>& case_patterns,
                              const std::vector<std::string>& check_names, const RunOptions& options);
 
+/// Part i of n of a run (1 <= index <= count): the jobs whose position in the
+/// whole run's job list is index - 1 modulo count. Round robin, so that the
+/// checks of one case, which differ in cost, spread over the shards.
+struct Shard {
+    unsigned index = 1;
+    unsigned count = 1;
+};
+
+/// Reads "I/N" (1 <= I <= N <= 1000000), or returns nullopt.
+std::optional<Shard> parse_shard(std::string_view spec);
+
+/// The jobs of one shard, in the order of the whole run.
+std::vector<Job> shard_jobs(const std::vector<Job>& jobs, Shard shard);
+
+/// The statistical tests among the jobs (Check::statistical): the family the
+/// Šidák correction of a run of these jobs covers.
+int statistical_tests(const std::vector<Job>& jobs);
+
 /// Runs the jobs and returns their results in job order. Exceptions from a check
 /// become Error results; the run goes on. With isolation, so do crashes, exits,
 /// runaway allocation and checks over their CPU time budget (validate/worker.h);
@@ -40,8 +60,10 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
 RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, const ProgressCallback& progress = {},
                    const Isolation& isolation = {});
 
-/// Applies the Šidák-corrected level (chi2/multiple_testing.h) to every result with a p-value: a p-value below the level,
-/// or NaN, fails.
-void apply_multiple_test_correction(RunResult& run, double family_alpha);
+/// Applies the Šidák-corrected level (chi2/multiple_testing.h) for a family of
+/// `family_tests` tests (unset: the results with a p-value) to every result
+/// with a p-value: a p-value below the level, or NaN, fails.
+void apply_multiple_test_correction(RunResult& run, double family_alpha,
+                                    std::optional<int> family_tests = std::nullopt);
 
 }  // namespace warpcheck

@@ -260,6 +260,7 @@ void add_evidence(CheckResult& r, const std::vector<Cell>& cells, double n) {
 class BinadeCheck final : public Check {
 public:
     std::string name() const override { return "binade"; }
+    bool statistical() const override { return true; }
     std::string description() const override {
         return "64-bit float samplers: chi-square of the mass per binade and of the significand parity within "
                "binades (at least 2^24 samples)";

@@ -221,6 +221,7 @@ void add_plots(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& 
 class Chi2Check final : public Check {
 public:
     std::string name() const override { return "chi2"; }
+    bool statistical() const override { return true; }
     std::string description() const override {
         return "Pearson chi-square test of the samples against the pdf integrated over cells (pooled, Sidak-corrected)";
     }

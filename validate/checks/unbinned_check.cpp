@@ -303,6 +303,7 @@ void add_evidence(CheckResult& r, const Computed& c, const std::string& case_nam
 class UnbinnedCheck final : public Check {
 public:
     std::string name() const override { return "unbinned"; }
+    bool statistical() const override { return true; }
     std::string description() const override {
         return "KS, Kuiper and Anderson-Darling tests of each marginal against its CDF from the pdf (Sidak over the "
                "tests)";
