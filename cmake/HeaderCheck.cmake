@@ -1,7 +1,13 @@
 # Headers must compile on their own: for each header of a folder, compile a
-# translation unit that includes only that header.
+# translation unit that includes only that header. A subfolder that builds its
+# own library (with its own dependencies) checks its headers itself: name it
+# after EXCLUDE.
 function(warpcheck_check_headers folder)
+  cmake_parse_arguments(PARSE_ARGV 1 arg "" "" "EXCLUDE")
   file(GLOB_RECURSE headers CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/${folder}/*.h")
+  foreach(excluded IN LISTS arg_EXCLUDE)
+    list(FILTER headers EXCLUDE REGEX "^${PROJECT_SOURCE_DIR}/${folder}/${excluded}/")
+  endforeach()
   set(sources "")
   foreach(header IN LISTS headers)
     file(RELATIVE_PATH rel "${PROJECT_SOURCE_DIR}" "${header}")
@@ -11,7 +17,8 @@ function(warpcheck_check_headers folder)
     list(APPEND sources "${tu}")
   endforeach()
   if(sources)
-    add_library(header_check_${folder} OBJECT ${sources})
-    target_link_libraries(header_check_${folder} PRIVATE ${ARGN} warpcheck_options)
+    string(MAKE_C_IDENTIFIER "${folder}" target)
+    add_library(header_check_${target} OBJECT ${sources})
+    target_link_libraries(header_check_${target} PRIVATE ${arg_UNPARSED_ARGUMENTS} warpcheck_options)
   endif()
 endfunction()

@@ -1,7 +1,9 @@
 # Installs warpcheck as a CMake package: find_package(warpcheck) gives
 # warpcheck::validate (the library), warpcheck::main (a ready main() for
 # programs that validate their own warps), warpcheck::sampling (the warps),
-# warpcheck::reports (the report writers) and warpcheck::results (the result model).
+# warpcheck::reports (the report writers), warpcheck::results (the result model),
+# warpcheck::gtest (GoogleTest assertions, validate/gtest/warpcheck_gtest.h) and
+# the CMake function warpcheck_discover_tests (cmake/warpcheckDiscoverTests.cmake).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -15,6 +17,14 @@ set_target_properties(warpcheck_validate PROPERTIES EXPORT_NAME validate)
 set_target_properties(warpcheck_main PROPERTIES EXPORT_NAME main)
 set_target_properties(warpcheck_cases PROPERTIES EXPORT_NAME cases)
 set_target_properties(warpcheck_options PROPERTIES EXPORT_NAME options)
+# warpcheck::gtest, where GoogleTest was found (validate/CMakeLists.txt); the
+# package then finds GoogleTest too.
+set(WARPCHECK_WITH_GTEST OFF)
+if(TARGET warpcheck_gtest)
+  set(WARPCHECK_WITH_GTEST ON)
+  list(APPEND warpcheck_targets warpcheck_gtest)
+  set_target_properties(warpcheck_gtest PROPERTIES EXPORT_NAME gtest)
+endif()
 
 install(TARGETS validate RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS ${warpcheck_targets}
@@ -37,4 +47,5 @@ write_basic_package_version_file("${CMAKE_CURRENT_BINARY_DIR}/warpcheckConfigVer
   COMPATIBILITY SameMinorVersion)
 install(FILES "${CMAKE_CURRENT_BINARY_DIR}/warpcheckConfig.cmake"
               "${CMAKE_CURRENT_BINARY_DIR}/warpcheckConfigVersion.cmake"
+              cmake/warpcheckDiscoverTests.cmake cmake/warpcheckAddJobTests.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/warpcheck)
