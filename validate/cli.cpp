@@ -214,7 +214,7 @@ void add_output_options(CLI::App& app, CliOptions& o) {
         ->capture_default_str();
 }
 
-/// What is wrong with the selection, or empty.
+/// What is wrong with the selection, or empty; reads --shard into o.shard.
 std::string selection_problem(CliOptions& o, const Registry& registry) {
     if (!o.merge_paths.empty())
         return o.all || !o.filters.empty() || o.list || o.list_jobs || o.shard_spec
