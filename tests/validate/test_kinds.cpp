@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 #include <vector>
@@ -287,6 +288,27 @@ TEST(Discrete, PmfThatDoesNotSumToOneFails) {
     const CheckResult r = run_check(*make_pmf_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_NE(r.message.find("sums to"), std::string::npos) << r.message;
+}
+
+// ---- determinism ----------------------------------------------------------------
+
+// Every figure of the new checks is the same bit for bit on 1 and 3 threads.
+TEST(Kinds, FiguresDoNotDependOnTheThreadCount) {
+    AliasTable t({1, 0, 3, 2, 0.5f, 7, 0.01f});
+    auto alias = alias_case("alias_threads", t);
+    auto mixture = mixture_case("mixture_threads", {});
+    auto table = make_warp_case(table_info("table_threads"), [](float u) { return table_sample(u, false); });
+    const std::pair<const WarpCase*, std::unique_ptr<Check>> jobs[] = {
+        {alias.get(), make_discrete_chi2_check()}, {alias.get(), make_remapped_u_check()},
+        {mixture.get(), make_weight_mean_check()}, {mixture.get(), make_weight_check()},
+        {table.get(), make_inverse_pdf_mean_check()}};
+    for (const auto& [warp, check] : jobs) {
+        const CheckResult one = run_check(*check, *warp, 300'000, 1), three = run_check(*check, *warp, 300'000, 3);
+        ASSERT_EQ(one.figures.size(), three.figures.size()) << check->name();
+        for (std::size_t i = 0; i < one.figures.size(); ++i)
+            EXPECT_EQ(std::bit_cast<uint64_t>(one.figures[i].value), std::bit_cast<uint64_t>(three.figures[i].value))
+                << check->name() << " " << one.figures[i].name;
+    }
 }
 
 // ---- parameter grids -----------------------------------------------------------
