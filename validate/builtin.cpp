@@ -50,6 +50,13 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(make_chi2_check());
     registry.add_check(make_tabulated_check());
     registry.add_check(make_unbinned_check());
+    registry.add_check(make_sample_pdf_check());
+    registry.add_check(make_weight_check());
+    registry.add_check(make_weight_mean_check());
+    registry.add_check(make_inverse_pdf_mean_check());
+    registry.add_check(make_pmf_check());
+    registry.add_check(make_discrete_chi2_check());
+    registry.add_check(make_remapped_u_check());
 }
 
 }  // namespace warpcheck

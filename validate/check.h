@@ -111,6 +111,11 @@ inline chi2::DomainPoint to_domain_point(const WarpOutput& o) {
     return {static_cast<double>(o[0]), static_cast<double>(o[1]), static_cast<double>(o[2])};
 }
 
+/// A domain point (a quadrature node) as a warp output (double -> float).
+inline WarpOutput to_warp_output(const chi2::DomainPoint& p) {
+    return {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
+}
+
 class Check {
 public:
     virtual ~Check() = default;

@@ -7,6 +7,7 @@
 // The built-in checks are registered for you; the built-in warps are not.
 #pragma once
 
+#include "validate/case_grid.h"
 #include "validate/registry.h"
 
 /// Defined by the program that links warpcheck::main: adds its warp cases (and

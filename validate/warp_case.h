@@ -38,7 +38,39 @@ struct WarpInput {
 };
 
 /// One output point, laid out as chi2::DomainPoint (unused coordinates are 0).
+/// A discrete case's output is its index, as a float in [0] (exact below 2^24).
 using WarpOutput = std::array<float, 3>;
+
+/// What a warp's sample returns with its point, read off its return type.
+enum class SampleReturns {
+    Point,              ///< the point only
+    PointAndPdf,        ///< PdfSample: the point and its pdf, as renderers' Sample(u, &pdf)
+    PointAndWeight,     ///< WeightedSample: the point and the weight eval(x) / pdf(x)
+    Index,              ///< an integer: a discrete choice among WarpCaseInfo::categories
+    IndexAndRemappedU,  ///< DiscreteSample: the index and the input remapped to [0,1) for reuse
+};
+
+/// A sample that carries its pdf (with respect to the domain's measure).
+template <typename X>
+struct PdfSample {
+    X x;
+    float pdf;
+};
+
+/// A sample that carries its weight eval(x) / pdf(x), as BSDF samplers return.
+template <typename X>
+struct WeightedSample {
+    X x;
+    float weight;
+};
+
+/// A discrete choice with the input remapped for reuse: u_remapped is where u
+/// fell inside the chosen category's share of [0,1), rescaled to [0,1), and
+/// must itself be uniform (pbrt's AliasTable::Sample(u, &pmf, &uRemapped)).
+struct DiscreteSample {
+    uint32_t index;
+    float u_remapped;
+};
 
 struct Parameter {
     std::string name;
@@ -88,6 +120,10 @@ struct WarpCaseInfo {
     chi2::BinResolution chi2_resolution{};
     /// The case's monotone 1D view for the tabulated check, where it has one.
     std::optional<MonotoneMarginal> marginal{};
+    /// Discrete cases only: the number of categories; sample returns an index
+    /// of 0 .. categories - 1 and the pdf is a pmf over them. A discrete case
+    /// leaves `domain` unset (0 here means a continuous case).
+    std::size_t categories = 0;
 };
 
 class WarpCase {
@@ -112,6 +148,42 @@ public:
     /// or table-driven samplers): for them the round-trip checks do not apply,
     /// which is not an error.
     virtual bool has_inverse() const { return true; }
+
+    /// What sample returns besides the point (SampleReturns).
+    virtual SampleReturns sample_returns() const { return SampleReturns::Point; }
+    /// Whether the case has a pdf function. One whose sample returns the pdf may
+    /// have none: then only the checks that need the pdf at the samples apply.
+    virtual bool has_pdf() const { return true; }
+    /// Whether the case chooses among WarpCaseInfo::categories.
+    bool is_discrete() const {
+        const SampleReturns r = sample_returns();
+        return r == SampleReturns::Index || r == SampleReturns::IndexAndRemappedU;
+    }
+    /// out[i] = sample(in[i]) and value[i] = what sample returned with it: the
+    /// pdf, the weight or the remapped u. Only where sample_returns() says so.
+    virtual void sample_with_value(std::span<const WarpInput> in, std::span<WarpOutput> out,
+                                   std::span<double> value) const {
+        (void)in, (void)out, (void)value;
+        throw std::logic_error("warp case " + name() + " returns nothing with its samples");
+    }
+    /// out[i] = eval(x[i]), the integrand whose estimate a weighted sampler's
+    /// weight is. Only where sample_returns() is PointAndWeight.
+    virtual void eval(std::span<const WarpOutput> x, std::span<double> out) const {
+        (void)x, (void)out;
+        throw std::logic_error("warp case " + name() + " has no eval");
+    }
+
+protected:
+    /// What a case's callables declare, for validate_declaration.
+    struct Declaration {
+        std::optional<InputKind> input;  ///< the kind its sample's argument type implies
+        int output_dimension = 0;        ///< 1, 2 or 3 for points; 0 for indices
+        bool has_eval = false;
+    };
+    /// Refuses an inconsistent case at registration (a discrete case with a
+    /// continuous domain, a weight without eval, a point of the wrong dimension,
+    /// ...): throws std::invalid_argument naming the case.
+    void validate_declaration(const Declaration& d) const;
 
 private:
     WarpCaseInfo info_;
@@ -147,6 +219,63 @@ template <> struct WarpTypes<uint64_t> {
     static uint64_t from_input(const WarpInput& in) { return in.bits; }
 };
 
+// Integer outputs are discrete indices, carried as floats (exact below 2^24).
+template <typename T>
+WarpOutput to_output(const T& v) {
+    if constexpr (std::is_integral_v<T>) return {static_cast<float>(v), 0.0f, 0.0f};
+    else return WarpTypes<T>::to_output(v);
+}
+template <typename T>
+T from_output(const WarpOutput& o) {
+    if constexpr (std::is_integral_v<T>) return static_cast<T>(o[0]);
+    else return WarpTypes<T>::from_output(o);
+}
+template <typename T>
+constexpr int output_dimension() {
+    if constexpr (std::is_integral_v<T>) return 0;
+    else if constexpr (std::is_same_v<T, float>) return 1;
+    else if constexpr (std::is_same_v<T, Point2f>) return 2;
+    else return 3;
+}
+template <typename T>
+constexpr std::optional<InputKind> input_kind_of() {
+    if constexpr (std::is_same_v<T, float>) return InputKind::Uniform1D;
+    else if constexpr (std::is_same_v<T, Point2f>) return InputKind::Uniform2D;
+    else if constexpr (std::is_same_v<T, uint32_t>) return InputKind::Bits32;
+    else if constexpr (std::is_same_v<T, uint64_t>) return InputKind::Bits64;
+    else return std::nullopt;
+}
+
+// What sample returns, split into its point and the value that comes with it.
+template <typename R>
+struct SampleResult {
+    using Point = R;
+    static constexpr SampleReturns kReturns = std::is_integral_v<R> ? SampleReturns::Index : SampleReturns::Point;
+    static const R& point(const R& r) { return r; }
+    static double value(const R&) { return 0.0; }
+};
+template <typename X>
+struct SampleResult<PdfSample<X>> {
+    using Point = X;
+    static constexpr SampleReturns kReturns = SampleReturns::PointAndPdf;
+    static const X& point(const PdfSample<X>& r) { return r.x; }
+    static double value(const PdfSample<X>& r) { return r.pdf; }
+};
+template <typename X>
+struct SampleResult<WeightedSample<X>> {
+    using Point = X;
+    static constexpr SampleReturns kReturns = SampleReturns::PointAndWeight;
+    static const X& point(const WeightedSample<X>& r) { return r.x; }
+    static double value(const WeightedSample<X>& r) { return r.weight; }
+};
+template <>
+struct SampleResult<DiscreteSample> {
+    using Point = uint32_t;
+    static constexpr SampleReturns kReturns = SampleReturns::IndexAndRemappedU;
+    static uint32_t point(const DiscreteSample& r) { return r.index; }
+    static double value(const DiscreteSample& r) { return r.u_remapped; }
+};
+
 template <typename F> struct FirstArg : FirstArg<decltype(&F::operator())> {};
 template <typename C, typename R, typename A> struct FirstArg<R (C::*)(A) const> {
     using type = std::remove_cvref_t<A>;
@@ -157,24 +286,65 @@ template <typename R, typename A> struct FirstArg<R (*)(A)> {
 
 /// The Invert of a warp without an inverse.
 struct NoInverse {};
+/// The Pdf of a warp whose sample returns its pdf and has no pdf function.
+struct NoPdf {};
+/// The Eval of a warp that returns no weight.
+struct NoEval {};
 
-template <typename Sample, typename Pdf, typename Invert>
+// The output type: the pdf's argument, or the point sample returns when there is no pdf.
+template <typename Pdf, typename Point> struct OutputType {
+    using type = typename FirstArg<Pdf>::type;
+};
+template <typename Point> struct OutputType<NoPdf, Point> {
+    using type = Point;
+};
+
+template <typename Sample, typename Pdf, typename Invert, typename Eval = NoEval>
 class LambdaWarpCase final : public WarpCase {
     using In = typename FirstArg<Sample>::type;
-    using Out = typename FirstArg<Pdf>::type;
+    using Result = SampleResult<std::remove_cvref_t<std::invoke_result_t<const Sample&, In>>>;
+    using Out = typename OutputType<Pdf, typename Result::Point>::type;
 
 public:
-    LambdaWarpCase(WarpCaseInfo info, Sample s, Pdf p, Invert i)
-        : WarpCase(std::move(info)), sample_(std::move(s)), pdf_(std::move(p)), invert_(std::move(i)) {}
+    LambdaWarpCase(WarpCaseInfo info, Sample s, Pdf p, Invert i, Eval e = {})
+        : WarpCase(std::move(info)), sample_(std::move(s)), pdf_(std::move(p)), invert_(std::move(i)),
+          eval_(std::move(e)) {
+        validate_declaration({input_kind_of<In>(), output_dimension<Out>(), !std::is_same_v<Eval, NoEval>});
+    }
 
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override {
         for (std::size_t k = 0; k < in.size(); ++k)
-            out[k] = WarpTypes<Out>::to_output(sample_(WarpTypes<In>::from_input(in[k])));
+            out[k] = to_output<Out>(Result::point(sample_(WarpTypes<In>::from_input(in[k]))));
+    }
+    void sample_with_value(std::span<const WarpInput> in, std::span<WarpOutput> out,
+                           std::span<double> value) const override {
+        if constexpr (Result::kReturns == SampleReturns::Point || Result::kReturns == SampleReturns::Index) {
+            WarpCase::sample_with_value(in, out, value);
+        } else {
+            for (std::size_t k = 0; k < in.size(); ++k) {
+                const auto r = sample_(WarpTypes<In>::from_input(in[k]));
+                out[k] = to_output<Out>(Result::point(r));
+                value[k] = Result::value(r);
+            }
+        }
     }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
-        for (std::size_t k = 0; k < x.size(); ++k)
-            out[k] = static_cast<double>(pdf_(WarpTypes<Out>::from_output(x[k])));
+        if constexpr (std::is_same_v<Pdf, NoPdf>) {
+            (void)x, (void)out;
+            throw std::logic_error("warp case " + name() + " has no pdf function");
+        } else {
+            for (std::size_t k = 0; k < x.size(); ++k) out[k] = static_cast<double>(pdf_(from_output<Out>(x[k])));
+        }
     }
+    void eval(std::span<const WarpOutput> x, std::span<double> out) const override {
+        if constexpr (std::is_same_v<Eval, NoEval>) {
+            WarpCase::eval(x, out);
+        } else {
+            for (std::size_t k = 0; k < x.size(); ++k) out[k] = static_cast<double>(eval_(from_output<Out>(x[k])));
+        }
+    }
+    SampleReturns sample_returns() const override { return Result::kReturns; }
+    bool has_pdf() const override { return !std::is_same_v<Pdf, NoPdf>; }
     void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override {
         if constexpr (std::is_same_v<Invert, NoInverse>) {
             (void)x;
@@ -182,7 +352,7 @@ public:
             throw std::logic_error("warp case " + name() + " has no inverse");
         } else {
             for (std::size_t k = 0; k < x.size(); ++k)
-                out[k] = WarpTypes<In>::to_input(invert_(WarpTypes<Out>::from_output(x[k])));
+                out[k] = WarpTypes<In>::to_input(invert_(from_output<Out>(x[k])));
         }
     }
     bool has_inverse() const override { return !std::is_same_v<Invert, NoInverse>; }
@@ -191,6 +361,7 @@ private:
     Sample sample_;
     Pdf pdf_;
     Invert invert_;
+    Eval eval_;
 };
 
 }  // namespace detail
@@ -199,7 +370,9 @@ private:
 ///   sample: In -> Out, pdf: Out -> float/double, invert: Out -> In,
 /// with In one of float, Point2f, uint32_t, uint64_t and Out one of float,
 /// Point2f, Vector3f. Lambdas are inlined into the batch loops; plain functions
-/// are called through a pointer.
+/// are called through a pointer. sample may return PdfSample<Out> instead: its
+/// pdf is then checked against pdf(x) ("sample_pdf"). Refused (std::invalid_argument
+/// naming the case) where the callables and the info disagree.
 template <typename Sample, typename Pdf, typename Invert>
 std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample, Pdf pdf, Invert invert) {
     return std::make_unique<detail::LambdaWarpCase<Sample, Pdf, Invert>>(std::move(info), std::move(sample),
@@ -207,10 +380,33 @@ std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample, Pdf p
 }
 
 /// Makes a warp case without an inverse from two callables (sample and pdf, as
-/// above): the round-trip checks do not apply to it.
+/// above): the round-trip checks do not apply to it. A discrete case is made
+/// this way too: sample: In -> an integer index, or DiscreteSample with the
+/// remapped u; pdf: index -> its probability (the pmf); with .categories set.
 template <typename Sample, typename Pdf>
 std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample, Pdf pdf) {
     return make_warp_case(std::move(info), std::move(sample), std::move(pdf), detail::NoInverse{});
+}
+
+/// Makes a warp case from its sample alone, for a sampler that returns its pdf
+/// (sample: In -> PdfSample<Out>) and has no pdf function: the checks that need
+/// the pdf only at the samples use the returned one (consistency and
+/// inverse_pdf_mean); those that need it elsewhere (chi2, tabulated, unbinned)
+/// do not apply. No inverse.
+template <typename Sample>
+std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample) {
+    return std::make_unique<detail::LambdaWarpCase<Sample, detail::NoPdf, detail::NoInverse>>(
+        std::move(info), std::move(sample), detail::NoPdf{}, detail::NoInverse{});
+}
+
+/// Makes a weighted sampler's case, as a BSDF's: sample: In -> WeightedSample<Out>
+/// returns a point and its weight eval(x) / pdf(x); eval: Out -> float is the
+/// integrand (a BSDF value times the cosine) and pdf: Out -> float the density
+/// sample draws from. No inverse.
+template <typename Sample, typename Eval, typename Pdf>
+std::unique_ptr<WarpCase> make_weighted_case(WarpCaseInfo info, Sample sample, Eval eval, Pdf pdf) {
+    return std::make_unique<detail::LambdaWarpCase<Sample, Pdf, detail::NoInverse, Eval>>(
+        std::move(info), std::move(sample), std::move(pdf), detail::NoInverse{}, std::move(eval));
 }
 
 /// A warp object: a class with `sample(In)` and `pdf(Out)` const members, and

@@ -28,5 +28,21 @@ std::unique_ptr<Check> make_chi2_check();
 std::unique_ptr<Check> make_tabulated_check();
 /// "unbinned": KS, Kuiper and Anderson-Darling tests of every marginal against its CDF from the pdf.
 std::unique_ptr<Check> make_unbinned_check();
+/// "sample_pdf": the pdf that sample returns (PdfSample) equals pdf(x) at every sample.
+std::unique_ptr<Check> make_sample_pdf_check();
+/// "weight": the weight that sample returns (WeightedSample) equals eval(x) / pdf(x) at every sample.
+std::unique_ptr<Check> make_weight_check();
+/// "weight_mean": the mean weight against the integral of eval over the domain (t-test).
+std::unique_ptr<Check> make_weight_mean_check();
+/// "inverse_pdf_mean": for a sampler that returns its pdf and has no pdf
+/// function, the mean of 1/pdf against the domain's measure (t-test).
+std::unique_ptr<Check> make_inverse_pdf_mean_check();
+/// "pmf": a discrete case's pmf is finite, non-negative and sums to 1.
+std::unique_ptr<Check> make_pmf_check();
+/// "discrete_chi2": a discrete case's indices are categories, none of pmf 0 is
+/// chosen, and the counts fit the pmf (Pearson with pooling).
+std::unique_ptr<Check> make_discrete_chi2_check();
+/// "remapped_u": the u a discrete sampler returns for reuse is in [0,1) and uniform.
+std::unique_ptr<Check> make_remapped_u_check();
 
 }  // namespace warpcheck

@@ -136,9 +136,7 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
     };
     const chi2::BatchPdf pdf = [&](std::span<const chi2::DomainPoint> points, std::span<double> density) {
         std::vector<WarpOutput> x(points.size());
-        for (std::size_t i = 0; i < points.size(); ++i)
-            x[i] = {static_cast<float>(points[i][0]), static_cast<float>(points[i][1]),
-                    static_cast<float>(points[i][2])};
+        for (std::size_t i = 0; i < points.size(); ++i) x[i] = to_warp_output(points[i]);
         warp.pdf(x, density);
     };
     return chi2::run_chi2_test(binning, ctx.options().samples, generate, pdf, options, ctx.executor());
@@ -225,7 +223,7 @@ public:
     std::string description() const override {
         return "Pearson chi-square test of the samples against the pdf integrated over cells (pooled, Sidak-corrected)";
     }
-    bool applies_to(const WarpCase&) const override { return true; }
+    bool applies_to(const WarpCase& warp) const override { return warp.has_pdf() && !warp.is_discrete(); }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         chi2::BinResolution resolution = warp.info().chi2_resolution;

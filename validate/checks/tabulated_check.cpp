@@ -383,7 +383,7 @@ public:
     }
     bool applies_to(const WarpCase& warp) const override {
         View v;
-        return !takes_bits(warp.input_kind()) && resolve(warp, v);
+        return !takes_bits(warp.input_kind()) && warp.has_pdf() && !warp.is_discrete() && resolve(warp, v);
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {

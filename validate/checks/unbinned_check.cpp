@@ -308,7 +308,7 @@ public:
         return "KS, Kuiper and Anderson-Darling tests of each marginal against its CDF from the pdf (Sidak over the "
                "tests)";
     }
-    bool applies_to(const WarpCase&) const override { return true; }
+    bool applies_to(const WarpCase& warp) const override { return warp.has_pdf() && !warp.is_discrete(); }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const Computed c = compute(warp, ctx);

@@ -1,0 +1,416 @@
+// The kinds of warp a renderer has besides sample/pdf/invert: samplers that
+// return their pdf (with or without a pdf function), weighted samplers (a
+// mixture of lobes), discrete samplers (an alias table), parameter grids, and
+// the declarations refused at registration. Each correct warp passes its
+// checks; each wrong twin fails the check meant to catch it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "support/check_harness.h"
+#include "validate/case_grid.h"
+#include "validate/checks/checks.h"
+
+namespace warpcheck {
+namespace {
+
+using testing::run_check;
+
+std::vector<std::unique_ptr<Check>> checks(std::initializer_list<std::unique_ptr<Check> (*)()> makers) {
+    std::vector<std::unique_ptr<Check>> out;
+    for (auto make : makers) out.push_back(make());
+    return out;
+}
+constexpr float kPi = 3.14159265358979323846f;
+
+// ---- a sample that returns its pdf -------------------------------------------
+
+Vector3f direction(float cos_theta, float phi) {
+    const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+    return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+}
+
+// Cosine-weighted hemisphere returning its pdf, computed from u as renderers
+// do; `pdf_scale` != 1 makes the returned pdf disagree with pdf(x).
+PdfSample<Vector3f> cosine_sample(Point2f u, float pdf_scale) {
+    const float cos_theta = std::sqrt(u.x);
+    return {direction(cos_theta, 2 * kPi * u.y), pdf_scale * cos_theta / kPi};
+}
+float cosine_pdf(Vector3f w) { return w.z > 0 ? w.z / kPi : 0; }
+
+WarpCaseInfo hemisphere_info(const char* family) {
+    return {.family = family, .input = InputKind::Uniform2D, .domain = chi2::Domain::hemisphere()};
+}
+
+TEST(SamplePdf, ReturnedPdfEqualToPdfPasses) {
+    auto warp = make_warp_case(hemisphere_info("cosine_pdf"), [](Point2f u) { return cosine_sample(u, 1.0f); },
+                               cosine_pdf);
+    EXPECT_EQ(warp->sample_returns(), SampleReturns::PointAndPdf);
+    const CheckResult r = run_check(*make_sample_pdf_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
+    EXPECT_LT(*r.figure("max_relative_difference"), 1e-5);
+    EXPECT_EQ(run_check(*make_chi2_check(), *warp).verdict, Verdict::Pass);
+}
+
+// Off by 1% only: the samples are right, the returned pdf is not.
+TEST(SamplePdf, ReturnedPdfOffByOnePercentFails) {
+    auto warp = make_warp_case(hemisphere_info("cosine_pdf_scaled"), [](Point2f u) { return cosine_sample(u, 1.01f); },
+                               cosine_pdf);
+    const CheckResult r = run_check(*make_sample_pdf_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_NEAR(*r.figure("max_relative_difference"), 0.01 / 1.01, 1e-4);
+    EXPECT_NE(r.message.find("differs from pdf(x)"), std::string::npos) << r.message;
+    ASSERT_FALSE(r.tables.empty());
+    EXPECT_EQ(r.tables[0].rows.size(), 10u);
+    // The samples themselves are right: the chi-square test cannot see it.
+    EXPECT_EQ(run_check(*make_chi2_check(), *warp).verdict, Verdict::Pass);
+}
+
+TEST(SamplePdf, NaNReturnedPdfFails) {
+    auto warp = make_warp_case(hemisphere_info("cosine_pdf_nan"), [](Point2f u) {
+        auto s = cosine_sample(u, 1.0f);
+        if (u.x > 0.999f) s.pdf = std::nanf("");
+        return s;
+    }, cosine_pdf);
+    EXPECT_EQ(run_check(*make_sample_pdf_check(), *warp).verdict, Verdict::Fail);
+}
+
+// A table-driven sampler with no pdf function: piecewise constant on [0, 2)
+// over four cells; `forget_cells` returns w_i / W instead of 4 w_i / (2 W).
+PdfSample<float> table_sample(float u, bool forget_cells) {
+    static constexpr float w[4] = {1, 3, 2, 0.5f}, total = 6.5f;
+    float cdf = 0;
+    int i = 0;
+    while (i < 3 && u >= (cdf + w[i]) / total) cdf += w[i++];
+    const float t = std::min((u * total - cdf) / w[i], 0x1.fffffep-1f);
+    const float pdf = forget_cells ? w[i] / total : w[i] / total * 2.0f;
+    return {(static_cast<float>(i) + t) * 0.5f, pdf};
+}
+
+WarpCaseInfo table_info(const char* family) {
+    return {.family = family, .input = InputKind::Uniform1D, .domain = chi2::Domain::interval(0, 2)};
+}
+
+TEST(SamplePdf, WithoutPdfFunctionTheReturnedPdfIsUsed) {
+    auto warp = make_warp_case(table_info("table"), [](float u) { return table_sample(u, false); });
+    EXPECT_FALSE(warp->has_pdf());
+    EXPECT_EQ(run_check(*make_consistency_check(), *warp).verdict, Verdict::Pass);
+    const CheckResult r = run_check(*make_inverse_pdf_mean_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
+    EXPECT_NEAR(*r.figure("mean"), 2.0, 0.01);
+    ASSERT_TRUE(r.p_value.has_value());
+    // The checks that need the pdf away from the samples do not apply.
+    EXPECT_FALSE(make_chi2_check()->applies_to(*warp));
+    EXPECT_FALSE(make_unbinned_check()->applies_to(*warp));
+    EXPECT_FALSE(make_tabulated_check()->applies_to(*warp));
+    EXPECT_FALSE(make_sample_pdf_check()->applies_to(*warp));
+}
+
+TEST(SamplePdf, WithoutPdfFunctionAWrongReturnedPdfFailsTheMeanOfItsInverse) {
+    auto warp = make_warp_case(table_info("table_unscaled"), [](float u) { return table_sample(u, true); });
+    const CheckResult r = run_check(*make_inverse_pdf_mean_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_NEAR(*r.figure("mean"), 4.0, 0.02);
+}
+
+// ---- weighted samplers: a mixture of a diffuse and a power-cosine lobe -------
+
+// eval = (kd / pi + ks (n + 2) / (2 pi) cos^n) cos theta; its integral over the
+// hemisphere is kd + ks. sample picks the power lobe with probability 0.4; the
+// pdf says `pdf_select` (0.4 when correct). The weight is eval / pdf.
+struct Mixture {
+    float kd = 0.5f, ks = 0.3f, n = 20.0f, select = 0.4f, pdf_select = 0.4f;
+    float eval(Vector3f w) const {
+        if (!(w.z > 0)) return 0;
+        return (kd / kPi + ks * (n + 2) / (2 * kPi) * std::pow(w.z, n)) * w.z;
+    }
+    float pdf(Vector3f w) const {
+        if (!(w.z > 0)) return 0;
+        return (1 - pdf_select) * w.z / kPi + pdf_select * (n + 1) / (2 * kPi) * std::pow(w.z, n);
+    }
+    WeightedSample<Vector3f> sample(Point2f u) const {
+        const bool power = u.x < select;
+        const float v = power ? u.x / select : (u.x - select) / (1 - select);
+        const float cos_theta = power ? std::pow(1 - v, 1 / (n + 1)) : std::sqrt(1 - v);
+        const Vector3f w = direction(cos_theta, 2 * kPi * u.y);
+        return {w, eval(w) / pdf(w)};
+    }
+};
+
+std::unique_ptr<WarpCase> mixture_case(const char* family, Mixture m) {
+    return make_weighted_case(hemisphere_info(family), [m](Point2f u) { return m.sample(u); },
+                              [m](Vector3f w) { return m.eval(w); }, [m](Vector3f w) { return m.pdf(w); });
+}
+
+TEST(Weighted, CorrectMixturePassesEveryCheck) {
+    auto warp = mixture_case("mixture", {});
+    for (const auto& check : checks({make_weight_check, make_weight_mean_check, make_chi2_check, make_consistency_check})) {
+        ASSERT_TRUE(check->applies_to(*warp)) << check->name();
+        const CheckResult r = run_check(*check, *warp);
+        EXPECT_EQ(r.verdict, Verdict::Pass) << check->name() << ": " << r.message;
+    }
+    const CheckResult mean = run_check(*make_weight_mean_check(), *warp);
+    EXPECT_NEAR(*mean.figure("reference"), 0.8, 1e-6);
+}
+
+// The pdf's lobe-selection probability (0.5) is not sample's (0.4): the weight
+// still equals eval / pdf, but the estimator is biased and the samples do not
+// follow the pdf.
+TEST(Weighted, SelectionProbabilityMismatchFailsTheMeanWeight) {
+    Mixture wrong;
+    wrong.pdf_select = 0.5f;
+    auto warp = mixture_case("mixture_wrong_select", wrong);
+    EXPECT_EQ(run_check(*make_weight_check(), *warp).verdict, Verdict::Pass);
+    const CheckResult mean = run_check(*make_weight_mean_check(), *warp);
+    EXPECT_EQ(mean.verdict, Verdict::Fail) << mean.summary;
+    EXPECT_GT(std::abs(*mean.figure("t")), 10.0);
+    EXPECT_EQ(run_check(*make_chi2_check(), *warp).verdict, Verdict::Fail);
+}
+
+// The weight forgets the cosine: per-sample mismatch.
+TEST(Weighted, WeightWithoutCosineFails) {
+    const Mixture m;
+    auto warp = make_weighted_case(hemisphere_info("mixture_no_cos"), [m](Point2f u) {
+        auto s = m.sample(u);
+        s.weight /= s.x.z;
+        return s;
+    }, [m](Vector3f w) { return m.eval(w); }, [m](Vector3f w) { return m.pdf(w); });
+    const CheckResult r = run_check(*make_weight_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    ASSERT_FALSE(r.tables.empty());
+    EXPECT_EQ(r.tables[0].columns.size(), 7u);
+}
+
+// ---- discrete samplers: an alias table ----------------------------------------
+
+// Vose's alias table over weights; sample returns the index and u remapped.
+struct AliasTable {
+    std::vector<float> q, pmf;
+    std::vector<uint32_t> alias;
+    bool remap_wrong = false;
+
+    explicit AliasTable(std::vector<float> w) : q(w.size()), pmf(w.size()), alias(w.size()) {
+        const float total = std::accumulate(w.begin(), w.end(), 0.0f);
+        const std::size_t n = w.size();
+        std::vector<std::size_t> small, large;
+        std::vector<double> scaled(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            pmf[i] = w[i] / total;
+            scaled[i] = static_cast<double>(w[i]) * static_cast<double>(n) / total;
+            (scaled[i] < 1 ? small : large).push_back(i);
+        }
+        while (!small.empty() && !large.empty()) {
+            const std::size_t s = small.back(), l = large.back();
+            small.pop_back();
+            q[s] = static_cast<float>(scaled[s]);
+            alias[s] = static_cast<uint32_t>(l);
+            scaled[l] -= 1 - scaled[s];
+            if (scaled[l] < 1) large.pop_back(), small.push_back(l);
+        }
+        for (std::size_t i : small) q[i] = 1, alias[i] = static_cast<uint32_t>(i);
+        for (std::size_t i : large) q[i] = 1, alias[i] = static_cast<uint32_t>(i);
+    }
+    DiscreteSample sample(float u) const {
+        const float scaled = u * static_cast<float>(q.size());
+        const auto i = std::min(static_cast<uint32_t>(scaled), static_cast<uint32_t>(q.size() - 1));
+        const float up = scaled - static_cast<float>(i);
+        constexpr float kBelowOne = 0x1.fffffep-1f;
+        if (up < q[i]) return {i, std::min(remap_wrong ? up : up / q[i], kBelowOne)};
+        return {alias[i], std::min((up - q[i]) / (1 - q[i]), kBelowOne)};
+    }
+};
+
+WarpCaseInfo discrete_info(const char* family, std::size_t n) {
+    return {.family = family, .input = InputKind::Uniform1D, .categories = n};
+}
+
+std::unique_ptr<WarpCase> alias_case(const char* family, const AliasTable& t) {
+    return make_warp_case(discrete_info(family, t.q.size()), [t](float u) { return t.sample(u); },
+                          [t](uint32_t i) { return t.pmf[i]; });
+}
+
+TEST(Discrete, AliasTablePassesEveryCheck) {
+    auto warp = alias_case("alias", AliasTable({1, 0, 3, 2, 0.5f, 7, 0.01f}));
+    EXPECT_TRUE(warp->is_discrete());
+    for (const auto& check : checks({make_pmf_check, make_discrete_chi2_check, make_remapped_u_check})) {
+        ASSERT_TRUE(check->applies_to(*warp)) << check->name();
+        const CheckResult r = run_check(*check, *warp);
+        EXPECT_EQ(r.verdict, Verdict::Pass) << check->name() << ": " << r.message;
+    }
+    for (const auto& check : checks({make_consistency_check, make_chi2_check, make_unbinned_check, make_roundtrip_check}))
+        EXPECT_FALSE(check->applies_to(*warp)) << check->name();
+}
+
+TEST(Discrete, RemappedUNotRescaledFails) {
+    AliasTable t({1, 0, 3, 2, 0.5f, 7, 0.01f});
+    t.remap_wrong = true;
+    auto warp = alias_case("alias_remap", t);
+    EXPECT_EQ(run_check(*make_discrete_chi2_check(), *warp).verdict, Verdict::Pass);
+    const CheckResult r = run_check(*make_remapped_u_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Fail) << r.summary;
+}
+
+TEST(Discrete, ZeroWeightCategoryChosenFails) {
+    const AliasTable t({1, 0, 3});
+    auto warp = make_warp_case(discrete_info("alias_zero", 3), [t](float u) {
+        return u > 0.99f ? DiscreteSample{1, 0.5f} : t.sample(u);
+    }, [t](uint32_t i) { return t.pmf[i]; });
+    const CheckResult r = run_check(*make_discrete_chi2_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_NE(r.message.find("chose a category of pmf 0"), std::string::npos) << r.message;
+}
+
+TEST(Discrete, IndexOutsideTheCategoriesFails) {
+    auto warp = make_warp_case(discrete_info("index_out", 4), [](float u) { return static_cast<int>(u * 5); },
+                               [](int) { return 0.25f; });
+    const CheckResult r = run_check(*make_discrete_chi2_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_NE(r.message.find("not a category"), std::string::npos) << r.message;
+}
+
+TEST(Discrete, CountsThatDoNotFitThePmfFail) {
+    // Uniform picks, while the pmf says 0.3, 0.2, 0.3, 0.2.
+    auto warp = make_warp_case(discrete_info("pick_uniform", 4),
+                               [](float u) { return std::min(static_cast<int>(u * 4), 3); },
+                               [](int i) { return i % 2 == 0 ? 0.3f : 0.2f; });
+    EXPECT_EQ(run_check(*make_discrete_chi2_check(), *warp).verdict, Verdict::Fail);
+    EXPECT_EQ(run_check(*make_pmf_check(), *warp).verdict, Verdict::Pass);
+}
+
+TEST(Discrete, PmfThatDoesNotSumToOneFails) {
+    auto warp = make_warp_case(discrete_info("pmf_unnormalised", 4),
+                               [](float u) { return std::min(static_cast<int>(u * 4), 3); },
+                               [](int) { return 0.2501f; });
+    const CheckResult r = run_check(*make_pmf_check(), *warp);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_NE(r.message.find("sums to"), std::string::npos) << r.message;
+}
+
+// ---- determinism ----------------------------------------------------------------
+
+// Every figure of the new checks is the same bit for bit on 1 and 3 threads.
+TEST(Kinds, FiguresDoNotDependOnTheThreadCount) {
+    AliasTable t({1, 0, 3, 2, 0.5f, 7, 0.01f});
+    auto alias = alias_case("alias_threads", t);
+    auto mixture = mixture_case("mixture_threads", {});
+    auto table = make_warp_case(table_info("table_threads"), [](float u) { return table_sample(u, false); });
+    const std::pair<const WarpCase*, std::unique_ptr<Check>> jobs[] = {
+        {alias.get(), make_discrete_chi2_check()}, {alias.get(), make_remapped_u_check()},
+        {mixture.get(), make_weight_mean_check()}, {mixture.get(), make_weight_check()},
+        {table.get(), make_inverse_pdf_mean_check()}};
+    for (const auto& [warp, check] : jobs) {
+        const CheckResult one = run_check(*check, *warp, 300'000, 1), three = run_check(*check, *warp, 300'000, 3);
+        ASSERT_EQ(one.figures.size(), three.figures.size()) << check->name();
+        for (std::size_t i = 0; i < one.figures.size(); ++i)
+            EXPECT_EQ(std::bit_cast<uint64_t>(one.figures[i].value), std::bit_cast<uint64_t>(three.figures[i].value))
+                << check->name() << " " << one.figures[i].name;
+    }
+}
+
+// ---- parameter grids -----------------------------------------------------------
+
+TEST(CaseGrid, OneCasePerPointWithStableNames) {
+    Registry registry;
+    add_case_grid(registry, {.family = "lobe", .params = {{"kd", 0.5}}, .domain = chi2::Domain::hemisphere()},
+                  {{"ks", {0.1, 0.3}}, {"n", {2, 20, 200}}}, [](WarpCaseInfo info, const GridPoint& p) {
+                      Mixture m;
+                      m.ks = static_cast<float>(p["ks"]);
+                      m.n = static_cast<float>(p["n"]);
+                      return make_weighted_case(std::move(info), [m](Point2f u) { return m.sample(u); },
+                                                [m](Vector3f w) { return m.eval(w); },
+                                                [m](Vector3f w) { return m.pdf(w); });
+                  });
+    ASSERT_EQ(registry.cases().size(), 6u);
+    EXPECT_EQ(registry.cases()[0]->name(), "lobe[kd=0.5,ks=0.1,n=2]");
+    EXPECT_EQ(registry.cases()[1]->name(), "lobe[kd=0.5,ks=0.1,n=20]");
+    EXPECT_EQ(registry.cases()[5]->name(), "lobe[kd=0.5,ks=0.3,n=200]");
+}
+
+TEST(CaseGrid, BadGridsAreRefusedNamingTheFamily) {
+    Registry registry;
+    const GridCaseMaker make = [](WarpCaseInfo info, const GridPoint&) {
+        return make_warp_case(std::move(info), [](Point2f u) { return u; }, [](Point2f) { return 1.0f; });
+    };
+    const WarpCaseInfo base{.family = "square"};
+    EXPECT_THROW(add_case_grid(registry, base, {{"a", {}}}, make), std::invalid_argument);
+    EXPECT_THROW(add_case_grid(registry, base, {{"a", {1, NAN}}}, make), std::invalid_argument);
+    EXPECT_THROW(add_case_grid(registry, base, {{"a", {1}}, {"a", {2}}}, make), std::invalid_argument);
+    const GridCaseMaker renames = [](WarpCaseInfo, const GridPoint&) {
+        return make_warp_case({.family = "other"}, [](Point2f u) { return u; }, [](Point2f) { return 1.0f; });
+    };
+    try {
+        add_case_grid(registry, base, {{"a", {1}}}, renames);
+        FAIL() << "a maker that drops the grid's parameters must be refused";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("square[a=1]"), std::string::npos) << e.what();
+    }
+}
+
+// ---- declarations refused at registration ---------------------------------------
+
+/// The message of the std::invalid_argument that `make` throws, or "".
+template <typename F>
+std::string refusal(F make) {
+    try {
+        make();
+    } catch (const std::invalid_argument& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Declaration, InconsistentCasesAreRefusedNamingTheCase) {
+    const Mixture m;
+    const AliasTable t({1, 2});
+    auto pmf = [t](uint32_t i) { return t.pmf[i]; };
+    // A discrete case with a continuous domain.
+    EXPECT_NE(refusal([&] {
+                  make_warp_case({.family = "d1", .input = InputKind::Uniform1D, .domain = chi2::Domain::interval(0, 2),
+                                  .categories = 2},
+                                 [t](float u) { return t.sample(u); }, pmf);
+              }).find("warp case d1: a discrete case has no continuous domain"),
+              std::string::npos);
+    // A discrete case without its number of categories.
+    EXPECT_NE(refusal([&] {
+                  make_warp_case({.family = "d2", .input = InputKind::Uniform1D}, [t](float u) { return t.sample(u); },
+                                 pmf);
+              }).find("warp case d2: its sample returns an index, so it needs .categories"),
+              std::string::npos);
+    // Categories on a continuous case.
+    EXPECT_NE(refusal([&] {
+                  make_warp_case({.family = "c1", .categories = 3}, [](Point2f u) { return u; },
+                                 [](Point2f) { return 1.0f; });
+              }).find("warp case c1: it declares .categories"),
+              std::string::npos);
+    // A weight without eval (no make_weighted_case).
+    EXPECT_NE(refusal([&] {
+                  make_warp_case(hemisphere_info("w1"), [m](Point2f u) { return m.sample(u); },
+                                 [m](Vector3f w) { return m.pdf(w); });
+              }).find("warp case w1: its sample returns a weight but there is no eval"),
+              std::string::npos);
+    // Points of the wrong dimension, and an input kind its sample does not take.
+    EXPECT_NE(refusal([&] {
+                  make_warp_case(table_info("p1"), [](float u) { return Point2f{u, u}; }, [](Point2f) { return 1.0f; });
+              }).find("warp case p1: its points have 2 coordinates, but the interval"),
+              std::string::npos);
+    EXPECT_NE(refusal([&] {
+                  make_warp_case(table_info("p3"), [](Point2f u) { return u.x; }, [](float) { return 0.5f; });
+              }).find("warp case p3: its sample takes Uniform2D (a Point2f) but .input is Uniform1D"),
+              std::string::npos);
+    EXPECT_NE(refusal([&] {
+                  make_warp_case({.family = "p2", .input = InputKind::Uniform1D}, [](float u) { return u; },
+                                 [](float) { return 1.0f; });
+              }).find("warp case p2: its points have 1 coordinates, but the box"),
+              std::string::npos);
+    // No pdf at all.
+    EXPECT_NE(refusal([&] { make_warp_case(table_info("n1"), [](float u) { return u; }); })
+                  .find("warp case n1: it has no pdf"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace warpcheck

@@ -1,0 +1,149 @@
+// "weight_mean" and "inverse_pdf_mean": importance-weighted estimators, tested
+// against what they estimate. Both are statistical (a t-test of the mean, in the
+// run's multiple-testing family) and both draw the random stream only (edge
+// inputs are not distributed as the warp's samples).
+//  - weight_mean: a weighted sampler's mean weight estimates the integral of
+//    eval over the domain, since E[eval(X) / pdf(X)] = integral of eval. The
+//    reference is eval integrated by the engine's adaptive quadrature. A pdf
+//    that disagrees with what sample draws (a mixture whose lobe-selection
+//    probability differs between sample and pdf) biases it.
+//  - inverse_pdf_mean: for a sampler that returns its pdf and has no pdf
+//    function, E[1 / pdf(X)] is the measure of the density's support: the
+//    domain's measure, since a correct warp's density is positive on its
+//    domain. A returned pdf that is off by a factor anywhere moves the mean.
+// The t-test needs a finite variance of the estimator: E[w^2] = integral of
+// eval^2 / pdf, and E[1/pdf^2] = integral of 1/pdf, finite when the pdf stays
+// away from 0 where eval is not 0 (where it does not, the test is not valid).
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "chi2/binning.h"
+#include "chi2/mean_test.h"
+#include "chi2/quadrature.h"
+#include "validate/checks/checks.h"
+#include "validate/checks/evidence.h"
+#include "validate/checks/input_chunks.h"
+
+namespace warpcheck {
+namespace {
+
+/// The rounding allowance of the reference, relative: the float eval / pdf (or
+/// 1 / pdf) of every sample may be off by a few ulps in the same direction, so
+/// the mean of 10^6 of them may be biased by up to ~16 ulps (2^-20) without any
+/// error in the warp; it is added to the standard error in quadrature.
+constexpr double kRoundingAllowance = 0x1p-20;
+
+enum class Estimator { Weight, InversePdf };
+
+struct Stats {
+    chi2::Moments moments;
+    uint64_t invalid = 0;  ///< samples whose estimate is NaN or infinite (or whose pdf is not positive)
+    void merge(const Stats& o) {
+        moments.merge(o.moments);
+        invalid += o.invalid;
+    }
+};
+
+Stats compute(const WarpCase& warp, const CheckContext& ctx, Estimator which) {
+    auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, false,
+                                         [&](std::size_t, std::span<const WarpInput> inputs) {
+        std::vector<WarpOutput> x(inputs.size());
+        std::vector<double> value(inputs.size());
+        warp.sample_with_value(inputs, x, value);
+        Stats s;
+        for (double v : value) {
+            const double estimate = which == Estimator::Weight ? v : 1.0 / v;
+            if (!std::isfinite(estimate) || (which == Estimator::InversePdf && !(v > 0.0))) ++s.invalid;
+            else s.moments.add(estimate);
+        }
+        return s;
+    });
+    return merge_in_order(parts);
+}
+
+struct Reference {
+    double value = 0.0;
+    double error = 0.0;  ///< quadrature error estimate (0 for a measure)
+};
+
+/// The integral of eval over the domain, by the chi-square engine's quadrature.
+Reference integral_of_eval(const WarpCase& warp, const CheckContext& ctx) {
+    const chi2::Binning binning(warp.domain());
+    const chi2::BatchPdf eval = [&](std::span<const chi2::DomainPoint> points, std::span<double> out) {
+        std::vector<WarpOutput> x(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i) x[i] = to_warp_output(points[i]);
+        warp.eval(x, out);
+    };
+    chi2::QuadratureOptions options;
+    options.sample_count = ctx.options().samples;
+    const chi2::CellIntegrals integrals = chi2::integrate_cells(binning, eval, options, ctx.executor());
+    return {integrals.total, integrals.error_total};
+}
+
+void judge(CheckResult& r, const Stats& s, const chi2::MeanTest& t, Estimator which) {
+    const char* what = which == Estimator::Weight ? "mean weight" : "mean 1/pdf";
+    const char* of = which == Estimator::Weight ? "the integral of eval" : "the domain's measure";
+    r.p_value = t.p_value;  // judged by the runner at the run's corrected level
+    r.summary = fmt::format("{} {:.6g} vs {:.6g} (t = {:.2f})", what, t.mean, t.reference, t.t);
+    r.verdict = Verdict::Pass;
+    if (s.invalid > 0) {
+        r.verdict = Verdict::Fail;
+        r.summary = fmt::format("{} samples with a non-finite {}", s.invalid,
+                                which == Estimator::Weight ? "weight" : "1/pdf");
+        r.message = r.summary + " (the estimator is then undefined)";
+        return;
+    }
+    r.message = fmt::format("{} {:.9g} estimates {} {:.9g}: difference {:.3g} = {:.2f} standard errors "
+                            "({} samples)", what, t.mean, of, t.reference, t.mean - t.reference, t.t, s.moments.n);
+}
+
+class ImportanceCheck final : public Check {
+public:
+    explicit ImportanceCheck(Estimator which) : which_(which) {}
+    std::string name() const override { return which_ == Estimator::Weight ? "weight_mean" : "inverse_pdf_mean"; }
+    std::string description() const override {
+        return which_ == Estimator::Weight
+                   ? "the mean weight against the integral of eval over the domain (t-test, Sidak-corrected)"
+                   : "without a pdf function: the mean of 1/pdf (returned) against the domain's measure (t-test)";
+    }
+    bool applies_to(const WarpCase& warp) const override {
+        if (!std::isfinite(warp.domain().measure()) || warp.is_discrete()) return false;
+        if (which_ == Estimator::Weight) return warp.sample_returns() == SampleReturns::PointAndWeight;
+        return warp.sample_returns() == SampleReturns::PointAndPdf && !warp.has_pdf();
+    }
+
+    CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
+        const Stats s = compute(warp, ctx, which_);
+        const Reference ref =
+            which_ == Estimator::Weight ? integral_of_eval(warp, ctx) : Reference{warp.domain().measure(), 0.0};
+        const double uncertainty = std::hypot(ref.error, kRoundingAllowance * std::abs(ref.value));
+        const chi2::MeanTest t = chi2::mean_test(s.moments, ref.value, uncertainty);
+        CheckResult r;
+        r.samples = s.moments.n + s.invalid;
+        r.figures = {{"samples", static_cast<double>(r.samples)},
+                     {"mean", t.mean},
+                     {"reference", ref.value},
+                     {"reference_error", ref.error},
+                     {"standard_error", t.standard_error},
+                     {"t", t.t},
+                     {"p_value", t.p_value},
+                     {"invalid_samples", static_cast<double>(s.invalid)}};
+        judge(r, s, t, which_);
+        return r;
+    }
+
+private:
+    Estimator which_;
+};
+
+}  // namespace
+
+std::unique_ptr<Check> make_weight_mean_check() { return std::make_unique<ImportanceCheck>(Estimator::Weight); }
+std::unique_ptr<Check> make_inverse_pdf_mean_check() {
+    return std::make_unique<ImportanceCheck>(Estimator::InversePdf);
+}
+
+}  // namespace warpcheck

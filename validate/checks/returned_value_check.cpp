@@ -1,0 +1,169 @@
+// "sample_pdf" and "weight": what a sampler returns with each sample, against
+// its functions at that sample. A renderer's Sample(u, &pdf) computes the pdf
+// along its own path (often from u, before x exists) while pdf(x) recomputes
+// it from x; a BSDF sampler's weight is its own eval / pdf. Where the two
+// disagree, a renderer's estimator is biased even when every sample lands
+// where it should, so every sample (edge inputs included) is compared:
+//   sample_pdf: the returned pdf against pdf(x);
+//   weight:     the returned weight against eval(x) / pdf(x).
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "validate/checks/checks.h"
+#include "validate/checks/evidence.h"
+#include "validate/checks/formatting.h"
+#include "validate/checks/input_chunks.h"
+
+namespace warpcheck {
+namespace {
+
+/// Largest relative disagreement accepted, 2^-12 (4096 float ulps): the two
+/// sides compute in float along different paths (from u, and again from the
+/// rounded x), and a density's logarithmic slope (hundreds for a sharp
+/// power-cosine lobe) multiplies x's few ulps of rounding, while a wrong
+/// factor (a selection probability, a Jacobian, a missing cos theta) is off by
+/// percent. Below FLT_MIN both sides are denormal floats with no relative
+/// precision, so absolute differences up to FLT_MIN are accepted.
+constexpr double kRelativeTolerance = 0x1p-12;
+
+/// |a - b| / max(|a|, |b|); 0 where they agree to within FLT_MIN; NaN if either is NaN.
+double relative_difference(double returned, double reference) {
+    const double diff = std::abs(returned - reference);
+    if (diff <= FLT_MIN) return 0.0;
+    return diff / std::max(std::abs(returned), std::abs(reference));
+}
+
+struct Example {
+    WarpInput input;
+    WarpOutput output{};
+    double returned = 0.0;
+    double reference = 0.0;
+    double eval = 0.0, pdf = 0.0;  // the reference's parts (weight check)
+};
+
+struct Stats {
+    uint64_t count = 0, mismatches = 0;
+    double max_relative = 0.0;
+    WorstK<Example> worst{10};
+
+    void merge(const Stats& o) {
+        count += o.count;
+        mismatches += o.mismatches;
+        max_relative = max_nan_wins(max_relative, o.max_relative);
+        worst.merge(o.worst);
+    }
+};
+
+enum class What { Pdf, Weight };
+
+/// The reference of each sample: pdf(x), or eval(x) / pdf(x).
+void references(const WarpCase& warp, What what, std::span<const WarpOutput> x, std::vector<Example>& ex) {
+    std::vector<double> pdf(x.size()), eval(x.size());
+    warp.pdf(x, pdf);
+    if (what == What::Weight) warp.eval(x, eval);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        ex[i].pdf = pdf[i];
+        ex[i].eval = eval[i];
+        ex[i].reference = what == What::Pdf ? pdf[i] : eval[i] / pdf[i];
+    }
+}
+
+Stats compute(const WarpCase& warp, const CheckContext& ctx, What what) {
+    auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, true,
+                                         [&](std::size_t chunk, std::span<const WarpInput> inputs) {
+        std::vector<WarpOutput> x(inputs.size());
+        std::vector<double> value(inputs.size());
+        warp.sample_with_value(inputs, x, value);
+        std::vector<Example> ex(inputs.size());
+        references(warp, what, x, ex);
+        Stats s;
+        for (std::size_t i = 0; i < inputs.size(); ++i) {
+            ex[i].input = inputs[i];
+            ex[i].output = x[i];
+            ex[i].returned = value[i];
+            const double rel = relative_difference(value[i], ex[i].reference);
+            ++s.count;
+            s.max_relative = max_nan_wins(s.max_relative, rel);
+            if (!(rel <= kRelativeTolerance)) ++s.mismatches;
+            if (s.worst.wants(rel)) s.worst.offer(rel, chunk * kInputChunkSize + i, ex[i]);
+        }
+        return s;
+    });
+    return merge_in_order(parts);
+}
+
+/// The judge: any sample beyond the tolerance fails (a correct sampler has none).
+void judge(CheckResult& r, const Stats& s, What what) {
+    const char* value = what == What::Pdf ? "pdf" : "weight";
+    const char* reference = what == What::Pdf ? "pdf(x)" : "eval(x) / pdf(x)";
+    r.summary = fmt::format("max rel. diff {:.3g}", s.max_relative);
+    if (s.mismatches == 0) {
+        r.verdict = Verdict::Pass;
+        return;
+    }
+    r.verdict = Verdict::Fail;
+    const Example& e = s.worst.front().item;
+    r.summary = fmt::format("returned {} differs from {} at {} of {} samples", value, reference, s.mismatches, s.count);
+    r.message = fmt::format("{} of {} samples return a {} that differs from {} by more than {:.3g} relative; "
+                            "worst: returned {:.9g}, {} = {:.9g} (relative difference {:.3g})",
+                            s.mismatches, s.count, value, reference, kRelativeTolerance, e.returned, reference,
+                            e.reference, s.max_relative);
+}
+
+Table worst_table(const Stats& s, const WarpCase& warp, What what) {
+    const int dims = warp.domain().point_dimension();
+    Table t{"Largest disagreements", {"input u", "sample(u)", "returned", "", "relative difference"}, {}};
+    t.columns[3] = what == What::Pdf ? "pdf(x)" : "eval(x) / pdf(x)";
+    if (what == What::Weight) t.columns.insert(t.columns.end(), {"eval(x)", "pdf(x)"});
+    for (const auto& entry : s.worst.entries()) {
+        const Example& e = entry.item;
+        std::vector<std::string> row = {format_input(e.input, warp.input_kind()), format_output(e.output, dims),
+                                        fmt::format("{:.9g}", e.returned), fmt::format("{:.9g}", e.reference),
+                                        fmt::format("{:.3g}", entry.key)};
+        if (what == What::Weight) row.insert(row.end(), {fmt::format("{:.9g}", e.eval), fmt::format("{:.9g}", e.pdf)});
+        t.rows.push_back(std::move(row));
+    }
+    return t;
+}
+
+class ReturnedValueCheck final : public Check {
+public:
+    explicit ReturnedValueCheck(What what) : what_(what) {}
+    std::string name() const override { return what_ == What::Pdf ? "sample_pdf" : "weight"; }
+    std::string description() const override {
+        return what_ == What::Pdf ? "the pdf that sample returns equals pdf(x) at every sample (float-rounding tolerance)"
+                                  : "the weight that sample returns equals eval(x) / pdf(x) at every sample "
+                                    "(float-rounding tolerance)";
+    }
+    bool applies_to(const WarpCase& warp) const override {
+        if (what_ == What::Pdf) return warp.sample_returns() == SampleReturns::PointAndPdf && warp.has_pdf();
+        return warp.sample_returns() == SampleReturns::PointAndWeight;
+    }
+
+    CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
+        const Stats s = compute(warp, ctx, what_);
+        CheckResult r;
+        r.samples = s.count;
+        r.figures = {{"samples", static_cast<double>(s.count)},
+                     {"mismatches", static_cast<double>(s.mismatches)},
+                     {"max_relative_difference", s.max_relative},
+                     {"tolerance", kRelativeTolerance}};
+        judge(r, s, what_);
+        r.tables.push_back(worst_table(s, warp, what_));
+        return r;
+    }
+
+private:
+    What what_;
+};
+
+}  // namespace
+
+std::unique_ptr<Check> make_sample_pdf_check() { return std::make_unique<ReturnedValueCheck>(What::Pdf); }
+std::unique_ptr<Check> make_weight_check() { return std::make_unique<ReturnedValueCheck>(What::Weight); }
+
+}  // namespace warpcheck
