@@ -65,7 +65,7 @@ list(SORT offenders)
 # A ratchet, not an excuse: the functions still over the limit when the limit
 # was introduced, each with the length it may not exceed. They are to be split;
 # any other function over the limit, or one of these growing, fails.
-set(known_long "render_xy=132" "render_heatmaps=122" "run_cli=150")
+set(known_long "run_cli=150")
 set(unlisted "")
 set(listed "")
 foreach(entry IN LISTS offenders)
