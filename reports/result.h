@@ -128,8 +128,8 @@ struct RunInfo {
     std::string compiler;
     std::string machine;
     std::string started_at;  ///< ISO 8601, UTC
-    /// Checks given up on after their time budget; their threads may still be
-    /// running, so a program should exit soon after such a run.
+    /// Checks whose worker process was killed for going over its time budget
+    /// (isolated runs; an in-process run asks such a check to stop and waits).
     int abandoned_checks = 0;
     /// Which part of a sharded run this is (validate --shard I/N): shard
     /// shard_index of shard_count, 1-based; 0 of 0 for a whole run.

@@ -421,136 +421,208 @@ std::string svg_open(double width, double height, std::string_view label) {
         px(width), px(height), px(kFontSize), kTextColor, escaped(label));
 }
 
-std::string render_xy(const Plot& plot, const SvgOptions& options) {
-    const double width = options.width, height = options.height;
-    std::vector<std::vector<Point>> data;
-    Range rx, ry;
-    for (const Series& s : plot.series) {
-        data.push_back(points_of(s, plot.log_x, plot.log_y));
-        for (const Point& p : data.back()) {
-            if (!std::isnan(p.x)) rx.add(p.x);
-            if (valid(p)) ry.add(p.y);
-        }
-    }
-    const bool bars = plot.kind == Plot::Kind::Bars;
-    if (bars && !plot.log_y && !ry.empty()) ry.add(0.0);  // bars grow from zero
+/// The shown points of every series and the ranges they span, the x range
+/// padded so that bars and points at its ends are drawn whole.
+struct XyData {
+    std::vector<std::vector<Point>> series;
+    Range x, y;
+    /// The closest pair of x values (in decades on a log axis): the width a bar may take.
+    double bar_spacing = std::numeric_limits<double>::infinity();
+};
 
-    // Bars are as wide as the closest pair of x values allows.
+/// Bars grow from zero and are as wide as the closest pair of x values allows:
+/// the y range takes in 0, the x range half a bar more at each end.
+void widen_for_bars(XyData& data, bool log_x, bool log_y) {
+    if (!log_y && !data.y.empty()) data.y.add(0.0);
+    std::vector<double> xs;
+    for (const auto& points : data.series)
+        for (const Point& p : points)
+            if (!std::isnan(p.x)) xs.push_back(log_x ? std::log10(p.x) : p.x);
+    std::sort(xs.begin(), xs.end());
+    xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
     double spacing = std::numeric_limits<double>::infinity();
-    if (bars) {
-        std::vector<double> xs;
-        for (const auto& points : data)
-            for (const Point& p : points)
-                if (!std::isnan(p.x)) xs.push_back(plot.log_x ? std::log10(p.x) : p.x);
-        std::sort(xs.begin(), xs.end());
-        xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
-        for (std::size_t i = 1; i < xs.size(); ++i) spacing = std::min(spacing, xs[i] - xs[i - 1]);
-        if (!std::isfinite(spacing)) spacing = 1.0;
-        if (!rx.empty()) {
-            if (plot.log_x)
-                rx.lo *= std::pow(10.0, -spacing / 2), rx.hi *= std::pow(10.0, spacing / 2);
-            else
-                rx.lo -= spacing / 2, rx.hi += spacing / 2;
+    for (std::size_t i = 1; i < xs.size(); ++i) spacing = std::min(spacing, xs[i] - xs[i - 1]);
+    if (!std::isfinite(spacing)) spacing = 1.0;
+    data.bar_spacing = spacing;
+    if (data.x.empty()) return;
+    if (log_x)
+        data.x.lo *= std::pow(10.0, -spacing / 2), data.x.hi *= std::pow(10.0, spacing / 2);
+    else
+        data.x.lo -= spacing / 2, data.x.hi += spacing / 2;
+}
+
+XyData xy_data(const Plot& plot) {
+    XyData data;
+    for (const Series& s : plot.series) {
+        data.series.push_back(points_of(s, plot.log_x, plot.log_y));
+        for (const Point& p : data.series.back()) {
+            if (!std::isnan(p.x)) data.x.add(p.x);
+            if (valid(p)) data.y.add(p.y);
         }
     }
-    if (plot.kind == Plot::Kind::Points && !rx.empty() && !plot.log_x) {
-        const double pad = (rx.hi - rx.lo) * 0.02;
-        rx.lo -= pad, rx.hi += pad;
+    if (plot.kind == Plot::Kind::Bars) widen_for_bars(data, plot.log_x, plot.log_y);
+    if (plot.kind == Plot::Kind::Points && !data.x.empty() && !plot.log_x) {
+        const double pad = (data.x.hi - data.x.lo) * 0.02;
+        data.x.lo -= pad, data.x.hi += pad;
     }
+    return data;
+}
 
-    // The x axis ends on ticks when that adds little (e.g. cell centres 0.0025
-    // .. 0.9975 become 0 .. 1), else exactly at the data.
-    Axis ax = make_axis(rx, plot.log_x, false, 7);
-    if (!plot.log_x && !rx.empty() && ax.ticks.size() >= 2) {
-        Range extended = rx;
-        Axis trial = make_axis(extended, false, true, 7);
+/// The x axis ends on ticks when that adds little (e.g. cell centres 0.0025
+/// .. 0.9975 become 0 .. 1), else exactly at the data.
+Axis x_axis_of(const Range& rx, bool log_x) {
+    Axis ax = make_axis(rx, log_x, false, 7);
+    if (!log_x && !rx.empty() && ax.ticks.size() >= 2) {
+        Axis trial = make_axis(rx, false, true, 7);
         if (trial.hi - trial.lo <= (ax.hi - ax.lo) * 1.1) ax = trial;
     }
-    Axis ay = make_axis(ry, plot.log_y, true, 6);
+    return ax;
+}
 
-    // Layout: legend on top, y tick labels and label on the left.
+/// One entry per series when there are several, or when the one series has a label.
+std::vector<LegendItem> legend_items(const Plot& plot) {
     std::vector<LegendItem> legend;
     for (std::size_t i = 0; i < plot.series.size(); ++i)
         if (!plot.series[i].label.empty() || plot.series.size() > 1)
             legend.push_back({plot.series[i].label.empty() ? fmt::format("series {}", i + 1) : plot.series[i].label,
                               series_color(i), plot.kind, plot.kind == Plot::Kind::Lines ? dash_of(i) : ""});
-    const std::vector<std::string> x_label = wrap(plot.x_label, width - 90.0);
-    const std::vector<std::string> y_label = wrap(plot.y_label, height - 70.0);
-    const double y_label_space = y_label.empty() ? 0.0 : 18.0 + kLineHeight * static_cast<double>(y_label.size() - 1);
-    const double left = 12.0 + y_label_space + std::max(24.0, max_label_width(ay.ticks));
-    const double right = width - 16.0;
+    return legend;
+}
+
+/// Where the plot area of an x-y plot lies, in pixels, and what surrounds it:
+/// the legend on top, the y tick labels and the y label on the left.
+struct XyFrame {
+    std::vector<std::string> x_label, y_label;  ///< wrapped into lines
     std::string legend_svg;
-    const double legend_height = append_legend(legend_svg, legend, left, 8.0, right - left);
-    const double top = 10.0 + legend_height;
-    const double bottom = height - (x_label.empty() ? 26.0 : 42.0 + kLineHeight * static_cast<double>(x_label.size() - 1));
-    ax.from = left, ax.to = right;
-    ay.from = bottom, ay.to = top;
+    double left = 0.0, right = 0.0, top = 0.0, bottom = 0.0;
+};
 
-    std::string svg = svg_open(width, height, plot.title);
-    svg += legend_svg;
-    append_axes(svg, ax, ay, x_label, y_label, 14.0);
+XyFrame xy_frame(const Plot& plot, const Axis& ay, double width, double height) {
+    XyFrame frame;
+    frame.x_label = wrap(plot.x_label, width - 90.0);
+    frame.y_label = wrap(plot.y_label, height - 70.0);
+    const double y_label_space = frame.y_label.empty() ? 0.0 : 18.0 + kLineHeight * static_cast<double>(frame.y_label.size() - 1);
+    frame.left = 12.0 + y_label_space + std::max(24.0, max_label_width(ay.ticks));
+    frame.right = width - 16.0;
+    const double legend_height = append_legend(frame.legend_svg, legend_items(plot), frame.left, 8.0, frame.right - frame.left);
+    frame.top = 10.0 + legend_height;
+    frame.bottom = height - (frame.x_label.empty() ? 26.0 : 42.0 + kLineHeight * static_cast<double>(frame.x_label.size() - 1));
+    return frame;
+}
 
-    if (rx.empty() || ry.empty()) {
-        svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"{}\">no data to plot</text>",
-                           px((left + right) / 2), px((top + bottom) / 2), kAxisColor);
-        return svg + "</svg>";
+/// A round dot at each valid point, as one path of zero-length segments.
+std::string dot_marks(const std::vector<Point>& points, const Axis& ax, const Axis& ay) {
+    std::string marks;
+    for (const Point& p : points)
+        if (valid(p)) marks += fmt::format("M{} {}h0", px(ax.map(p.x)), px(ay.map(p.y)));
+    return marks;
+}
+
+/// Series `i` as a line, dashed after the first.
+void append_line_series(std::string& svg, const std::vector<Point>& points, std::size_t i, const Axis& ax, const Axis& ay) {
+    const std::string color = series_color(i);
+    std::string d;
+    append_line_path(d, points, ax, ay);
+    svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\"{}/>", d, color,
+                       i == 0 ? 2.2 : 1.8, dash_of(i));
+    if (points.size() <= 40)  // few points: mark them, a lone point would be invisible
+        svg += fmt::format("<path d=\"{}\" stroke=\"{}\" stroke-width=\"5\" stroke-linecap=\"round\"/>", dot_marks(points, ax, ay),
+                           color);
+}
+
+/// Series as dots, smaller and fainter when there are many.
+void append_point_series(std::string& svg, const std::vector<Point>& points, const std::string& color, const Axis& ax,
+                         const Axis& ay) {
+    const bool many = points.size() > 2000;
+    svg += fmt::format("<path d=\"{}\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-opacity=\"{}\"/>",
+                       dot_marks(points, ax, ay), color, many ? 2.5 : 5, many ? 0.6 : 0.85);
+}
+
+/// How the bars of a plot sit: side by side in groups when each has room (5
+/// px), else the first series filled and the others as step outlines over it.
+struct BarLayout {
+    double base = 0.0;           ///< the value bars grow from
+    double pixel_spacing = 0.0;  ///< the closest pair of x values, in pixels
+    std::size_t n_series = 0;
+    bool grouped = false;
+};
+
+BarLayout bar_layout(const Plot& plot, const XyData& data, const Axis& ax, const Axis& ay) {
+    BarLayout bars;
+    bars.base = ay.log ? ay.lo : std::clamp(0.0, ay.lo, ay.hi);
+    const double spacing = data.bar_spacing;
+    bars.pixel_spacing = std::abs(ax.map(plot.log_x ? std::pow(10.0, spacing) * ax.lo : ax.lo + spacing) - ax.map(ax.lo));
+    bars.n_series = data.series.size();
+    bars.grouped = plot.kind == Plot::Kind::Bars && bars.n_series > 1 &&
+                   bars.pixel_spacing * 0.8 / static_cast<double>(bars.n_series) >= 5.0;
+    return bars;
+}
+
+/// Series `i` as filled bars: its slot of a group, or centred on x.
+void append_filled_bars(std::string& svg, const std::vector<Point>& points, std::size_t i, const BarLayout& bars,
+                        const Axis& ax, const Axis& ay) {
+    const double full = std::max(bars.pixel_spacing * 0.8, 1.0);
+    const double w = bars.grouped ? full / static_cast<double>(bars.n_series) : full;
+    const double offset = bars.grouped ? -full / 2 + w * static_cast<double>(i) : -w / 2;
+    svg += fmt::format("<g fill=\"{}\"{}>", series_color(i), bars.grouped ? "" : " fill-opacity=\"0.8\"");
+    for (const Point& p : points) {
+        if (!valid(p)) continue;
+        const double y0 = ay.map(bars.base), y1 = ay.map(p.y);
+        svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>", px(ax.map(p.x) + offset), px(std::min(y0, y1)),
+                           px(w), px(std::max(std::abs(y1 - y0), 0.5)));
     }
+    svg += "</g>";
+}
 
-    const double base = ay.log ? ay.lo : std::clamp(0.0, ay.lo, ay.hi);
-    const double pixel_spacing = std::abs(ax.map(plot.log_x ? std::pow(10.0, spacing) * ax.lo : ax.lo + spacing) - ax.map(ax.lo));
-    const std::size_t n_series = data.size();
-    std::size_t most_points = 0;
-    for (const auto& points : data) most_points = std::max(most_points, points.size());
-    const bool grouped = bars && n_series > 1 && pixel_spacing * 0.8 / static_cast<double>(n_series) >= 5.0;
-
-    for (std::size_t i = 0; i < n_series; ++i) {
-        const auto& points = data[i];
-        const std::string color = series_color(i);
-        if (plot.kind == Plot::Kind::Lines) {
-            std::string d;
-            append_line_path(d, points, ax, ay);
-            svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\"{}/>", d,
-                               color, i == 0 ? 2.2 : 1.8, dash_of(i));
-            if (points.size() <= 40) {  // few points: mark them, a lone point would be invisible
-                std::string marks;
-                for (const Point& p : points)
-                    if (valid(p)) marks += fmt::format("M{} {}h0", px(ax.map(p.x)), px(ay.map(p.y)));
-                svg += fmt::format("<path d=\"{}\" stroke=\"{}\" stroke-width=\"5\" stroke-linecap=\"round\"/>", marks, color);
-            }
-        } else if (plot.kind == Plot::Kind::Points) {
-            std::string marks;
-            for (const Point& p : points)
-                if (valid(p)) marks += fmt::format("M{} {}h0", px(ax.map(p.x)), px(ay.map(p.y)));
-            const bool many = points.size() > 2000;
-            svg += fmt::format("<path d=\"{}\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-opacity=\"{}\"/>",
-                               marks, color, many ? 2.5 : 5, many ? 0.6 : 0.85);
-        } else if (grouped || i == 0) {  // filled bars
-            const double full = std::max(pixel_spacing * 0.8, 1.0);
-            const double w = grouped ? full / static_cast<double>(n_series) : full;
-            const double offset = grouped ? -full / 2 + w * static_cast<double>(i) : -w / 2;
-            svg += fmt::format("<g fill=\"{}\"{}>", color, grouped ? "" : " fill-opacity=\"0.8\"");
-            for (const Point& p : points) {
-                if (!valid(p)) continue;
-                const double y0 = ay.map(base), y1 = ay.map(p.y);
-                svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>", px(ax.map(p.x) + offset),
-                                   px(std::min(y0, y1)), px(w), px(std::max(std::abs(y1 - y0), 0.5)));
-            }
-            svg += "</g>";
-        } else {  // further series over dense bars: a step outline each
-            std::string d;
-            bool pen_down = false;
-            const double half = pixel_spacing / 2;
-            for (const Point& p : points) {
-                if (!valid(p)) {
-                    pen_down = false;
-                    continue;
-                }
-                const double x = ax.map(p.x), y = ay.map(p.y);
-                d += fmt::format("{}{} {}H{}", pen_down ? 'L' : 'M', px(x - half), px(y), px(x + half));
-                pen_down = true;
-            }
-            svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\"/>", d, color);
+/// A series over dense bars: a step outline, one bar wide at each point.
+void append_step_outline(std::string& svg, const std::vector<Point>& points, const std::string& color, double pixel_spacing,
+                         const Axis& ax, const Axis& ay) {
+    std::string d;
+    bool pen_down = false;
+    const double half = pixel_spacing / 2;
+    for (const Point& p : points) {
+        if (!valid(p)) {
+            pen_down = false;
+            continue;
         }
+        const double x = ax.map(p.x), y = ay.map(p.y);
+        d += fmt::format("{}{} {}H{}", pen_down ? 'L' : 'M', px(x - half), px(y), px(x + half));
+        pen_down = true;
+    }
+    svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\"/>", d, color);
+}
+
+void append_xy_series(std::string& svg, const Plot& plot, const XyData& data, const Axis& ax, const Axis& ay) {
+    const BarLayout bars = bar_layout(plot, data, ax, ay);
+    for (std::size_t i = 0; i < data.series.size(); ++i) {
+        const auto& points = data.series[i];
+        if (plot.kind == Plot::Kind::Lines)
+            append_line_series(svg, points, i, ax, ay);
+        else if (plot.kind == Plot::Kind::Points)
+            append_point_series(svg, points, series_color(i), ax, ay);
+        else if (bars.grouped || i == 0)
+            append_filled_bars(svg, points, i, bars, ax, ay);
+        else
+            append_step_outline(svg, points, series_color(i), bars.pixel_spacing, ax, ay);
+    }
+}
+
+std::string render_xy(const Plot& plot, const SvgOptions& options) {
+    const XyData data = xy_data(plot);
+    Axis ax = x_axis_of(data.x, plot.log_x);
+    Axis ay = make_axis(data.y, plot.log_y, true, 6);
+    const XyFrame frame = xy_frame(plot, ay, options.width, options.height);
+    ax.from = frame.left, ax.to = frame.right;
+    ay.from = frame.bottom, ay.to = frame.top;
+
+    std::string svg = svg_open(options.width, options.height, plot.title);
+    svg += frame.legend_svg;
+    append_axes(svg, ax, ay, frame.x_label, frame.y_label, 14.0);
+    if (data.x.empty() || data.y.empty()) {
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"{}\">no data to plot</text>",
+                           px((frame.left + frame.right) / 2), px((frame.top + frame.bottom) / 2), kAxisColor);
+    } else {
+        append_xy_series(svg, plot, data, ax, ay);
     }
     return svg + "</svg>";
 }
@@ -628,127 +700,187 @@ double append_color_bar(std::string& svg, const Scale& scale, const std::string&
     return 48.0;
 }
 
-std::string render_heatmaps(const Plot& plot, const SvgOptions& options) {
-    const auto& maps = plot.heatmaps;
-    // One scale per colour map, over all heatmaps that use it.
+/// The colour scales of a plot's heatmaps: one per colour map, over all
+/// heatmaps that use it.
+struct SharedScales {
     std::vector<Scale> scales;
-    std::vector<std::size_t> scale_of(maps.size(), 0);
-    bool any_missing = false;
+    std::vector<std::size_t> scale_of;  ///< per heatmap, the index of its scale
+    bool any_missing = false;           ///< some cell has no value (NaN)
+};
+
+/// Widens `scale` to the values of heatmap `h` and to its min_color_limit.
+void widen_scale(Scale& scale, const Heatmap& h, bool& any_missing) {
+    const double floor = std::abs(h.min_color_limit);
+    if (floor > 0.0 && std::isfinite(floor)) {
+        scale.hi = std::max(scale.hi, floor);
+        if (scale.map == ColorMap::Diverging) scale.lo = std::min(scale.lo, -floor);
+    }
+    for (double v : h.values) {
+        if (std::isnan(v)) {
+            any_missing = true;
+        } else if (std::isfinite(v)) {
+            scale.lo = std::min(scale.lo, v);
+            scale.hi = std::max(scale.hi, v);
+        }
+    }
+}
+
+/// A diverging scale is symmetric about 0; a sequential one of values >= 0
+/// starts at 0, so that counts and densities that are flat look flat.
+void settle_scale(Scale& s) {
+    if (!(s.lo <= s.hi)) s.lo = 0.0, s.hi = 1.0;
+    if (s.map == ColorMap::Diverging) {
+        const double limit = std::max(std::abs(s.lo), std::abs(s.hi));
+        s.lo = -(limit > 0 ? limit : 1.0), s.hi = -s.lo;
+    } else {
+        if (s.lo >= 0.0) s.lo = 0.0;
+        if (s.hi <= s.lo) s.hi = s.lo + 1.0;
+    }
+}
+
+SharedScales shared_scales(const std::vector<Heatmap>& maps) {
+    SharedScales shared;
+    shared.scale_of.assign(maps.size(), 0);
     for (std::size_t i = 0; i < maps.size(); ++i) {
         if (!well_formed(maps[i])) continue;
         const ColorMap map = resolve(maps[i]);
-        auto it = std::find_if(scales.begin(), scales.end(), [&](const Scale& s) { return s.map == map; });
-        if (it == scales.end()) {
-            scales.push_back({map, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), {}});
-            it = scales.end() - 1;
+        auto it = std::find_if(shared.scales.begin(), shared.scales.end(), [&](const Scale& s) { return s.map == map; });
+        if (it == shared.scales.end()) {
+            shared.scales.push_back({map, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), {}});
+            it = shared.scales.end() - 1;
         }
-        scale_of[i] = static_cast<std::size_t>(it - scales.begin());
+        shared.scale_of[i] = static_cast<std::size_t>(it - shared.scales.begin());
         it->members.push_back(maps[i].label.empty() ? fmt::format("map {}", i + 1) : maps[i].label);
-        const double floor = std::abs(maps[i].min_color_limit);
-        if (floor > 0.0 && std::isfinite(floor)) {
-            it->hi = std::max(it->hi, floor);
-            if (map == ColorMap::Diverging) it->lo = std::min(it->lo, -floor);
-        }
-        for (double v : maps[i].values) {
-            if (std::isnan(v)) {
-                any_missing = true;
-            } else if (std::isfinite(v)) {
-                it->lo = std::min(it->lo, v);
-                it->hi = std::max(it->hi, v);
-            }
-        }
+        widen_scale(*it, maps[i], shared.any_missing);
     }
-    for (Scale& s : scales) {
-        if (!(s.lo <= s.hi)) s.lo = 0.0, s.hi = 1.0;
-        if (s.map == ColorMap::Diverging) {
-            const double limit = std::max(std::abs(s.lo), std::abs(s.hi));
-            s.lo = -(limit > 0 ? limit : 1.0), s.hi = -s.lo;
-        } else {
-            if (s.lo >= 0.0) s.lo = 0.0;  // counts and densities: from zero, so that flat looks flat
-            if (s.hi <= s.lo) s.hi = s.lo + 1.0;
-        }
-    }
+    for (Scale& s : shared.scales) settle_scale(s);
+    return shared;
+}
 
-    // Panels: up to three in a row (two by two for four), each with its own axes.
-    const std::size_t n = std::max<std::size_t>(maps.size(), 1);
-    const std::size_t per_row = n == 4 ? 2 : std::min<std::size_t>(n, 3);
-    const double panel_width = per_row == 1 ? 440.0 : per_row == 2 ? 380.0 : 300.0;
+/// The layout of heatmap panels: up to three in a row (two by two for four),
+/// each with its own axes, the legends below them all.
+struct PanelGrid {
+    std::size_t per_row = 1;
+    double panel_width = 0.0, panel_height = 0.0;  ///< the cells' area
+    std::vector<std::string> x_label, y_label;     ///< wrapped into lines
+    double margin_left = 0.0, margin_top = 22.0;   ///< from a grid cell's corner to its panel
+    double cell_width = 0.0, cell_height = 0.0;    ///< a panel with its margins
+    double legend_top = 0.0, width = 0.0, height = 0.0;
+
+    double panel_x(std::size_t i) const { return static_cast<double>(i % per_row) * cell_width + margin_left; }
+    double panel_y(std::size_t i) const { return static_cast<double>(i / per_row) * cell_height + margin_top; }
+};
+
+PanelGrid panel_grid(const Plot& plot) {
+    PanelGrid g;
+    const std::size_t n = std::max<std::size_t>(plot.heatmaps.size(), 1);
+    g.per_row = n == 4 ? 2 : std::min<std::size_t>(n, 3);
+    g.panel_width = g.per_row == 1 ? 440.0 : g.per_row == 2 ? 380.0 : 300.0;
     double aspect = 0.0;  // width / height of the widest grid of cells
-    for (const Heatmap& h : maps)
+    for (const Heatmap& h : plot.heatmaps)
         if (well_formed(h)) aspect = std::max(aspect, static_cast<double>(h.cols) / h.rows);
     aspect = std::clamp(aspect == 0.0 ? 1.0 : aspect, 0.75, 3.0);
-    const double panel_height = std::min(panel_width / aspect, 320.0);
-    const std::vector<std::string> x_label = wrap(plot.x_label, panel_width);
-    const std::vector<std::string> y_label = wrap(plot.y_label, panel_height);
-    const double extra_lines_x = x_label.empty() ? 0.0 : kLineHeight * static_cast<double>(x_label.size() - 1);
-    const double extra_lines_y = y_label.empty() ? 0.0 : kLineHeight * static_cast<double>(y_label.size() - 1);
-    const double margin_left = (y_label.empty() ? 16.0 : 34.0 + extra_lines_y) + 34.0, margin_top = 22.0;
-    const double margin_bottom = x_label.empty() ? 28.0 : 44.0 + extra_lines_x, gap = 18.0;
-    const double cell_width = margin_left + panel_width + gap, cell_height = margin_top + panel_height + margin_bottom;
-    const std::size_t panel_rows = (n + per_row - 1) / per_row;
-    const double legend_top = static_cast<double>(panel_rows) * cell_height + 6.0;
-    const double width = static_cast<double>(per_row) * cell_width + 4.0;
+    g.panel_height = std::min(g.panel_width / aspect, 320.0);
+    g.x_label = wrap(plot.x_label, g.panel_width);
+    g.y_label = wrap(plot.y_label, g.panel_height);
+    const double extra_lines_x = g.x_label.empty() ? 0.0 : kLineHeight * static_cast<double>(g.x_label.size() - 1);
+    const double extra_lines_y = g.y_label.empty() ? 0.0 : kLineHeight * static_cast<double>(g.y_label.size() - 1);
+    g.margin_left = (g.y_label.empty() ? 16.0 : 34.0 + extra_lines_y) + 34.0;
+    const double margin_bottom = g.x_label.empty() ? 28.0 : 44.0 + extra_lines_x, gap = 18.0;
+    g.cell_width = g.margin_left + g.panel_width + gap;
+    g.cell_height = g.margin_top + g.panel_height + margin_bottom;
+    const std::size_t panel_rows = (n + g.per_row - 1) / g.per_row;
+    g.legend_top = static_cast<double>(panel_rows) * g.cell_height + 6.0;
+    g.width = static_cast<double>(g.per_row) * g.cell_width + 4.0;
     const double legend_height = 56.0;
-    const double height = legend_top + legend_height;
+    g.height = g.legend_top + legend_height;
+    return g;
+}
 
-    std::string svg = svg_open(width, height, plot.title);
-    const std::string hatch = options.id_prefix + "-nan";
-    svg += fmt::format(
+/// The hatching shown behind cells without a value, as a pattern with id `id`.
+std::string hatch_pattern(const std::string& id) {
+    return fmt::format(
         "<defs><pattern id=\"{}\" width=\"6\" height=\"6\" patternUnits=\"userSpaceOnUse\" patternTransform=\"rotate(45)\">"
         "<rect width=\"6\" height=\"6\" fill=\"#eceef1\"/><path d=\"M0 0V6\" stroke=\"#a7adb5\" stroke-width=\"2\"/></pattern></defs>",
-        hatch);
+        id);
+}
 
-    for (std::size_t i = 0; i < maps.size(); ++i) {
-        const Heatmap& h = maps[i];
-        const double x0 = static_cast<double>(i % per_row) * cell_width + margin_left;
-        const double y0 = static_cast<double>(i / per_row) * cell_height + margin_top;
-        svg += fmt::format("<text x=\"{}\" y=\"{}\" class=\"panel-title\">{}</text>", px(x0), px(y0 - 8), escaped(h.label));
-        if (!well_formed(h)) {
-            svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"url(#{})\"/>", px(x0), px(y0),
-                               px(panel_width), px(panel_height), hatch);
-            svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">malformed heatmap: {} x {} cells, {} values</text>",
-                               px(x0 + panel_width / 2), px(y0 + panel_height / 2), h.rows, h.cols, h.values.size());
-            continue;
-        }
-        Range rx{h.x_min, h.x_max}, ry{h.y_min, h.y_max};
-        Axis ax = make_axis(rx, false, false, 5);
-        Axis ay = make_axis(ry, false, false, 4);
-        ax.from = x0, ax.to = x0 + panel_width;
-        ay.from = y0 + panel_height, ay.to = y0;
-        svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"url(#{})\"/>", px(x0), px(y0),
-                           px(panel_width), px(panel_height), hatch);
-        svg += fmt::format(
-            "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" class=\"cells\" href=\"{}\"/>",
-            px(x0), px(y0), px(panel_width), px(panel_height), heatmap_image(h, scales[scale_of[i]]));
-        // Axes without the grid, which would hide cells.
-        svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"{}\"/>", px(x0), px(y0),
-                           px(panel_width), px(panel_height), kAxisColor);
-        svg += "<g text-anchor=\"middle\">";
-        for (const Tick& t : ax.ticks)
-            svg += fmt::format("<path d=\"M{0} {1}v4\" stroke=\"{2}\"/><text x=\"{0}\" y=\"{3}\">{4}</text>", px(ax.map(t.value)),
-                               px(ay.from), kAxisColor, px(ay.from + 16), t.label.markup);
-        svg += "</g><g text-anchor=\"end\">";
-        for (const Tick& t : ay.ticks)
-            svg += fmt::format("<path d=\"M{0} {1}h-4\" stroke=\"{2}\"/><text x=\"{3}\" y=\"{1}\" dy=\"0.35em\">{4}</text>",
-                               px(x0), px(ay.map(t.value)), kAxisColor, px(x0 - 7), t.label.markup);
-        svg += "</g>";
-        if (!x_label.empty()) svg += axis_label(x_label, x0 + panel_width / 2, ay.from + 34, false);
-        if (!y_label.empty()) svg += axis_label(y_label, x0 - margin_left + 14, y0 + panel_height / 2, true);
-    }
+/// A panel's title over the hatching that shows through cells without a value.
+std::string panel_background(const Heatmap& h, double x0, double y0, const PanelGrid& g, const std::string& hatch) {
+    return fmt::format("<text x=\"{}\" y=\"{}\" class=\"panel-title\">{}</text>", px(x0), px(y0 - 8), escaped(h.label)) +
+           fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"url(#{})\"/>", px(x0), px(y0),
+                       px(g.panel_width), px(g.panel_height), hatch);
+}
 
-    // Legends: one colour bar per scale, then the swatch for cells without a value.
-    double x = margin_left;
-    for (std::size_t s = 0; s < scales.size(); ++s) {
-        append_color_bar(svg, scales[s], fmt::format("{}-scale{}", options.id_prefix, s), x, legend_top, 220.0);
+/// What a panel shows when the heatmap's size and values disagree.
+std::string malformed_note(const Heatmap& h, double x0, double y0, const PanelGrid& g) {
+    return fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">malformed heatmap: {} x {} cells, {} values</text>",
+                       px(x0 + g.panel_width / 2), px(y0 + g.panel_height / 2), h.rows, h.cols, h.values.size());
+}
+
+/// A panel's frame, ticks and axis labels, without the grid, which would hide cells.
+void append_panel_axes(std::string& svg, const Heatmap& h, const PanelGrid& g, double x0, double y0) {
+    Axis ax = make_axis(Range{h.x_min, h.x_max}, false, false, 5);
+    Axis ay = make_axis(Range{h.y_min, h.y_max}, false, false, 4);
+    ax.from = x0, ax.to = x0 + g.panel_width;
+    ay.from = y0 + g.panel_height, ay.to = y0;
+    svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"{}\"/>", px(x0), px(y0),
+                       px(g.panel_width), px(g.panel_height), kAxisColor);
+    svg += "<g text-anchor=\"middle\">";
+    for (const Tick& t : ax.ticks)
+        svg += fmt::format("<path d=\"M{0} {1}v4\" stroke=\"{2}\"/><text x=\"{0}\" y=\"{3}\">{4}</text>", px(ax.map(t.value)),
+                           px(ay.from), kAxisColor, px(ay.from + 16), t.label.markup);
+    svg += "</g><g text-anchor=\"end\">";
+    for (const Tick& t : ay.ticks)
+        svg += fmt::format("<path d=\"M{0} {1}h-4\" stroke=\"{2}\"/><text x=\"{3}\" y=\"{1}\" dy=\"0.35em\">{4}</text>", px(x0),
+                           px(ay.map(t.value)), kAxisColor, px(x0 - 7), t.label.markup);
+    svg += "</g>";
+    if (!g.x_label.empty()) svg += axis_label(g.x_label, x0 + g.panel_width / 2, ay.from + 34, false);
+    if (!g.y_label.empty()) svg += axis_label(g.y_label, x0 - g.margin_left + 14, y0 + g.panel_height / 2, true);
+}
+
+/// The cells of a well-formed heatmap as one image, with the panel's axes.
+void append_cells(std::string& svg, const Heatmap& h, const Scale& scale, double x0, double y0, const PanelGrid& g) {
+    svg += fmt::format(
+        "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" class=\"cells\" href=\"{}\"/>", px(x0),
+        px(y0), px(g.panel_width), px(g.panel_height), heatmap_image(h, scale));
+    append_panel_axes(svg, h, g, x0, y0);
+}
+
+/// Below the panels: one colour bar per scale, then the swatch for cells without a value.
+void append_heatmap_legends(std::string& svg, const SharedScales& shared, const PanelGrid& g, const std::string& id_prefix,
+                            const std::string& hatch) {
+    double x = g.margin_left;
+    for (std::size_t s = 0; s < shared.scales.size(); ++s) {
+        append_color_bar(svg, shared.scales[s], fmt::format("{}-scale{}", id_prefix, s), x, g.legend_top, 220.0);
         x += 220.0 + 48.0;
     }
-    if (any_missing) {
+    if (shared.any_missing) {
         svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"16\" height=\"10\" fill=\"url(#{})\" stroke=\"{}\" stroke-width=\"0.5\"/>",
-                           px(x), px(legend_top + 16), hatch, kAxisColor);
-        svg += fmt::format("<text x=\"{}\" y=\"{}\" dy=\"0.35em\">no value (e.g. pooled)</text>", px(x + 22), px(legend_top + 21));
+                           px(x), px(g.legend_top + 16), hatch, kAxisColor);
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" dy=\"0.35em\">no value (e.g. pooled)</text>", px(x + 22), px(g.legend_top + 21));
     }
+}
+
+std::string render_heatmaps(const Plot& plot, const SvgOptions& options) {
+    const auto& maps = plot.heatmaps;
+    const SharedScales shared = shared_scales(maps);
+    const PanelGrid grid = panel_grid(plot);
+    const std::string hatch = options.id_prefix + "-nan";
+    std::string svg = svg_open(grid.width, grid.height, plot.title);
+    svg += hatch_pattern(hatch);
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        const double x0 = grid.panel_x(i), y0 = grid.panel_y(i);
+        svg += panel_background(maps[i], x0, y0, grid, hatch);
+        if (well_formed(maps[i]))
+            append_cells(svg, maps[i], shared.scales[shared.scale_of[i]], x0, y0, grid);
+        else
+            svg += malformed_note(maps[i], x0, y0, grid);
+    }
+    append_heatmap_legends(svg, shared, grid, options.id_prefix, hatch);
     if (maps.empty())
-        svg += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">no heatmaps</text>", px(margin_left), px(margin_top + 20), kAxisColor);
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">no heatmaps</text>", px(grid.margin_left), px(grid.margin_top + 20),
+                           kAxisColor);
     return svg + "</svg>";
 }
 

@@ -28,8 +28,9 @@ struct RunOptions {
     double alpha = 0.01;           ///< family-wise significance level (Šidák-corrected per test)
     bool exhaustive = false;       ///< run the heavy optional sweeps too
     bool include_flawed = false;   ///< also run the cases marked as known flaws (they are expected to fail)
-    /// Seconds one check may take before it is reported as an error and
-    /// abandoned (a sampler that never terminates must not hang the run).
+    /// CPU seconds one check may use before it is reported as an error and its
+    /// worker process killed (a sampler that never terminates must not hang the
+    /// run); in an in-process run, wall seconds after which it is asked to stop.
     double check_time_budget = 60.0;
     /// Whether the user set check_time_budget (--time-budget): then it binds
     /// every check; otherwise heavy sweeps may take their own larger default

@@ -48,9 +48,11 @@ bool name_matches(std::string_view name, std::string_view pattern);
 void register_builtin_cases(Registry& registry);
 void register_builtin_checks(Registry& registry);
 
-/// Idioms that fail by the rules (u * 2^-32 reaching 1.0, lerps reaching b),
-/// registered and marked as known flaws. Not part of register_builtin_cases:
-/// every default check of every built-in case passes.
+/// Idioms that fail by the rules (u * 2^-32 reaching 1.0, 23 random bits that
+/// never reach 1 - 2^-24, lerps reaching b or stepping down), registered and
+/// marked as known flaws. Not part of register_builtin_cases, so that every
+/// default check of every built-in case passes; validate adds them and runs
+/// them with --include-flawed or when one is named in full.
 void register_flawed_interval_cases(Registry& registry);
 
 namespace detail {

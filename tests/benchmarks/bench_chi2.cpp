@@ -6,14 +6,13 @@
 //   BM_Chi2BinOnly          binning only, of pre-drawn samples (items/s = samples/s)
 //   BM_Chi2Integration      expected counts only, at the accuracy rule for 10^7 samples
 // Run: build-chi2/tests/benchmarks/bench_chi2 --benchmark_min_time=2
-#include <memory>
 #include <span>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
 #include "chi2/chi2_test.h"
-#include "sampling/hemisphere.h"
+#include "support/builtin_case.h"
 #include "validate/check.h"
 #include "validate/checks/checks.h"
 #include "validate/thread_pool.h"
@@ -25,16 +24,8 @@ namespace {
 constexpr uint64_t kSamples = 10'000'000;
 constexpr unsigned kThreads = 2;
 
-std::unique_ptr<WarpCase> cosine_hemisphere_case() {
-    WarpCaseInfo info;
-    info.family = "cosine_hemisphere";
-    info.input = InputKind::Uniform2D;
-    info.domain = chi2::Domain::hemisphere();
-    return make_warp_case(info, CosineHemisphere{});
-}
-
 struct Fixture {
-    std::unique_ptr<WarpCase> warp = cosine_hemisphere_case();
+    const WarpCase* warp = &testing::builtin_case("cosine_hemisphere");
     ThreadPool pool{kThreads};
     RunOptions options;
     Fixture() {

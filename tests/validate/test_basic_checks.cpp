@@ -8,6 +8,7 @@
 #include "sampling/disk.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sphere.h"
+#include "support/builtin_case.h"
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
 
@@ -20,8 +21,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 WarpCaseInfo disk_info(const char* family) { return {family, {}, "test warp", InputKind::Uniform2D, chi2::Domain::unit_disk()}; }
 
 TEST(RoundtripCheck, CorrectWarpPasses) {
-    auto warp = make_warp_case(disk_info("polar"), UniformDiskPolar{});
-    const CheckResult r = run_check(*make_roundtrip_check(), *warp);
+    const CheckResult r = run_check(*make_roundtrip_check(), testing::builtin_case("uniform_disk_polar"));
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     EXPECT_LT(*r.figure("max_error"), 1e-6);
     EXPECT_EQ(*r.figure("failures"), 0.0);
@@ -86,8 +86,7 @@ TEST(RoundtripCheck, RawBitInversesMustBeExact) {
 }
 
 TEST(ConsistencyCheck, CorrectWarpsPass) {
-    auto cosine = make_warp_case({"cos", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, CosineHemisphere{});
-    const CheckResult r = run_check(*make_consistency_check(), *cosine);
+    const CheckResult r = run_check(*make_consistency_check(), testing::builtin_case("cosine_hemisphere"));
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     // u.x = 0 reaches the rim, where cos(theta)/pi is 0: accepted, and counted.
     EXPECT_GE(*r.figure("zero_pdf_on_boundary"), 1.0);

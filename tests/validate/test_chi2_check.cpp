@@ -186,9 +186,7 @@ TEST(Chi2Check, ResultCarriesFiguresSummaryAndPlots) {
 }
 
 TEST(Chi2Check, OneDimensionalCasesGetLinePlots) {
-    const Exponential e(1.0f);
-    auto warp = make_warp_case(info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D), e);
-    const CheckResult r = run_chi2(*warp, 1, 100'000);
+    const CheckResult r = run_chi2(testing::builtin_case("exponential[a=1]"), 1, 100'000);
     ASSERT_EQ(r.plots.size(), 2u);
     EXPECT_EQ(r.plots[0].series.size(), 2u);  // observed, expected
     EXPECT_EQ(r.plots[1].series.size(), 1u);  // residual

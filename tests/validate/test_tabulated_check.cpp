@@ -9,6 +9,7 @@
 
 #include "sampling/exponential.h"
 #include "sampling/trowbridge_reitz.h"
+#include "support/builtin_case.h"
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
 
@@ -44,13 +45,15 @@ std::unique_ptr<WarpCase> exponential_case(float a, float scale = 1.0f, float pd
         [e, pdf_scale](float x) { return pdf_scale * e.pdf(x); }, [e](float x) { return e.invert(x); });
 }
 
-std::unique_ptr<WarpCase> tr_normal_case(float alpha, bool increasing) {
+/// The isotropic Trowbridge-Reitz normals with their cos(theta_m) marginal
+/// declared increasing in u.x, which it is not.
+std::unique_ptr<WarpCase> tr_normal_case_declared_increasing(float alpha) {
     WarpCaseInfo info;
-    info.family = "trowbridge_reitz_normals";
+    info.family = "trowbridge_reitz_normals_declared_increasing";
     info.domain = chi2::Domain::hemisphere();
     MonotoneMarginal m;
     m.input_coordinate = 0;
-    m.increasing = increasing;
+    m.increasing = true;
     m.coordinate = [](const WarpOutput& o) { return static_cast<double>(o[2]); };
     m.pdf = [alpha](double z) { return TrowbridgeReitz::isotropic_cos_theta_pdf(alpha, z); };
     info.marginal = m;
@@ -63,8 +66,8 @@ TEST(TabulatedCheck, AppliesTo1DWarpsAndDeclaredMarginals) {
     const TrimmedExponential t(1.0f, 1.0f);
     auto interval = make_warp_case(info_1d("trimmed", chi2::Domain::interval(0.0, 1.0)), t);
     EXPECT_TRUE(check->applies_to(*interval));
-    EXPECT_TRUE(check->applies_to(*exponential_case(1.0f)));
-    EXPECT_TRUE(check->applies_to(*tr_normal_case(0.3f, false)));
+    EXPECT_TRUE(check->applies_to(testing::builtin_case("exponential[a=1]")));
+    EXPECT_TRUE(check->applies_to(testing::builtin_case("trowbridge_reitz_normals[ax=0.3,ay=0.3]")));
     // A half-line without a declared truncation, and a 2D warp without a marginal: no.
     const Exponential e(1.0f);
     auto half_line = make_warp_case(info_1d("exponential", chi2::Domain::half_line(0.0)), e);
@@ -79,8 +82,8 @@ TEST(TabulatedCheck, AppliesTo1DWarpsAndDeclaredMarginals) {
 
 TEST(TabulatedCheck, CorrectWarpsPassWithMarginAndReportEvidence) {
     const auto check = make_tabulated_check();
-    for (float a : {0.1f, 1.0f, 10.0f}) {
-        const CheckResult r = run_check(*check, *exponential_case(a));
+    for (const char* name : {"exponential[a=0.1]", "exponential[a=1]", "exponential[a=10]"}) {
+        const CheckResult r = run_check(*check, testing::builtin_case(name));
         EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
         EXPECT_LE(*r.figure("max_x_error_over_tolerance"), 0.5);
         EXPECT_LE(*r.figure("max_pdf_error_over_tolerance"), 0.5);
@@ -93,9 +96,10 @@ TEST(TabulatedCheck, CorrectWarpsPassWithMarginAndReportEvidence) {
         ASSERT_EQ(r.tables.size(), 1u);
         EXPECT_FALSE(r.tables[0].rows.empty());
     }
-    for (float alpha : {0.05f, 0.3f, 1.0f}) {
-        const CheckResult r = run_check(*check, *tr_normal_case(alpha, false));
-        EXPECT_EQ(r.verdict, Verdict::Pass) << alpha << ": " << r.message;
+    for (const char* name : {"trowbridge_reitz_normals[ax=0.05,ay=0.05]", "trowbridge_reitz_normals[ax=0.3,ay=0.3]",
+                             "trowbridge_reitz_normals[ax=1,ay=1]"}) {
+        const CheckResult r = run_check(*check, testing::builtin_case(name));
+        EXPECT_EQ(r.verdict, Verdict::Pass) << name << ": " << r.message;
     }
 }
 
@@ -124,7 +128,7 @@ TEST(TabulatedCheck, MissingTailFails) {
 
 TEST(TabulatedCheck, WrongMonotonicityFails) {
     // cos(theta_m) decreases with u.x; declaring it increasing must not pass.
-    const CheckResult r = run_check(*make_tabulated_check(), *tr_normal_case(0.3f, true));
+    const CheckResult r = run_check(*make_tabulated_check(), *tr_normal_case_declared_increasing(0.3f));
     EXPECT_EQ(r.verdict, Verdict::Fail);
 }
 
@@ -140,9 +144,9 @@ TEST(TabulatedCheck, NaNSamplesFail) {
 
 TEST(TabulatedCheck, FiguresDoNotDependOnThreads) {
     const auto check = make_tabulated_check();
-    const auto warp = tr_normal_case(0.3f, false);
-    const CheckResult one = run_check(*check, *warp, 300'000, 1);
-    const CheckResult three = run_check(*check, *warp, 300'000, 3);
+    const WarpCase& warp = testing::builtin_case("trowbridge_reitz_normals[ax=0.3,ay=0.3]");
+    const CheckResult one = run_check(*check, warp, 300'000, 1);
+    const CheckResult three = run_check(*check, warp, 300'000, 3);
     ASSERT_EQ(one.figures.size(), three.figures.size());
     for (std::size_t i = 0; i < one.figures.size(); ++i) {
         EXPECT_EQ(one.figures[i].name, three.figures[i].name);

@@ -3,8 +3,8 @@
 // lerps can be swept exhaustively (validate/exhaustive_sweep.h).
 // Built in: the samplers that pass by the rules (the biased-but-in-range ones
 // with their bias figures). register_flawed_interval_cases adds the idioms that
-// fail (u * 2^-32 reaching 1.0, lerps reaching b), kept out of the built-in
-// suite, whose every default check passes.
+// fail (u * 2^-32 reaching 1.0, 23 random bits never reaching 1 - 2^-24, lerps
+// reaching b), kept out of the built-in suite, whose every default check passes.
 #include <cmath>
 #include <memory>
 #include <string>
