@@ -24,13 +24,26 @@ const WarpCase* Registry::find_case(std::string_view name) const {
 
 void Registry::mark_known_flaw(const std::string& case_name, std::string flaw) {
     if (!find_case(case_name)) throw std::invalid_argument("registry: no case " + case_name + " to mark as flawed");
-    flaws_.emplace_back(case_name, std::move(flaw));
+    flaws_.push_back({case_name, "", std::move(flaw)});
+}
+
+void Registry::mark_known_flaw(const std::string& case_name, const std::string& check_name, std::string flaw) {
+    if (!find_case(case_name)) throw std::invalid_argument("registry: no case " + case_name + " to mark as flawed");
+    if (!find_check(check_name))
+        throw std::invalid_argument("registry: no check " + check_name + " to mark as flawed for case " + case_name);
+    flaws_.push_back({case_name, check_name, std::move(flaw)});
 }
 
 std::string Registry::known_flaw(const WarpCase& warp) const {
-    for (const auto& [name, flaw] : flaws_)
-        if (name == warp.name()) return flaw;
+    for (const Flaw& f : flaws_)
+        if (f.case_name == warp.name() && f.check_name.empty()) return f.text;
     return {};
+}
+
+std::string Registry::known_flaw(const WarpCase& warp, const Check& check) const {
+    for (const Flaw& f : flaws_)
+        if (f.case_name == warp.name() && f.check_name == check.name()) return f.text;
+    return known_flaw(warp);
 }
 
 const Check* Registry::find_check(std::string_view name) const {
