@@ -54,13 +54,15 @@ std::string case_name(const std::string& family, const std::vector<Parameter>& p
 /// monotonically, with its marginal density. The check tabulates the density
 /// into a PiecewiseConstant1D and compares the warp with the table's inversion
 /// method, sample by sample. A 1D warp on an interval is its own view and needs
-/// none; a 1D warp on a half-line needs one to say where to truncate (`hi`) and
-/// how much probability lies beyond (`tail_mass`, from the case's own CDF).
+/// none; a 1D warp on an unbounded line needs one to say where to truncate
+/// (`lo`, `hi`) and how much probability lies beyond each end (`lower_tail_mass`
+/// below lo, `tail_mass` above hi, from the case's own CDF).
 struct MonotoneMarginal {
     int input_coordinate = 0;   ///< which input drives the coordinate: 0 (u.x) or 1 (u.y)
     bool increasing = true;     ///< whether the coordinate grows with that input
     double lo = 0.0, hi = 1.0;  ///< range of the coordinate; for a half-line, hi is the truncation point
     double tail_mass = 0.0;     ///< probability that the coordinate exceeds hi (0 on a bounded range)
+    double lower_tail_mass = 0.0;  ///< probability that the coordinate lies below lo (0 on a bounded range)
     std::string label;          ///< axis label, e.g. "cos theta"
     /// The coordinate of an output; empty: x[0]. NaN where the output does not
     /// determine it (the azimuth at a pole): such samples are skipped and counted.

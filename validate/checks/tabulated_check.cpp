@@ -4,9 +4,10 @@
 //
 // The density of a 1D warp (or the marginal density of a monotone coordinate of
 // a 2D warp, see MonotoneMarginal) is tabulated and, for the same u, the warp's
-// sample and density are compared with the table's. A truncated half-line:
-// inputs beyond 1 - tail_mass are checked to land beyond the truncation point,
-// and the rest compare with the table scaled to 1 - tail_mass.
+// sample and density are compared with the table's. A truncated line (a
+// half-line either way, or the real line): inputs below lower_tail_mass are
+// checked to land below lo, inputs beyond 1 - tail_mass beyond hi, and the rest
+// compare with the table scaled to the body's mass between them.
 //
 // Three parts: compute (one pass over the input chunks), judge (the rule, with
 // the table's tolerances) and evidence (inverse CDFs, densities, worst points).
@@ -31,6 +32,9 @@ namespace {
 
 constexpr std::size_t kWorstKept = 10;
 constexpr int kPlotPoints = 257;
+
+/// The probability between the view's truncation points.
+double body_mass(const MonotoneMarginal& m) { return 1.0 - m.tail_mass - m.lower_tail_mass; }
 
 /// The resolved 1D view: what is compared, from which input.
 struct View {
@@ -61,8 +65,9 @@ bool resolve(const WarpCase& warp, View& view) {
 
 void validate_view(const View& view, const WarpCase& warp) {
     const MonotoneMarginal& m = view.m;
-    if (!(m.lo < m.hi) || !(m.tail_mass >= 0.0 && m.tail_mass < 1.0) || (m.tail_mass > 0.0 && !m.increasing))
-        throw std::runtime_error("invalid marginal: needs lo < hi, 0 <= tail_mass < 1, and increasing if truncated");
+    if (!(m.lo < m.hi) || !(m.tail_mass >= 0.0) || !(m.lower_tail_mass >= 0.0) ||
+        !(m.tail_mass + m.lower_tail_mass < 1.0))
+        throw std::runtime_error("invalid marginal: needs lo < hi and tail masses >= 0 that sum to less than 1");
     if (m.input_coordinate < 0 || m.input_coordinate >= input_dimension(warp.input_kind()))
         throw std::runtime_error("invalid marginal: input_coordinate out of range");
 }
@@ -146,13 +151,14 @@ struct Comparison {
     const TabulatedReference& ref;
     double body_mass;
 
-    /// Inputs beyond the body: the warp must land beyond the truncation point.
-    void tail(Stats& s, Point p, uint64_t index) const {
+    /// Inputs beyond the body: the warp must land beyond the truncation point
+    /// at that end.
+    void tail(Stats& s, Point p, bool upper, uint64_t index) const {
         ++s.tail_samples;
         p.tail = true;
-        p.x_table = f.view.m.hi;
+        p.x_table = upper ? f.view.m.hi : f.view.m.lo;
         p.x_tol = ref.x_slack();
-        if (p.x_warp >= f.view.m.hi - ref.x_slack()) return;
+        if (upper ? p.x_warp >= f.view.m.hi - ref.x_slack() : p.x_warp <= f.view.m.lo + ref.x_slack()) return;
         ++s.tail_failures;
         s.worst.offer(std::numeric_limits<double>::infinity(), index, p);
     }
@@ -194,8 +200,9 @@ struct Comparison {
         }
         const double u_in = in.u[static_cast<std::size_t>(f.view.m.input_coordinate)];
         const double u = f.view.m.increasing ? u_in : 1.0 - u_in;  // exact for u on the float grid of [0,1)
-        if (u >= body_mass) tail(s, p, index);
-        else body(s, p, u, warp_pdf, index);
+        const double lower = f.view.m.lower_tail_mass;
+        if (u < lower || u >= lower + body_mass) tail(s, p, u >= lower, index);
+        else body(s, p, u - lower, warp_pdf, index);
     }
 };
 
@@ -223,9 +230,9 @@ struct Reach {
 
 Reach reach_of(const Stats& s, const MonotoneMarginal& m, const TabulatedReference& ref) {
     if (!(s.reach_lo <= s.reach_hi)) return {0.0, 0.0};  // no body sample: nothing reached, nothing to say
-    const double body_mass = 1.0 - m.tail_mass;
-    const double below = ref.cdf(s.reach_lo), above = m.tail_mass > 0.0 ? 0.0 : 1.0 - ref.cdf(s.reach_hi);
-    return {(below + above) * body_mass, 0x1p-24 + 2.0 * ref.cdf_uncertainty()};
+    const double below = m.lower_tail_mass > 0.0 ? 0.0 : ref.cdf(s.reach_lo);
+    const double above = m.tail_mass > 0.0 ? 0.0 : 1.0 - ref.cdf(s.reach_hi);
+    return {(below + above) * body_mass(m), 0x1p-24 + 2.0 * ref.cdf_uncertainty()};
 }
 
 /// The verdict: the density integrates to the body's mass within the midpoint
@@ -233,16 +240,16 @@ Reach reach_of(const Stats& s, const MonotoneMarginal& m, const TabulatedReferen
 /// of TabulatedReference (each justified there); every tail input lands beyond
 /// the truncation point (within 16 ulps of the range).
 void judge(CheckResult& r, const Stats& s, const MonotoneMarginal& m, const TabulatedReference& ref) {
-    const double body_mass = 1.0 - m.tail_mass;
+    const double body = body_mass(m), tails = m.tail_mass + m.lower_tail_mass;
     const double integral = ref.integral();
-    const bool normalised = std::abs(integral + m.tail_mass - 1.0) <= ref.integral_tolerance();
+    const bool normalised = std::abs(integral + tails - 1.0) <= ref.integral_tolerance();
     std::vector<std::string> problems;
     if (!normalised)
         problems.push_back(fmt::format("the density integrates to {:.6g} over [{:.6g}, {:.6g}]{}, not {:.6g} "
                                        "(tolerance {:.2g})",
                                        integral, m.lo, m.hi,
-                                       m.tail_mass > 0.0 ? fmt::format(" with tail mass {:.3g}", m.tail_mass) : "",
-                                       body_mass, ref.integral_tolerance()));
+                                       tails > 0.0 ? fmt::format(" with tail mass {:.3g}", tails) : "",
+                                       body, ref.integral_tolerance()));
     if (s.x_failures > 0)
         problems.push_back(fmt::format("{} of {} samples differ from the table's by more than the bucket "
                                        "bound (worst {:.3g} x tolerance, at {} = {:.6g})",
@@ -257,13 +264,14 @@ void judge(CheckResult& r, const Stats& s, const MonotoneMarginal& m, const Tabu
                                        "mass lies where no input float can land (tolerance {:.2g})",
                                        s.reach_lo, s.reach_hi, m.lo, m.hi, reach.outside, reach.tolerance));
     if (s.tail_failures > 0)
-        problems.push_back(fmt::format("{} of {} inputs in the tail (u >= {:.6g}) land below the truncation "
-                                       "point {:.6g}",
-                                       s.tail_failures, s.tail_samples, body_mass, m.hi));
+        problems.push_back(fmt::format("{} of {} inputs in the tails (u < {:.6g} or u >= {:.6g}) land inside the "
+                                       "truncation points [{:.6g}, {:.6g}]",
+                                       s.tail_failures, s.tail_samples, m.lower_tail_mass,
+                                       m.lower_tail_mass + body, m.lo, m.hi));
     r.verdict = problems.empty() ? Verdict::Pass : Verdict::Fail;
     r.summary = fmt::format("max |dx| {:.2e} ({:.2f} of tol), pdf {:.2e} ({:.2f} of tol)", s.x.error, s.x.ratio,
                             s.pdf.error, s.pdf.ratio);
-    if (!normalised) r.summary = fmt::format("density integrates to {:.6g}", integral + m.tail_mass);
+    if (!normalised) r.summary = fmt::format("density integrates to {:.6g}", integral + tails);
     r.message = join_reasons(problems);
 }
 
@@ -283,6 +291,7 @@ void add_figures(CheckResult& r, const Stats& s, const MonotoneMarginal& m, cons
                  {"integral_tolerance", ref.integral_tolerance()},
                  {"cdf_uncertainty", ref.cdf_uncertainty()},
                  {"tail_mass", m.tail_mass},
+                 {"lower_tail_mass", m.lower_tail_mass},
                  {"reach_lo", s.reach_lo},
                  {"reach_hi", s.reach_hi},
                  {"mass_outside_reach", reach_of(s, m, ref).outside},
@@ -296,7 +305,7 @@ void add_figures(CheckResult& r, const Stats& s, const MonotoneMarginal& m, cons
 
 /// The two inverse CDFs (the warp's with the other input at 0.5) and their
 /// difference against the tolerance.
-std::vector<Plot> inverse_cdf_plots(const ViewFunctions& f, const TabulatedReference& ref, double body_mass) {
+std::vector<Plot> inverse_cdf_plots(const ViewFunctions& f, const TabulatedReference& ref) {
     const MonotoneMarginal& m = f.view.m;
     const auto k = static_cast<std::size_t>(m.input_coordinate);
     Plot inverse{Plot::Kind::Lines, "Inverse CDF: warp and table", "u", m.label, false, false, {}, {}};
@@ -317,14 +326,15 @@ std::vector<Plot> inverse_cdf_plots(const ViewFunctions& f, const TabulatedRefer
         if (std::isnan(xw)) continue;
         sw.x.push_back(u);
         sw.y.push_back(xw);
-        if (u >= body_mass) continue;
-        const auto t = ref.sample(u / body_mass);
+        const double u_body = (u - m.lower_tail_mass) / body_mass(m);
+        if (!(u_body >= 0.0 && u_body < 1.0)) continue;
+        const auto t = ref.sample(u_body);
         st.x.push_back(u);
         st.y.push_back(t.x);
         sd.x.push_back(u);
         sd.y.push_back(std::max(std::abs(xw - t.x), 1e-30));
         stol.x.push_back(u);
-        stol.y.push_back(ref.x_tolerance(t.offset, u / body_mass));
+        stol.y.push_back(ref.x_tolerance(t.offset, u_body));
     }
     inverse.series = {std::move(sw), std::move(st)};
     diff.series = {std::move(sd), std::move(stol)};
@@ -361,7 +371,8 @@ Table worst_points(const Stats& s, const MonotoneMarginal& m, InputKind kind) {
         const Point& p = e.item;
         if (p.tail) {
             worst.rows.push_back({format_input(p.input, kind), fmt::format("{:.9g}", p.x_warp),
-                                  fmt::format(">= {:.9g}", p.x_table), "tail", "", "", "", "", ""});
+                                  fmt::format("{} {:.9g}", p.x_table == m.hi ? ">=" : "<=", p.x_table), "tail", "",
+                                  "", "", "", ""});
             continue;
         }
         worst.rows.push_back({format_input(p.input, kind), fmt::format("{:.9g}", p.x_warp),
@@ -392,14 +403,13 @@ public:
         validate_view(view, warp);
         const MonotoneMarginal& m = view.m;
         const ViewFunctions f{warp, view};
-        const double body_mass = 1.0 - m.tail_mass;
-        const TabulatedReference ref([&f](double x) { return f.density(x); }, m.lo, m.hi, body_mass);
-        const Stats stats = compute(warp, ctx, Comparison{f, ref, body_mass});
+        const TabulatedReference ref([&f](double x) { return f.density(x); }, m.lo, m.hi, body_mass(m));
+        const Stats stats = compute(warp, ctx, Comparison{f, ref, body_mass(m)});
 
         CheckResult r;
         judge(r, stats, m, ref);
         add_figures(r, stats, m, ref);
-        r.plots = inverse_cdf_plots(f, ref, body_mass);
+        r.plots = inverse_cdf_plots(f, ref);
         r.plots.push_back(density_plot(f, ref));
         r.tables.push_back(worst_points(stats, m, warp.input_kind()));
         return r;

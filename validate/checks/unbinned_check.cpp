@@ -31,6 +31,7 @@
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/input_chunks.h"
+#include "validate/checks/line_resolution.h"
 #include "validate/checks/power_level.h"
 
 namespace warpcheck {
@@ -90,24 +91,13 @@ chi2::ParallelFor parallel(const CheckContext& ctx) {
     return [&ctx](std::size_t n, const std::function<void(std::size_t)>& body) { ctx.parallel_for(n, body); };
 }
 
-/// The half-line's parameter scale: the case's own, else 1 / pdf(a) (the
-/// density's scale at the start), else 1.
-double half_line_scale(const WarpCase& warp) {
-    double s = warp.info().chi2_resolution.half_line_scale;
-    if (s > 0.0 || !warp.domain().is<chi2::HalfLine>()) return s;
-    std::vector<double> density(1);
-    warp.pdf(std::vector<WarpOutput>{{static_cast<float>(warp.domain().a()), 0.0f, 0.0f}}, density);
-    s = 1.0 / density[0];
-    return std::isfinite(s) && s > 0.0 ? s : 1.0;
-}
-
 std::vector<Marginal> natural_marginals(const WarpCase& warp, const CheckContext& ctx,
                                         const chi2::QuadratureOptions& q) {
     std::vector<Marginal> out;
-    const double scale = half_line_scale(warp);
-    const int dims = chi2::Binning(warp.domain(), {0, 0, scale}).parameter_dimension();
+    const chi2::BinResolution line = line_resolution(warp);
+    const int dims = warp.domain().point_dimension() == 1 ? 1 : 2;
     for (int axis = 0; axis < dims; ++axis) {
-        const chi2::Binning strips = chi2::strip_binning(warp.domain(), axis, kStrips, scale);
+        const chi2::Binning strips = chi2::strip_binning(warp.domain(), axis, kStrips, line);
         Marginal m;
         m.label = axis == 0 ? strips.u_label() : strips.v_label();
         m.coordinate = [strips, axis](const WarpOutput& o) { return strips.parameters_of(to_domain_point(o))[axis]; };
