@@ -14,7 +14,9 @@ namespace warpcheck {
 class Registry {
 public:
     /// Adds a case; a second case with the same name is an error (names are how
-    /// streams are seeded and how --filter finds a case).
+    /// streams are seeded and how --filter finds a case), and so is a case
+    /// declared inconsistently (validate/case_validation.h): the message names
+    /// the case and every problem.
     void add_case(std::unique_ptr<WarpCase> warp);
     void add_check(std::unique_ptr<Check> check);
 

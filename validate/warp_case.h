@@ -49,7 +49,8 @@ struct Parameter {
 /// -> "uniform_cone[cos_theta_max=0.3]".
 std::string case_name(const std::string& family, const std::vector<Parameter>& params);
 
-/// A monotone one-dimensional view of a warp, for the "tabulated" check: one
+/// A monotone one-dimensional view of a warp, for the "tabulated" check (a case
+/// may declare several, WarpCaseInfo::views): one
 /// coordinate of the output that depends on one input coordinate only, and
 /// monotonically, with its marginal density. The check tabulates the density
 /// into a PiecewiseConstant1D and compares the warp with the table's inversion
@@ -88,8 +89,12 @@ struct WarpCaseInfo {
     bool exact_inverse = false;
     /// Cells of the chi-square test; zero fields take the domain's defaults (chi2/binning.h).
     chi2::BinResolution chi2_resolution{};
-    /// The case's monotone 1D view for the tabulated check, where it has one.
-    std::optional<MonotoneMarginal> marginal{};
+    /// The case's monotone 1D views, each tabulated by the tabulated check and,
+    /// on 2D domains, tested by the unbinned check: e.g. cos theta and the
+    /// azimuth of a spherical warp, so that an error in either shows. Each
+    /// needs its own label (results name the view by it). Empty: a 1D warp on
+    /// an interval is its own view; other cases have none.
+    std::vector<MonotoneMarginal> views{};
 };
 
 class WarpCase {
@@ -114,6 +119,11 @@ public:
     /// or table-driven samplers): for them the round-trip checks do not apply,
     /// which is not an error.
     virtual bool has_inverse() const { return true; }
+    /// The coordinates sample returns (1: float, 2: Point2f, 3: Vector3f), where
+    /// the case knows its warp's types; 0 where it does not.
+    virtual int output_dimension() const { return 0; }
+    /// The input kind sample's argument type implies, where known.
+    virtual std::optional<InputKind> natural_input() const { return std::nullopt; }
 
 private:
     WarpCaseInfo info_;
@@ -127,24 +137,31 @@ template <typename T> struct WarpTypes;
 template <> struct WarpTypes<float> {
     static WarpOutput to_output(float v) { return {v, 0.0f, 0.0f}; }
     static float from_output(const WarpOutput& o) { return o[0]; }
+    static constexpr int kDimension = 1;
+    static constexpr InputKind kInput = InputKind::Uniform1D;
     static WarpInput to_input(float u) { return {{u, 0.0f}, 0}; }
     static float from_input(const WarpInput& in) { return in.u[0]; }
 };
 template <> struct WarpTypes<Point2f> {
     static WarpOutput to_output(Point2f p) { return {p.x, p.y, 0.0f}; }
     static Point2f from_output(const WarpOutput& o) { return {o[0], o[1]}; }
+    static constexpr int kDimension = 2;
+    static constexpr InputKind kInput = InputKind::Uniform2D;
     static WarpInput to_input(Point2f u) { return {{u.x, u.y}, 0}; }
     static Point2f from_input(const WarpInput& in) { return {in.u[0], in.u[1]}; }
 };
 template <> struct WarpTypes<Vector3f> {
     static WarpOutput to_output(Vector3f v) { return {v.x, v.y, v.z}; }
     static Vector3f from_output(const WarpOutput& o) { return {o[0], o[1], o[2]}; }
+    static constexpr int kDimension = 3;
 };
 template <> struct WarpTypes<uint32_t> {
+    static constexpr InputKind kInput = InputKind::Bits32;
     static WarpInput to_input(uint32_t b) { return {{0.0f, 0.0f}, b}; }
     static uint32_t from_input(const WarpInput& in) { return static_cast<uint32_t>(in.bits); }
 };
 template <> struct WarpTypes<uint64_t> {
+    static constexpr InputKind kInput = InputKind::Bits64;
     static WarpInput to_input(uint64_t b) { return {{0.0f, 0.0f}, b}; }
     static uint64_t from_input(const WarpInput& in) { return in.bits; }
 };
@@ -188,6 +205,8 @@ public:
         }
     }
     bool has_inverse() const override { return !std::is_same_v<Invert, NoInverse>; }
+    int output_dimension() const override { return WarpTypes<Out>::kDimension; }
+    std::optional<InputKind> natural_input() const override { return WarpTypes<In>::kInput; }
 
 private:
     Sample sample_;

@@ -33,7 +33,7 @@ std::unique_ptr<WarpCase> exponential_case(float a, float scale = 1.0f, float pd
     MonotoneMarginal m;
     m.hi = std::log(1000.0) / a;
     m.tail_mass = std::exp(-a * m.hi);
-    info.marginal = m;
+    info.views = {m};
     const Exponential e(a);
     return make_warp_case(
         info,
@@ -53,7 +53,7 @@ std::unique_ptr<WarpCase> tr_normal_case(float alpha, bool increasing) {
     m.increasing = increasing;
     m.coordinate = [](const WarpOutput& o) { return static_cast<double>(o[2]); };
     m.pdf = [alpha](double z) { return TrowbridgeReitz::isotropic_cos_theta_pdf(alpha, z); };
-    info.marginal = m;
+    info.views = {m};
     const TrowbridgeReitz tr(alpha);
     return make_warp_case(info, tr.normals());
 }

@@ -12,6 +12,7 @@
 // Three parts: compute (one pass over the input chunks), judge (the rule, with
 // the table's tolerances) and evidence (inverse CDFs, densities, worst points).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -42,25 +43,26 @@ struct View {
     bool use_warp_pdf = false;
 };
 
-bool resolve(const WarpCase& warp, View& view) {
+/// The case's views: each declared one (one without a density uses the warp's
+/// own pdf, 1D warps only), or a 1D warp on an interval as its own view.
+std::vector<View> resolve(const WarpCase& warp) {
     const WarpCaseInfo& info = warp.info();
     const chi2::Domain& d = warp.domain();
-    if (info.marginal) {
-        view.m = *info.marginal;
-        if (!view.m.pdf) {
-            if (info.input != InputKind::Uniform1D) return false;
-            view.use_warp_pdf = true;
-        }
-        return true;
+    std::vector<View> views;
+    for (const MonotoneMarginal& m : info.views) {
+        View view{m, !m.pdf};
+        if (view.use_warp_pdf && info.input != InputKind::Uniform1D) continue;
+        views.push_back(std::move(view));
     }
-    if (info.input == InputKind::Uniform1D && d.is<chi2::Interval>()) {
+    if (info.views.empty() && info.input == InputKind::Uniform1D && d.is<chi2::Interval>()) {
+        View view;
         view.m.lo = d.a();
         view.m.hi = d.b();
         view.m.label = std::string(1, 'x');  // not = "x": GCC 12 reports a false -Wrestrict there
         view.use_warp_pdf = true;
-        return true;
+        views.push_back(std::move(view));
     }
-    return false;
+    return views;
 }
 
 void validate_view(const View& view, const WarpCase& warp) {
@@ -385,6 +387,34 @@ Table worst_points(const Stats& s, const MonotoneMarginal& m, InputKind kind) {
     return worst;
 }
 
+/// "cos theta" -> "cos_theta": a view's label as part of a figure name.
+std::string figure_label(const std::string& label) {
+    std::string out;
+    for (char ch : label) out += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+    return out;
+}
+
+CheckResult merge_views(const std::vector<View>& views, std::vector<CheckResult>& parts) {
+    CheckResult r;
+    r.verdict = Verdict::Pass;
+    std::vector<std::string> summaries, messages;
+    for (std::size_t k = 0; k < views.size(); ++k) {
+        CheckResult& p = parts[k];
+        const std::string& label = views[k].m.label;
+        if (p.verdict != Verdict::Pass) r.verdict = Verdict::Fail;
+        summaries.push_back(fmt::format("{}: {}", label, p.summary));
+        if (!p.message.empty()) messages.push_back(fmt::format("view {}: {}", label, p.message));
+        for (const Figure& f : p.figures) r.figures.push_back({figure_label(label) + "_" + f.name, f.value});
+        for (Plot& plot : p.plots) r.plots.push_back(std::move(plot));
+        for (Table& t : p.tables) r.tables.push_back(std::move(t));
+        r.samples += p.samples;
+    }
+    r.figures.push_back({"views", static_cast<double>(views.size())});
+    r.summary = join_reasons(summaries);
+    r.message = join_reasons(messages);
+    return r;
+}
+
 class TabulatedCheck final : public Check {
 public:
     std::string name() const override { return "tabulated"; }
@@ -393,13 +423,24 @@ public:
                "(1D warps and monotone 1D marginals)";
     }
     bool applies_to(const WarpCase& warp) const override {
-        View v;
-        return !takes_bits(warp.input_kind()) && resolve(warp, v);
+        return !takes_bits(warp.input_kind()) && !resolve(warp).empty();
     }
 
+    /// One result per view, merged: a single view's result as it is; several
+    /// views' results with each view's figures, plots and tables named by its
+    /// label, the verdict failing if any view fails, and the messages prefixed
+    /// with the view.
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
-        View view;
-        if (!resolve(warp, view)) throw std::runtime_error("the tabulated check does not apply to this case");
+        const std::vector<View> views = resolve(warp);
+        if (views.empty()) throw std::runtime_error("the tabulated check does not apply to this case");
+        if (views.size() == 1) return run_view(warp, views[0], ctx);
+        std::vector<CheckResult> parts;
+        for (const View& view : views) parts.push_back(run_view(warp, view, ctx));
+        return merge_views(views, parts);
+    }
+
+private:
+    static CheckResult run_view(const WarpCase& warp, const View& view, const CheckContext& ctx) {
         validate_view(view, warp);
         const MonotoneMarginal& m = view.m;
         const ViewFunctions f{warp, view};
@@ -412,6 +453,8 @@ public:
         r.plots = inverse_cdf_plots(f, ref);
         r.plots.push_back(density_plot(f, ref));
         r.tables.push_back(worst_points(stats, m, warp.input_kind()));
+        for (Plot& plot : r.plots) plot.title += " (view " + m.label + ")";
+        for (Table& t : r.tables) t.title += " (view " + m.label + ")";
         return r;
     }
 };

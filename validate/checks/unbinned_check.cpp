@@ -5,7 +5,7 @@
 //
 // Marginals: the domain's parameters (chi2::Binning): x for 1D domains, x and y
 // on boxes, phi and r^2 on the disk, phi and cos theta on spherical caps; plus
-// the case's declared 1D view (WarpCaseInfo::marginal) on 2D domains when it is
+// the case's declared 1D views (WarpCaseInfo::views) on 2D domains when they are
 // a different coordinate. Each marginal's CDF is tabulated from the pdf by the
 // engine's cubature (chi2/marginal_cdf.h) and normalised by the density's
 // integral: whether that integral is 1 is the chi2 check's rule, this one
@@ -108,20 +108,24 @@ std::vector<Marginal> natural_marginals(const WarpCase& warp, const CheckContext
     return out;
 }
 
-/// The declared 1D view on a 2D domain, if it is bounded (no tail mass) and a
-/// coordinate the natural marginals do not already test.
-std::optional<Marginal> declared_marginal(const WarpCase& warp, const std::vector<Marginal>& natural,
-                                          const chi2::QuadratureOptions& q) {
-    const auto& view = warp.info().marginal;
-    if (!view || natural.size() < 2 || view->tail_mass != 0.0 || !view->pdf || !view->coordinate) return std::nullopt;
-    for (const Marginal& m : natural)
-        if (m.label == view->label) return std::nullopt;
-    const chi2::Binning strips(chi2::Domain::interval(view->lo, view->hi), {kStrips, 0, 0.0});
-    const chi2::BatchPdf pdf = [&view](std::span<const chi2::DomainPoint> points, std::span<double> density) {
-        for (std::size_t i = 0; i < points.size(); ++i) density[i] = view->pdf(points[i][0]);
-    };
-    return Marginal{view->label, view->coordinate, chi2::tabulate_marginal_cdf(strips, 0, pdf, q),
-                    chi2::UnbinnedTest::AndersonDarling};
+/// The declared 1D views on a 2D domain that are bounded (no tail mass) and
+/// coordinates the natural marginals do not already test, each a marginal.
+std::vector<Marginal> declared_marginals(const WarpCase& warp, const std::vector<Marginal>& natural,
+                                         const chi2::QuadratureOptions& q) {
+    std::vector<Marginal> out;
+    if (natural.size() < 2) return out;
+    for (const MonotoneMarginal& view : warp.info().views) {
+        if (view.tail_mass != 0.0 || view.lower_tail_mass != 0.0 || !view.pdf || !view.coordinate) continue;
+        if (std::any_of(natural.begin(), natural.end(), [&](const Marginal& m) { return m.label == view.label; }))
+            continue;
+        const chi2::Binning strips(chi2::Domain::interval(view.lo, view.hi), {kStrips, 0, 0.0});
+        const chi2::BatchPdf pdf = [&view](std::span<const chi2::DomainPoint> points, std::span<double> density) {
+            for (std::size_t i = 0; i < points.size(); ++i) density[i] = view.pdf(points[i][0]);
+        };
+        out.push_back(Marginal{view.label, view.coordinate, chi2::tabulate_marginal_cdf(strips, 0, pdf, q),
+                               chi2::UnbinnedTest::AndersonDarling});
+    }
+    return out;
 }
 
 /// Per chunk: each marginal's probability transforms F(t), and the samples
@@ -145,7 +149,7 @@ Computed compute(const WarpCase& warp, const CheckContext& ctx) {
     q.accuracy_fraction = kCdfAccuracyFraction;
     Computed c;
     c.marginals = natural_marginals(warp, ctx, q);
-    if (auto m = declared_marginal(warp, c.marginals, q)) c.marginals.push_back(std::move(*m));
+    for (Marginal& m : declared_marginals(warp, c.marginals, q)) c.marginals.push_back(std::move(m));
     const std::size_t k = c.marginals.size();
     const auto parts = map_input_chunks<ChunkTransforms>(
         ctx, warp.input_kind(), ctx.options().samples, false, [&](std::size_t, std::span<const WarpInput> in) {
