@@ -90,9 +90,11 @@ double lower_normal_quantile(double p) {
 
 struct Normal {
     float mu, sigma, pdf_scale = 1.0f;
+    float invert(float x) const {
+        return std::fmin(static_cast<float>(0.5 * std::erfc(-(x - mu) / (sigma * std::sqrt(2.0)))), 0x1.fffffep-1f);
+    }
     float sample(float u) const {
-        const double p = std::min<double>(u, 1.0 - u);
-        if (p <= 0.0) return -std::numeric_limits<float>::max();  // u = 0: the far left end
+        const double p = std::max(std::min<double>(u, 1.0 - u), 0x1p-65);  // u = 0: half the smallest step
         const double z = lower_normal_quantile(p);
         return static_cast<float>(mu + sigma * (u < 0.5f ? z : -z));
     }
@@ -114,7 +116,8 @@ std::unique_ptr<WarpCase> normal_case(Normal n) {
 }
 
 TEST(RealLine, NormalPassesAndAScaleErrorFails) {
-    for (auto make : {make_tabulated_check, make_chi2_check, make_unbinned_check}) {
+    for (auto make : {make_tabulated_check, make_chi2_check, make_unbinned_check, make_consistency_check,
+                      make_roundtrip_check}) {
         const auto check = make();
         const CheckResult r = run_check(*check, *normal_case({100.0f, 0.01f}), 1'000'000);
         EXPECT_EQ(r.verdict, Verdict::Pass) << check->name() << ": " << r.message;
