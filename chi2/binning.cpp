@@ -63,6 +63,7 @@ Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domai
     if (resolution_.half_line_scale == 0.0) resolution_.half_line_scale = 1.0;
     if (!(resolution_.half_line_scale > 0.0) || !std::isfinite(resolution_.half_line_scale))
         throw std::invalid_argument("half-line scale must be positive and finite");
+    if (!std::isfinite(resolution_.line_center)) throw std::invalid_argument("line centre must be finite");
     const BinResolution defaults = std::visit([](const auto& k) { return k.default_resolution(); }, domain_.shape());
     auto pick = [](int requested, int fallback) { return requested > 0 ? requested : fallback; };
     dims_ = domain_.point_dimension() == 1 ? 1 : 2;

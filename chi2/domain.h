@@ -3,7 +3,7 @@
 // sphere dA = dphi dz, so a cell's area in those coordinates is its solid angle.
 //
 // A Domain holds one kind (chi2/domain_kinds.h) in a std::variant and forwards
-// to it. To add a kind (say the whole real line, or (-inf, b]):
+// to it. To add a kind (as the whole real line and (-inf, b] were added):
 //   1. write its struct in chi2/domain_kinds.h, with
 //        kPointDimension (1, 2 or 3) and kAzimuthal (see below);
 //        measure(), slack(), contains(p, slack), on_boundary(p), describe();
@@ -35,7 +35,7 @@ namespace warpcheck::chi2 {
 
 class Domain {
 public:
-    using Shape = std::variant<Interval, HalfLine, Box, Disk, SphericalCap>;
+    using Shape = std::variant<Interval, HalfLine, Box, Disk, SphericalCap, LowerHalfLine, RealLine>;
     using Slack = DomainSlack;
 
     Domain() = default;
@@ -48,6 +48,13 @@ public:
         if (!std::isfinite(lo)) throw std::invalid_argument("half-line domain needs a finite start");
         return Domain(HalfLine{lo});
     }
+    /// (-inf, b]: the half-line below b.
+    static Domain lower_half_line(double hi) {
+        if (!std::isfinite(hi)) throw std::invalid_argument("lower half-line domain needs a finite end");
+        return Domain(LowerHalfLine{hi});
+    }
+    /// The whole real line (-inf, inf).
+    static Domain real_line() { return Domain(RealLine{}); }
     static Domain box(double bx0, double bx1, double by0, double by1) {
         if (!(bx0 < bx1) || !(by0 < by1)) throw std::invalid_argument("box domain needs x0 < x1 and y0 < y1");
         return Domain(Box{bx0, bx1, by0, by1});
@@ -75,17 +82,22 @@ public:
         return std::visit([](const auto& k) { return k.kAzimuthal; }, shape_);
     }
 
-    /// The ends of a line: Interval [a, b], HalfLine [a, inf). Not defined for 2D domains.
+    /// The ends of a line: Interval [a, b], HalfLine [a, inf), LowerHalfLine
+    /// (-inf, b], RealLine (-inf, inf). Not defined for 2D domains.
     double a() const {
         if (const auto* i = std::get_if<Interval>(&shape_)) return i->a;
         if (const auto* h = std::get_if<HalfLine>(&shape_)) return h->a;
+        if (is<LowerHalfLine>() || is<RealLine>()) return -std::numeric_limits<double>::infinity();
         throw std::logic_error("Domain::a: " + describe() + " is not a line");
     }
     double b() const {
         if (const auto* i = std::get_if<Interval>(&shape_)) return i->b;
-        if (is<HalfLine>()) return std::numeric_limits<double>::infinity();
+        if (const auto* l = std::get_if<LowerHalfLine>(&shape_)) return l->b;
+        if (is<HalfLine>() || is<RealLine>()) return std::numeric_limits<double>::infinity();
         throw std::logic_error("Domain::b: " + describe() + " is not a line");
     }
+    /// Whether the domain is a line with at least one infinite end.
+    bool unbounded_line() const { return is<HalfLine>() || is<LowerHalfLine>() || is<RealLine>(); }
 
     /// Number of coordinates of a point (1, 2 or 3); the parametric dimension is
     /// 1 for intervals and 2 for everything else.

@@ -10,6 +10,13 @@
 //   Box           (u, v) = (x, y)                    jacobian 1
 //   Disk          (u, v) = (phi, r^2)                jacobian 1/2 (r dr dphi = d(r^2) dphi / 2)
 //   SphericalCap  (u, v) = (phi, z = cos theta)      jacobian 1 (dA = dphi dz on the unit sphere)
+//   LowerHalfLine u = t, x = b - s (1 - t) / t       jacobian s / t^2
+//                 (the mirror of HalfLine, increasing in x: the first cell,
+//                 t in [0, t_1), is the tail to minus infinity)
+//   RealLine      u = t, w = 2 t - 1, x = c + s w / (1 - |w|)   jacobian 2 s / (1 - |w|)^2
+//                 (HalfLine's map on each side of the centre c: half the cells
+//                 lie within s of c; the first and the last cell are the tails)
+//   (s is BinResolution::half_line_scale, c BinResolution::line_center.)
 #pragma once
 
 #include <algorithm>
@@ -196,6 +203,87 @@ struct SphericalCap {
     std::array<double, 2> parameter_slack(const DomainSlack& s) const { return {kTwoPi * kDomainTolerance, s.y}; }
     std::string u_label() const { return "phi"; }
     std::string v_label() const { return "cos theta"; }
+};
+
+/// (-inf, b], length measure; binned through t = s / (s + d), d = b - x, so
+/// that t (the parameter) grows with x as on every other line.
+struct LowerHalfLine {
+    double b = 0.0;
+
+    static constexpr int kPointDimension = 1;
+    static constexpr bool kAzimuthal = false;
+    double measure() const { return std::numeric_limits<double>::infinity(); }
+    DomainSlack slack() const { return {kDomainTolerance * std::max(1.0, std::abs(b)), 0.0}; }
+    bool contains(const DomainPoint& p, const DomainSlack& s) const { return p[0] <= b + s.x && std::isfinite(p[0]); }
+    bool on_boundary(const DomainPoint& p) const { return p[0] == b; }
+    std::string describe() const { return "half-line (-inf, " + std::to_string(b) + "]"; }
+
+    BinResolution default_resolution() const { return {200, 1}; }
+    ParamRect parameter_bounds() const { return {0.0, 1.0, 0.0, 1.0}; }
+    DomainPoint point_at(double u, double /*v*/, const BinResolution& r) const {
+        return {b - r.half_line_scale * (1.0 - u) / u, 0.0, 0.0};
+    }
+    double jacobian(double u, double /*v*/, const BinResolution& r) const { return r.half_line_scale / (u * u); }
+    std::array<double, 2> parameters_of(const DomainPoint& p, const BinResolution& r) const {
+        const double d = std::max(0.0, b - p[0]);
+        return {r.half_line_scale / (r.half_line_scale + d), 0.5};
+    }
+    double cell_measure(const ParamRect& r, const BinResolution& res) const {
+        if (r.u0 <= 0.0) return std::numeric_limits<double>::infinity();  // the tail cell
+        const double s = res.half_line_scale;
+        return s * (1.0 - r.u0) / r.u0 - s * (1.0 - r.u1) / r.u1;
+    }
+    bool on_parameter_boundary(double u, double /*v*/) const { return u >= 1.0; }
+    /// t = s / (s + d) moves by at most d/s per unit of d, as HalfLine's.
+    std::array<double, 2> parameter_slack(const DomainSlack&) const { return {kDomainTolerance, 0.0}; }
+    std::string u_label() const { return "x"; }
+    std::string v_label() const { return ""; }
+    /// The centre of a cell in x, and for the tail cell its right edge.
+    double cell_position(const ParamRect& r, const BinResolution& res) const {
+        const double t = r.u0 <= 0.0 ? r.u1 : 0.5 * (r.u0 + r.u1);
+        return point_at(t, 0.5, res)[0];
+    }
+};
+
+/// The whole real line, length measure; binned through w = d / (s + |d|),
+/// d = x - c, t = (w + 1) / 2.
+struct RealLine {
+    static constexpr int kPointDimension = 1;
+    static constexpr bool kAzimuthal = false;
+    double measure() const { return std::numeric_limits<double>::infinity(); }
+    DomainSlack slack() const { return {kDomainTolerance, 0.0}; }
+    bool contains(const DomainPoint& p, const DomainSlack&) const { return std::isfinite(p[0]); }
+    bool on_boundary(const DomainPoint&) const { return false; }
+    std::string describe() const { return "real line (-inf, inf)"; }
+
+    BinResolution default_resolution() const { return {200, 1}; }
+    ParamRect parameter_bounds() const { return {0.0, 1.0, 0.0, 1.0}; }
+    DomainPoint point_at(double u, double /*v*/, const BinResolution& r) const {
+        const double w = 2.0 * u - 1.0;
+        return {r.line_center + r.half_line_scale * w / (1.0 - std::abs(w)), 0.0, 0.0};
+    }
+    double jacobian(double u, double /*v*/, const BinResolution& r) const {
+        const double m = 1.0 - std::abs(2.0 * u - 1.0);
+        return 2.0 * r.half_line_scale / (m * m);
+    }
+    std::array<double, 2> parameters_of(const DomainPoint& p, const BinResolution& r) const {
+        const double d = p[0] - r.line_center;
+        return {0.5 * (d / (r.half_line_scale + std::abs(d)) + 1.0), 0.5};
+    }
+    double cell_measure(const ParamRect& r, const BinResolution& res) const {
+        if (r.u0 <= 0.0 || r.u1 >= 1.0) return std::numeric_limits<double>::infinity();  // a tail cell
+        return point_at(r.u1, 0.5, res)[0] - point_at(r.u0, 0.5, res)[0];
+    }
+    bool on_parameter_boundary(double, double) const { return false; }
+    /// t moves by at most 1/(2 s) per unit of x; the slack is absolute in x.
+    std::array<double, 2> parameter_slack(const DomainSlack&) const { return {kDomainTolerance, 0.0}; }
+    std::string u_label() const { return "x"; }
+    std::string v_label() const { return ""; }
+    /// The centre of a cell in x, and for a tail cell its inner edge.
+    double cell_position(const ParamRect& r, const BinResolution& res) const {
+        const double t = r.u0 <= 0.0 ? r.u1 : r.u1 >= 1.0 ? r.u0 : 0.5 * (r.u0 + r.u1);
+        return point_at(t, 0.5, res)[0];
+    }
 };
 
 }  // namespace warpcheck::chi2

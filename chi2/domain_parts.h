@@ -31,8 +31,8 @@ struct ParamRect {
 
 /// How finely the chi-square test bins a domain. Zero means "the default for
 /// the domain" (see Binning). Cells are uniform in the domain's parameters:
-///   Interval, HalfLine: `first` cells along the line (the half-line's last one
-///                       is the tail cell, reaching to infinity);
+///   Interval, HalfLine, LowerHalfLine, RealLine: `first` cells along the line
+///                       (an unbounded end's cell is its tail, reaching to infinity);
 ///   Box:               `first` columns in x, `second` rows in y;
 ///   Disk:              `first` columns in phi, `second` rows in r^2 (equal area);
 ///   SphericalCap:      `first` columns in phi, `second` rows in z = cos theta
@@ -40,11 +40,16 @@ struct ParamRect {
 struct BinResolution {
     int first = 0;
     int second = 0;
-    /// HalfLine only: the length scale s of the map t = d / (s + d), d = x - a,
-    /// whose uniform cells in t in [0, 1) bin the half-line. Half the cells lie
-    /// within s of the start; choose s near the distribution's median. Zero
-    /// means 1 to Binning; the chi2 check derives it from the density instead.
+    /// Unbounded lines (HalfLine, LowerHalfLine, RealLine): the length scale s
+    /// of the map t = d / (s + d), d = the distance from the start (or from
+    /// line_center), whose uniform cells in t bin the line. Half the cells lie
+    /// within s of the start (centre); choose s near the distribution's median
+    /// distance. Zero means 1 to Binning; the checks derive it from the density
+    /// instead (validate/checks/line_resolution.h).
     double half_line_scale = 0.0;
+    /// RealLine only: the centre c of the map above (where the cells are
+    /// finest). The checks derive it from the warp when the case leaves it 0.
+    double line_center = 0.0;
 };
 
 }  // namespace warpcheck::chi2

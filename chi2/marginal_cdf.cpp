@@ -21,9 +21,8 @@ double MarginalCdf::operator()(double t) const {
     return cdf[k] + w * (cdf[k + 1] - cdf[k]);
 }
 
-Binning strip_binning(const Domain& domain, int axis, int strips, double half_line_scale) {
-    BinResolution r;
-    r.half_line_scale = half_line_scale;
+Binning strip_binning(const Domain& domain, int axis, int strips, const BinResolution& line) {
+    BinResolution r = line;
     r.first = axis == 0 ? strips : 1;
     r.second = axis == 0 ? 1 : strips;
     const Binning b(domain, r);

@@ -42,8 +42,9 @@ struct MarginalCdf {
 };
 
 /// The binning whose cells are the `strips` strips across parameter `axis` of
-/// `domain` (axis 1 needs a 2D domain). `half_line_scale` as in BinResolution.
-Binning strip_binning(const Domain& domain, int axis, int strips, double half_line_scale = 0.0);
+/// `domain` (axis 1 needs a 2D domain). `line` supplies an unbounded line's
+/// half_line_scale and line_center (BinResolution); its cell counts are ignored.
+Binning strip_binning(const Domain& domain, int axis, int strips, const BinResolution& line = {});
 
 /// Tabulates the marginal CDF along the strips of `strips` (from strip_binning).
 MarginalCdf tabulate_marginal_cdf(const Binning& strips, int axis, const BatchPdf& pdf,

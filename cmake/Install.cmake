@@ -1,14 +1,16 @@
 # Installs warpcheck as a CMake package: find_package(warpcheck) gives
 # warpcheck::validate (the library), warpcheck::main (a ready main() for
-# programs that validate their own warps), warpcheck::sampling (the warps),
-# warpcheck::reports (the report writers), warpcheck::results (the result model),
-# warpcheck::gtest (GoogleTest assertions, validate/gtest/warpcheck_gtest.h) and
-# the CMake function warpcheck_discover_tests (cmake/warpcheckDiscoverTests.cmake).
+# programs that validate their own warps), warpcheck::register17 (the include
+# path of validate/register17.h, for C++17 files that register warps),
+# warpcheck::sampling (the warps), warpcheck::reports (the report writers),
+# warpcheck::results (the result model), warpcheck::gtest (GoogleTest
+# assertions, validate/gtest/warpcheck_gtest.h) and the CMake function
+# warpcheck_discover_tests (cmake/warpcheckDiscoverTests.cmake).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(warpcheck_targets warpcheck_options warpcheck_sampling warpcheck_chi2 warpcheck_results warpcheck_reports
-    warpcheck_validate warpcheck_cases warpcheck_main)
+    warpcheck_validate warpcheck_cases warpcheck_main warpcheck_register17)
 set_target_properties(warpcheck_sampling PROPERTIES EXPORT_NAME sampling)
 set_target_properties(warpcheck_chi2 PROPERTIES EXPORT_NAME chi2)
 set_target_properties(warpcheck_results PROPERTIES EXPORT_NAME results)
@@ -16,6 +18,7 @@ set_target_properties(warpcheck_reports PROPERTIES EXPORT_NAME reports)
 set_target_properties(warpcheck_validate PROPERTIES EXPORT_NAME validate)
 set_target_properties(warpcheck_main PROPERTIES EXPORT_NAME main)
 set_target_properties(warpcheck_cases PROPERTIES EXPORT_NAME cases)
+set_target_properties(warpcheck_register17 PROPERTIES EXPORT_NAME register17)
 set_target_properties(warpcheck_options PROPERTIES EXPORT_NAME options)
 # warpcheck::gtest, where GoogleTest was found (validate/CMakeLists.txt); the
 # package then finds GoogleTest too.

@@ -62,6 +62,7 @@ table.results tr.fail td:first-child { box-shadow: inset 4px 0 0 var(--fail); }
 table.results tr.error td:first-child { box-shadow: inset 4px 0 0 var(--error); }
 .badge { display: inline-block; min-width: 52px; text-align: center; border-radius: 4px; padding: 1px 6px; font-size: 11.5px; font-weight: 700; letter-spacing: 0.04em; color: #fff; }
 .badge.pass { background: var(--pass); } .badge.fail { background: var(--fail); } .badge.error { background: var(--error); }
+.badge.na { background: #8a939d; }
 .pbad { color: var(--fail); font-weight: 600; }
 .toolbar { margin: 0 0 10px; } .toolbar button { font: inherit; font-size: 12.5px; padding: 3px 10px; margin-right: 6px; border: 1px solid var(--line); border-radius: 4px; background: var(--soft); cursor: pointer; }
 details.result { border: 1px solid var(--line); border-radius: 8px; margin: 0 0 12px; background: #fff; }
@@ -145,6 +146,7 @@ std::string verdict_class(Verdict v) {
         case Verdict::Pass: return "pass";
         case Verdict::Fail: return "fail";
         case Verdict::Error: return "error";
+        case Verdict::NotApplicable: return "na";
     }
     return "error";
 }
@@ -156,7 +158,7 @@ std::string badge(Verdict v) {
 std::string anchor(std::size_t index) { return fmt::format("r-{}", index); }
 
 /// The order of the table and the details: failures, then errors, then passes,
-/// each in registry order.
+/// then the checks that do not apply, each in registry order.
 std::vector<std::size_t> display_order(const RunResult& run) {
     std::vector<std::size_t> order(run.results.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
@@ -165,6 +167,7 @@ std::vector<std::size_t> display_order(const RunResult& run) {
             case Verdict::Fail: return 0;
             case Verdict::Error: return 1;
             case Verdict::Pass: return 2;
+            case Verdict::NotApplicable: return 3;
         }
         return 1;
     };
@@ -186,7 +189,11 @@ void append_banner(std::string& html, const RunResult& run) {
         line = "The selection matched no (case, check) pair.";
     } else if (failed == 0 && errors == 0) {
         headline = "PASSED";
-        line = fmt::format("All {} passed.", plural(total, "check", "checks"));
+        const int not_applicable = run.count(Verdict::NotApplicable);
+        line = not_applicable == 0
+                   ? fmt::format("All {} passed.", plural(total, "check", "checks"))
+                   : fmt::format("Every check that applies passed ({} of {}); {} not applicable.",
+                                 total - not_applicable, total, not_applicable);
     } else {
         headline = failed > 0 ? "FAILED" : "ERRORS";
         std::vector<std::string> parts;
@@ -212,6 +219,7 @@ void append_summary(std::string& html, const RunResult& run) {
     tile(failed > 0 ? "fail" : "fail zero", std::to_string(failed), "failed");
     tile(errors > 0 ? "error" : "error zero", std::to_string(errors), "errors");
     tile("pass", std::to_string(passed), "passed");
+    if (const int na = run.count(Verdict::NotApplicable); na > 0) tile("na", std::to_string(na), "not applicable");
     tile("", std::to_string(run.results.size()), "checks");
     tile("", format_seconds(info.wall_seconds), "wall time");
     html += "</div>\n<div class=\"overview\"><dl class=\"run-info\">";
@@ -234,7 +242,7 @@ void append_summary(std::string& html, const RunResult& run) {
 
     // Counts per check, in the order checks first appear.
     std::vector<std::string> checks;
-    std::map<std::string, std::array<int, 3>> counts;
+    std::map<std::string, std::array<int, 4>> counts;  // by Verdict
     for (const auto& r : run.results) {
         if (!counts.count(r.check_name)) checks.push_back(r.check_name);
         counts[r.check_name][static_cast<std::size_t>(r.verdict)]++;
@@ -303,7 +311,9 @@ void append_details(std::string& html, const RunResult& run, std::size_t index) 
     const std::string cls = verdict_class(r.verdict);
     html += fmt::format("<details class=\"result {}\" id=\"{}\"{}>\n<summary>{} <span class=\"case mono\">{}</span>"
                         "<span class=\"check\">&#183; {}</span>{}</summary>\n<div class=\"body\">\n",
-                        cls, anchor(index), r.verdict == Verdict::Pass ? "" : " open=\"open\"", badge(r.verdict),
+                        cls, anchor(index),
+                        r.verdict == Verdict::Pass || r.verdict == Verdict::NotApplicable ? "" : " open=\"open\"",
+                        badge(r.verdict),
                         escaped(r.case_name), escaped(r.check_name),
                         r.summary.empty() ? "" : " <span class=\"sum\">&#8212; " + escaped(r.summary) + "</span>");
     if (!r.message.empty()) html += "<p class=\"message\">" + escaped(r.message) + "</p>\n";

@@ -36,6 +36,7 @@ const char* verdict_name(Verdict v) {
         case Verdict::Pass: return "pass";
         case Verdict::Fail: return "fail";
         case Verdict::Error: return "error";
+        case Verdict::NotApplicable: return "not_applicable";
     }
     return "error";
 }
@@ -127,7 +128,8 @@ std::string render_json(const RunResult& run) {
          {{"checks", run.results.size()},
           {"passed", run.count(Verdict::Pass)},
           {"failed", run.count(Verdict::Fail)},
-          {"errors", run.count(Verdict::Error)}}},
+          {"errors", run.count(Verdict::Error)},
+          {"not_applicable", run.count(Verdict::NotApplicable)}}},
         {"results", std::move(results)},
     };
     if (info.shard_count > 0)

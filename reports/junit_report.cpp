@@ -1,7 +1,8 @@
 // The JUnit XML report, for CI systems: one <testsuite> per check ("chi2",
 // "roundtrip", ...) in the order checks first appear, one <testcase> per
 // (case, check) row; <failure> for a failed check, <error> for one that could
-// not run, with the message, the key figures and the rerun command.
+// not run, with the message, the key figures and the rerun command; <skipped>
+// for a check that does not apply to the case (a round trip without an inverse).
 #include <cmath>
 #include <map>
 #include <string>
@@ -46,21 +47,24 @@ std::string render_junit(const RunResult& run) {
     }
 
     std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    xml += fmt::format("<testsuites name=\"warpcheck\" tests=\"{}\" failures=\"{}\" errors=\"{}\" time=\"{}\"{}>\n",
-                       run.results.size(), run.count(Verdict::Fail), run.count(Verdict::Error), seconds(info.wall_seconds),
+    xml += fmt::format("<testsuites name=\"warpcheck\" tests=\"{}\" failures=\"{}\" errors=\"{}\" skipped=\"{}\" "
+                       "time=\"{}\"{}>\n",
+                       run.results.size(), run.count(Verdict::Fail), run.count(Verdict::Error),
+                       run.count(Verdict::NotApplicable), seconds(info.wall_seconds),
                        info.started_at.empty() ? "" : " timestamp=\"" + attr(info.started_at) + "\"");
     for (const std::string& check : checks) {
         const auto& rows = by_check[check];
-        int failures = 0, errors = 0;
+        int failures = 0, errors = 0, skipped = 0;
         double time = 0.0;
         for (const CheckResult* r : rows) {
             failures += r->verdict == Verdict::Fail;
             errors += r->verdict == Verdict::Error;
+            skipped += r->verdict == Verdict::NotApplicable;
             if (std::isfinite(r->seconds)) time += r->seconds;
         }
         const std::string suite = "warpcheck." + check;
-        xml += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"{}\" skipped=\"0\" time=\"{}\"{}{}>\n",
-                           attr(suite), rows.size(), failures, errors, seconds(time),
+        xml += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"{}\" skipped=\"{}\" time=\"{}\"{}{}>\n",
+                           attr(suite), rows.size(), failures, errors, skipped, seconds(time),
                            info.started_at.empty() ? "" : " timestamp=\"" + attr(info.started_at) + "\"",
                            info.machine.empty() ? "" : " hostname=\"" + attr(info.machine) + "\"");
         xml += "    <properties>\n";
@@ -83,7 +87,9 @@ std::string render_junit(const RunResult& run) {
                 continue;
             }
             xml += ">\n";
-            if (r->verdict != Verdict::Pass) {
+            if (r->verdict == Verdict::NotApplicable) {
+                xml += fmt::format("      <skipped message=\"{}\"/>\n", attr(r->summary));
+            } else if (r->verdict != Verdict::Pass) {
                 const char* element = r->verdict == Verdict::Fail ? "failure" : "error";
                 const std::string message = r->message.empty() ? r->summary : r->message;
                 xml += fmt::format("      <{0} message=\"{1}\" type=\"{2}\">{3}</{0}>\n", element, attr(message),

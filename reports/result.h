@@ -14,6 +14,10 @@ enum class Verdict {
     Pass,   ///< the check ran and the warp agrees with itself
     Fail,   ///< the check ran and found a disagreement
     Error,  ///< the check could not run (the warp threw, timed out, ...): the message says why
+    /// The check does not apply to this case because the case lacks a part it
+    /// tests (a warp without an inverse has no round trip): shown, never run,
+    /// never a failure, and outside the multiple-testing family.
+    NotApplicable,
 };
 
 constexpr std::string_view to_string(Verdict v) {
@@ -21,6 +25,7 @@ constexpr std::string_view to_string(Verdict v) {
         case Verdict::Pass: return "pass";
         case Verdict::Fail: return "FAIL";
         case Verdict::Error: return "ERROR";
+        case Verdict::NotApplicable: return "n/a";
     }
     return "?";
 }
@@ -148,7 +153,8 @@ struct RunResult {
         for (const auto& r : results) n += r.verdict == v;
         return n;
     }
-    bool all_passed() const { return count(Verdict::Pass) == static_cast<int>(results.size()); }
+    /// Whether every check that applies passed: n/a rows neither pass nor fail.
+    bool all_passed() const { return count(Verdict::Fail) == 0 && count(Verdict::Error) == 0; }
 };
 
 }  // namespace warpcheck

@@ -11,7 +11,7 @@ namespace {
 std::string verdict_cell(Verdict v, bool color) {
     const std::string text = fmt::format("{:<5}", to_string(v));
     if (!color) return text;
-    const char* code = v == Verdict::Pass ? "32" : v == Verdict::Fail ? "1;31" : "1;35";
+    const char* code = v == Verdict::Pass ? "32" : v == Verdict::Fail ? "1;31" : v == Verdict::Error ? "1;35" : "2";
     return fmt::format("\033[{}m{}\033[0m", code, text);
 }
 
@@ -19,9 +19,12 @@ std::string verdict_cell(Verdict v, bool color) {
 
 void print_summary(const RunResult& run, std::ostream& out) {
     const auto& i = run.info;
-    out << fmt::format("{} checks: {} passed, {} failed, {} errors in {:.1f} s  (seed {}, {} samples, {} threads)\n",
+    const int not_applicable = run.count(Verdict::NotApplicable);
+    out << fmt::format("{} checks: {} passed, {} failed, {} errors{} in {:.1f} s  (seed {}, {} samples, {} threads)\n",
                        run.results.size(), run.count(Verdict::Pass), run.count(Verdict::Fail),
-                       run.count(Verdict::Error), i.wall_seconds, i.seed, i.samples, i.threads);
+                       run.count(Verdict::Error),
+                       not_applicable > 0 ? fmt::format(", {} not applicable", not_applicable) : std::string(),
+                       i.wall_seconds, i.seed, i.samples, i.threads);
     if (i.statistical_tests > 0)
         out << fmt::format("Statistical tests: {} at per-test level {:.3g} (family-wise alpha {} with Sidak correction)\n",
                            i.statistical_tests, i.per_test_alpha, i.family_alpha);
@@ -36,13 +39,13 @@ void print_table(const RunResult& run, std::ostream& out, const TableStyle& styl
     case_width = std::min<std::size_t>(case_width, 64);
     out << fmt::format("{:<5}  {:<{}}  {:<{}}  {}\n", "", "check", check_width, "case", case_width, "key figure");
     for (const auto& r : run.results) {
-        if (style.failures_only && r.verdict == Verdict::Pass) continue;
+        if (style.failures_only && (r.verdict == Verdict::Pass || r.verdict == Verdict::NotApplicable)) continue;
         out << fmt::format("{}  {:<{}}  {:<{}}  {}\n", verdict_cell(r.verdict, style.color), r.check_name, check_width,
                            r.case_name, case_width, r.summary);
     }
     bool header = false;
     for (const auto& r : run.results) {
-        if (r.verdict == Verdict::Pass) continue;
+        if (r.verdict == Verdict::Pass || r.verdict == Verdict::NotApplicable) continue;
         if (!header) {
             out << "\nWhat failed, and how to rerun it:\n";
             header = true;

@@ -125,6 +125,15 @@ public:
     /// One line for --list.
     virtual std::string description() const = 0;
     virtual bool applies_to(const WarpCase& warp) const = 0;
+    /// Where applies_to is false because the case lacks a part this check tests
+    /// (a warp without an inverse has no round trip), why, in a few words: the
+    /// run then shows an n/a row with it instead of leaving the check out
+    /// silently. Empty (the default): the check is simply not about such cases
+    /// (an exhaustive sweep of a 2D warp) and no row is shown.
+    virtual std::string not_applicable_because(const WarpCase& warp) const {
+        (void)warp;
+        return {};
+    }
     /// Whether the check runs by default; heavy sweeps run only with --exhaustive.
     virtual bool runs_by_default(const RunOptions& options) const {
         (void)options;

@@ -135,7 +135,7 @@ void list_cases(const Registry& registry, const std::vector<Job>& jobs, std::ost
             if (!flaw.empty()) out << fmt::format("      known flaw (runs with --include-flawed): {}\n", flaw);
             out << "      checks:";
         }
-        out << " " << job.check->name();
+        out << " " << job.check->name() << (job.not_applicable.empty() ? "" : " (n/a: " + job.not_applicable + ")");
         if (&job == &jobs.back() || (&job + 1)->warp != current) out << "\n";
     }
 }

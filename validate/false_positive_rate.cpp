@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
         tests = run.info.statistical_tests;
         bool any = false;
         for (const auto& r : run.results) {
-            if (r.verdict == Verdict::Pass) continue;
+            if (r.verdict == Verdict::Pass || r.verdict == Verdict::NotApplicable) continue;
             any = true;
             failures_by_check[r.check_name + " " + r.case_name]++;
             std::cerr << fmt::format("\nseed {}: {} {} {}: {}\n", options.seed, to_string(r.verdict), r.check_name,

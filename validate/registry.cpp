@@ -2,11 +2,17 @@
 
 #include <stdexcept>
 
+#include "validate/case_validation.h"
+
 namespace warpcheck {
 
 void Registry::add_case(std::unique_ptr<WarpCase> warp) {
     if (!warp) throw std::invalid_argument("registry: null warp case");
     if (find_case(warp->name())) throw std::invalid_argument("registry: duplicate warp case name " + warp->name());
+    std::string problems;
+    for (const std::string& p : case_problems(*warp)) problems += "\n  - " + p;
+    if (!problems.empty())
+        throw std::invalid_argument("registry: warp case " + warp->name() + " is declared inconsistently:" + problems);
     cases_.push_back(std::move(warp));
 }
 
@@ -24,13 +30,26 @@ const WarpCase* Registry::find_case(std::string_view name) const {
 
 void Registry::mark_known_flaw(const std::string& case_name, std::string flaw) {
     if (!find_case(case_name)) throw std::invalid_argument("registry: no case " + case_name + " to mark as flawed");
-    flaws_.emplace_back(case_name, std::move(flaw));
+    flaws_.push_back({case_name, "", std::move(flaw)});
+}
+
+void Registry::mark_known_flaw(const std::string& case_name, const std::string& check_name, std::string flaw) {
+    if (!find_case(case_name)) throw std::invalid_argument("registry: no case " + case_name + " to mark as flawed");
+    if (!find_check(check_name))
+        throw std::invalid_argument("registry: no check " + check_name + " to mark as flawed for case " + case_name);
+    flaws_.push_back({case_name, check_name, std::move(flaw)});
 }
 
 std::string Registry::known_flaw(const WarpCase& warp) const {
-    for (const auto& [name, flaw] : flaws_)
-        if (name == warp.name()) return flaw;
+    for (const Flaw& f : flaws_)
+        if (f.case_name == warp.name() && f.check_name.empty()) return f.text;
     return {};
+}
+
+std::string Registry::known_flaw(const WarpCase& warp, const Check& check) const {
+    for (const Flaw& f : flaws_)
+        if (f.case_name == warp.name() && f.check_name == check.name()) return f.text;
+    return known_flaw(warp);
 }
 
 const Check* Registry::find_check(std::string_view name) const {

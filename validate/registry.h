@@ -14,7 +14,9 @@ namespace warpcheck {
 class Registry {
 public:
     /// Adds a case; a second case with the same name is an error (names are how
-    /// streams are seeded and how --filter finds a case).
+    /// streams are seeded and how --filter finds a case), and so is a case
+    /// declared inconsistently (validate/case_validation.h): the message names
+    /// the case and every problem.
     void add_case(std::unique_ptr<WarpCase> warp);
     void add_check(std::unique_ptr<Check> check);
 
@@ -27,11 +29,22 @@ public:
     /// sampler that returns 1.0): it is expected to fail, so it runs only with
     /// --include-flawed or when selected by its full name.
     void mark_known_flaw(const std::string& case_name, std::string flaw);
-    /// The flaw of a case, or an empty string.
+    /// Marks one check of a registered case as a known flaw: only that check is
+    /// expected to fail, so only it is left out (with the same exceptions); the
+    /// case's other checks run as usual. The check must be registered.
+    void mark_known_flaw(const std::string& case_name, const std::string& check_name, std::string flaw);
+    /// The flaw of a whole case, or an empty string.
     std::string known_flaw(const WarpCase& warp) const;
+    /// The flaw of one check of a case: its own mark, else the whole case's, else empty.
+    std::string known_flaw(const WarpCase& warp, const Check& check) const;
 
 private:
-    std::vector<std::pair<std::string, std::string>> flaws_;
+    struct Flaw {
+        std::string case_name;
+        std::string check_name;  ///< empty: the whole case
+        std::string text;
+    };
+    std::vector<Flaw> flaws_;
     std::vector<std::unique_ptr<WarpCase>> cases_;
     std::vector<std::unique_ptr<Check>> checks_;
 };

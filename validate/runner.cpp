@@ -37,12 +37,16 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
                                                                 : name_matches(warp->name(), pattern));
         }
         if (!selected) continue;
-        if (!registry.known_flaw(*warp).empty() && !options.include_flawed && !named) continue;
+        const bool run_flawed = options.include_flawed || named;
+        if (!registry.known_flaw(*warp).empty() && !run_flawed) continue;
         for (const auto& check : registry.checks()) {
             const bool wanted = check_names.empty() ? check->runs_by_default(options)
                                                     : std::find(check_names.begin(), check_names.end(),
                                                                 check->name()) != check_names.end();
-            if (wanted && check->applies_to(*warp)) jobs.push_back({warp.get(), check.get()});
+            if (!wanted || (!registry.known_flaw(*warp, *check).empty() && !run_flawed)) continue;
+            if (check->applies_to(*warp)) jobs.push_back({warp.get(), check.get()});
+            else if (std::string why = check->not_applicable_because(*warp); !why.empty())
+                jobs.push_back({warp.get(), check.get(), std::move(why)});
         }
     }
     return jobs;
@@ -202,9 +206,22 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
     run.info.machine = machine_description();
     run.info.started_at = utc_now();
 
-    run.results = isolation.enabled
-                      ? run_jobs_isolated(jobs, options, isolation, threads, progress, run.info.abandoned_checks)
-                      : run_jobs_in_process(jobs, options, threads, progress);
+    // Only the jobs that apply run; the others become n/a rows in their place.
+    std::vector<Job> runnable;
+    for (const Job& job : jobs)
+        if (job.not_applicable.empty()) runnable.push_back(job);
+    std::vector<CheckResult> ran =
+        isolation.enabled ? run_jobs_isolated(runnable, options, isolation, threads, progress, run.info.abandoned_checks)
+                          : run_jobs_in_process(runnable, options, threads, progress);
+    run.results.resize(jobs.size());
+    for (std::size_t i = 0, k = 0; i < jobs.size(); ++i) {
+        if (jobs[i].not_applicable.empty()) {
+            run.results[i] = std::move(ran[k++]);
+            continue;
+        }
+        run.results[i].verdict = Verdict::NotApplicable;
+        run.results[i].summary = "not applicable: " + jobs[i].not_applicable;
+    }
     for (std::size_t i = 0; i < jobs.size(); ++i) {
         CheckResult& r = run.results[i];
         const StreamId stream = job_stream(*jobs[i].warp, *jobs[i].check, options.seed);

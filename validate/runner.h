@@ -21,6 +21,9 @@ namespace warpcheck {
 struct Job {
     const WarpCase* warp = nullptr;
     const Check* check = nullptr;
+    /// Non-empty: the check does not apply (Check::not_applicable_because); the
+    /// job is not run and its row is NotApplicable with this reason.
+    std::string not_applicable{};
 };
 
 /// The stream of one (case, check) job: a function of the names and the seed only.
@@ -28,8 +31,10 @@ StreamId job_stream(const WarpCase& warp, const Check& check, uint64_t seed);
 
 /// The jobs of a selection, in registry order (case by case, then check by check).
 /// Empty `case_patterns` selects every case; empty `check_names` every check that
-/// runs by default. Cases marked as known flaws are left out unless
-/// options.include_flawed is set or a pattern is the case's full name.
+/// runs by default. Cases marked as known flaws (and checks of a case marked as
+/// a known flaw) are left out unless options.include_flawed is set or a pattern
+/// is the case's full name. A check that does not apply for want of a part of
+/// the case gives a job that only carries the reason.
 std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::string>& case_patterns,
                              const std::vector<std::string>& check_names, const RunOptions& options);
 

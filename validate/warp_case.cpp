@@ -44,7 +44,7 @@ std::string discrete_problem(const WarpCaseInfo& info, bool has_inverse, bool ha
                            ".categories declares the choices)", info.domain.describe());
     if (has_inverse) return "a discrete case has no inverse";
     if (has_eval) return "a discrete case has no eval";
-    if (info.marginal) return "a discrete case has no monotone marginal";
+    if (!info.views.empty()) return "a discrete case has no monotone views";
     return "";
 }
 

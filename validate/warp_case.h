@@ -81,18 +81,21 @@ struct Parameter {
 /// -> "uniform_cone[cos_theta_max=0.3]".
 std::string case_name(const std::string& family, const std::vector<Parameter>& params);
 
-/// A monotone one-dimensional view of a warp, for the "tabulated" check: one
+/// A monotone one-dimensional view of a warp, for the "tabulated" check (a case
+/// may declare several, WarpCaseInfo::views): one
 /// coordinate of the output that depends on one input coordinate only, and
 /// monotonically, with its marginal density. The check tabulates the density
 /// into a PiecewiseConstant1D and compares the warp with the table's inversion
 /// method, sample by sample. A 1D warp on an interval is its own view and needs
-/// none; a 1D warp on a half-line needs one to say where to truncate (`hi`) and
-/// how much probability lies beyond (`tail_mass`, from the case's own CDF).
+/// none; a 1D warp on an unbounded line needs one to say where to truncate
+/// (`lo`, `hi`) and how much probability lies beyond each end (`lower_tail_mass`
+/// below lo, `tail_mass` above hi, from the case's own CDF).
 struct MonotoneMarginal {
     int input_coordinate = 0;   ///< which input drives the coordinate: 0 (u.x) or 1 (u.y)
     bool increasing = true;     ///< whether the coordinate grows with that input
     double lo = 0.0, hi = 1.0;  ///< range of the coordinate; for a half-line, hi is the truncation point
     double tail_mass = 0.0;     ///< probability that the coordinate exceeds hi (0 on a bounded range)
+    double lower_tail_mass = 0.0;  ///< probability that the coordinate lies below lo (0 on a bounded range)
     std::string label;          ///< axis label, e.g. "cos theta"
     /// The coordinate of an output; empty: x[0]. NaN where the output does not
     /// determine it (the azimuth at a pole): such samples are skipped and counted.
@@ -118,8 +121,12 @@ struct WarpCaseInfo {
     bool exact_inverse = false;
     /// Cells of the chi-square test; zero fields take the domain's defaults (chi2/binning.h).
     chi2::BinResolution chi2_resolution{};
-    /// The case's monotone 1D view for the tabulated check, where it has one.
-    std::optional<MonotoneMarginal> marginal{};
+    /// The case's monotone 1D views, each tabulated by the tabulated check and,
+    /// on 2D domains, tested by the unbinned check: e.g. cos theta and the
+    /// azimuth of a spherical warp, so that an error in either shows. Each
+    /// needs its own label (results name the view by it). Empty: a 1D warp on
+    /// an interval is its own view; other cases have none.
+    std::vector<MonotoneMarginal> views{};
     /// Discrete cases only: the number of categories; sample returns an index
     /// of 0 .. categories - 1 and the pdf is a pmf over them. A discrete case
     /// leaves `domain` unset (0 here means a continuous case).
@@ -309,7 +316,7 @@ public:
     LambdaWarpCase(WarpCaseInfo info, Sample s, Pdf p, Invert i, Eval e = {})
         : WarpCase(std::move(info)), sample_(std::move(s)), pdf_(std::move(p)), invert_(std::move(i)),
           eval_(std::move(e)) {
-        validate_declaration({input_kind_of<In>(), output_dimension<Out>(), !std::is_same_v<Eval, NoEval>});
+        validate_declaration({input_kind_of<In>(), detail::output_dimension<Out>(), !std::is_same_v<Eval, NoEval>});
     }
 
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override {

@@ -35,6 +35,10 @@ std::vector<DomainCase> domain_cases() {
         {"cone_cap", Domain::spherical_cap(0.7), {24, 9, 1.0}},
         {"sphere_odd_columns", Domain::sphere(), {20, 10, 1.0}},  // phi by fast atan2, not the octant table
         {"disk_odd_columns", Domain::unit_disk(), {13, 7, 1.0}},
+        {"lower_half_line", Domain::lower_half_line(-1.0), {}},
+        {"lower_half_line_scaled", Domain::lower_half_line(2.0), {50, 0, 0.01}},
+        {"real_line", Domain::real_line(), {}},
+        {"real_line_centred", Domain::real_line(), {51, 0, 0.5, 40.0}},
     };
 }
 
@@ -45,6 +49,8 @@ DomainPoint random_point(const Domain& d, Pcg32& rng) {
     const double u = rng.next_double(), v = rng.next_double();
     if (const auto* i = std::get_if<Interval>(&d.shape())) return {i->a + (i->b - i->a) * u, 0, 0};
     if (const auto* h = std::get_if<HalfLine>(&d.shape())) return {h->a - std::log1p(-u) * 3.0, 0, 0};
+    if (const auto* l = std::get_if<LowerHalfLine>(&d.shape())) return {l->b + std::log1p(-u) * 3.0, 0, 0};
+    if (d.is<RealLine>()) return {40.0 + std::tan(std::numbers::pi * (u - 0.5)), 0, 0};  // Cauchy: both tails
     if (const auto* b = std::get_if<Box>(&d.shape()))
         return {b->x0 + (b->x1 - b->x0) * u, b->y0 + (b->y1 - b->y0) * v, 0};
     const double phi = 2 * std::numbers::pi * v;
@@ -62,7 +68,18 @@ TEST_P(BinningTest, CellMeasuresSumToDomainMeasure) {
         EXPECT_GT(m, 0.0) << c;
         sum += m;
     }
-    if (b.domain().is<HalfLine>()) {
+    if (b.domain().is<LowerHalfLine>() || b.domain().is<RealLine>()) {
+        // A tail cell at each infinite end; the finite cells span the rest.
+        EXPECT_TRUE(std::isinf(b.cell_measure(0)));
+        const bool both = b.domain().is<RealLine>();
+        const std::size_t last = b.cell_count() - 1;
+        EXPECT_EQ(std::isinf(b.cell_measure(last)), both);
+        double finite = 0.0;
+        for (std::size_t c = 1; c < (both ? last : b.cell_count()); ++c) finite += b.cell_measure(c);
+        const double start = b.point_at(b.cell_rect(1).u0, 0.5)[0];
+        const double end = both ? b.point_at(b.cell_rect(last).u0, 0.5)[0] : b.domain().b();
+        EXPECT_NEAR(finite, end - start, 1e-9 * std::abs(end - start));
+    } else if (b.domain().is<HalfLine>()) {
         // Finite cells end where the tail cell starts; the tail is infinite.
         const std::size_t tail = b.cell_count() - 1;
         EXPECT_TRUE(std::isinf(b.cell_measure(tail)));
@@ -150,7 +167,10 @@ TEST_P(BinningTest, NaNAndOutsideSamplesAreCountedApart) {
     const Binning b(GetParam().domain, GetParam().resolution);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
-    std::vector<std::array<float, 3>> points = {{nan, 0, 0}, {nan, nan, nan}, {inf, inf, inf}, {-1e6f, -1e6f, -1e6f}};
+    // Far outside: below every domain but (-inf, b], above that; the real line has only infinities outside.
+    const bool real_line = b.domain().is<RealLine>();
+    const float far = b.domain().is<LowerHalfLine>() ? 1e6f : real_line ? -inf : -1e6f;
+    std::vector<std::array<float, 3>> points = {{nan, 0, 0}, {nan, nan, nan}, {inf, inf, inf}, {far, far, far}};
     Histogram h;
     h.counts.assign(b.cell_count(), 0);
     b.bin(std::span<const std::array<float, 3>>(points), h);
@@ -158,7 +178,10 @@ TEST_P(BinningTest, NaNAndOutsideSamplesAreCountedApart) {
     EXPECT_EQ(h.outside, 2u);
     EXPECT_EQ(h.total(), 4u);
     EXPECT_EQ(b.cell_of({std::nan(""), 0, 0}), Binning::kNaN);
-    EXPECT_EQ(b.cell_of({-1e6, -1e6, -1e6}), Binning::kOutside);
+    EXPECT_EQ(b.cell_of({far, far, far}), Binning::kOutside);
+    if (real_line) {
+        EXPECT_GE(b.cell_of({-1e30, 0, 0}), 0);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Domains, BinningTest, ::testing::ValuesIn(domain_cases()),

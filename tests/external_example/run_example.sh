@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the warpcheck build tree into a scratch prefix, builds the external
-# example against the installed package (find_package(warpcheck)), and runs it.
+# example against the installed package (find_package(warpcheck)), and runs it:
+# every correct warp passes every check that applies (--all exits 0, round
+# trips of the warp without an inverse are n/a), and each wrong twin fails the
+# check meant to catch it.
 # Usage: run_example.sh BUILD_DIR EXAMPLE_SOURCE_DIR
 set -euo pipefail
 build_dir=$1
@@ -12,14 +15,16 @@ cmake --install "$build_dir" --prefix "$work/prefix" > "$work/install.log"
 cmake -S "$example_dir" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release \
   > "$work/configure.log" || { cat "$work/configure.log"; exit 1; }
 cmake --build "$work/build" -j2 > "$work/build.log" || { cat "$work/build.log"; exit 1; }
+program="$work/build/validate_my_warps"
 
 # The program has the whole CLI: list, run, and reject bad input.
-"$work/build/validate_my_warps" --list | grep -q "linear\[a=1,b=3\]"
-"$work/build/validate_my_warps" --all --samples 200000 --color never | tee "$work/all.txt"
+"$program" --list | grep -q "linear\[a=1,b=3\]"
+"$program" --all --samples 200000 --color never | tee "$work/all.txt"
+grep -Eq "^n/a +roundtrip +cosine_hemisphere_no_inverse +not applicable: the warp has no inverse" "$work/all.txt" \
+  || { echo "expected an n/a round trip for the warp without an inverse"; exit 1; }
 
 # Samplers that return more than a point: each correct one passes the checks of
-# its kind (with every other applicable check, in --all above); each wrong twin
-# fails the check meant to catch it.
+# its kind (with every other applicable check, in --all above).
 expect_row() {  # VERDICT CHECK CASE
   grep -Eq "^$1 +$2 +$(printf '%s' "$3" | sed 's/[][]/\\&/g')( |\$)" "$work/all.txt" \
     || { echo "expected a '$1' row for check $2 on $3"; exit 1; }
@@ -31,16 +36,29 @@ for point in "n=5,select=0.3" "n=5,select=0.6" "n=50,select=0.3" "n=50,select=0.
   for check in weight weight_mean chi2; do expect_row pass "$check" "phong_mixture[$point]"; done
 done
 for check in pmf discrete_chi2 remapped_u; do expect_row pass "$check" alias_table; done
-for twin in cosine_returned_pdf_wrong:sample_pdf table_no_pdf_wrong:inverse_pdf_mean \
-            phong_mixture_wrong:weight_mean alias_table_wrong:remapped_u; do
-  name=${twin%%:*} check=${twin##*:}
-  status=0
-  "$work/build/validate_my_warps" --filter "$name" --check "$check" --samples 200000 --color never \
-    > "$work/all.txt" || status=$?
-  [ "$status" -eq 1 ] || { cat "$work/all.txt"; echo "expected $name to fail $check (exit 1), got $status"; exit 1; }
-  expect_row FAIL "$check" "$name"
-done
 status=0
-"$work/build/validate_my_warps" --filter no_such_warp 2> /dev/null || status=$?
+"$program" --filter no_such_warp 2> /dev/null || status=$?
 [ "$status" -eq 2 ] || { echo "expected exit status 2 for an unknown warp, got $status"; exit 1; }
+
+# Each wrong twin, run by its full name, fails the check meant to catch it.
+expect_fail() {  # case check [text the failure must contain] [text it must not contain]
+  local out status=0
+  out=$("$program" --filter "$1" --check "$2" --samples 200000 --color never 2>&1) || status=$?
+  [ "$status" -eq 1 ] || { echo "$out"; echo "expected $1 to fail $2 (exit 1), got exit $status"; exit 1; }
+  grep -Eq "^FAIL +$2 +" <<< "$out" || { echo "$out"; echo "expected a FAIL row for $2 of $1"; exit 1; }
+  [ -z "${3:-}" ] || grep -qF "$3" <<< "$out" || { echo "$out"; echo "expected '$3' in the failure of $1"; exit 1; }
+  [ -z "${4:-}" ] || ! grep -qF "$4" <<< "$out" || { echo "$out"; echo "did not expect '$4' for $1"; exit 1; }
+}
+expect_fail "normal_pdf_forgets_sigma[mu=2,sigma=0.5]" chi2 ", not 1 (tolerance"
+expect_fail "mirrored_exponential_inverse_flipped[b=1,rate=4]" roundtrip
+expect_fail "cosine_hemisphere_no_inverse_half_pdf" chi2 ", not 1 (tolerance"
+expect_fail "uniform_sphere_azimuth_bent" tabulated "view phi:" "view cos theta:"
+expect_fail cosine_returned_pdf_wrong sample_pdf
+expect_fail table_no_pdf_wrong inverse_pdf_mean
+expect_fail phong_mixture_wrong weight_mean
+expect_fail alias_table_wrong remapped_u
+
+# A C++17 translation unit registers its warps through validate/register17.h.
+"$work/build/validate_my_warps17" --all --samples 200000 --color never | tee "$work/all17.txt"
+grep -q "logistic_cxx17\[mu=-3,s=0.25\]" "$work/all17.txt"
 echo "external example: built against the installed package and passed"

@@ -31,7 +31,7 @@ inline std::unique_ptr<WarpCase> tr_normals(float alpha, bool wrong) {
     m.increasing = false;
     m.coordinate = [](const WarpOutput& o) { return static_cast<double>(o[2]); };
     m.pdf = [alpha, wrong](double z) { return z > 0.0 ? 2.0 * std::numbers::pi * z * isotropic_D(alpha, z, wrong) : 0.0; };
-    info.marginal = m;
+    info.views = {m};
     const TrowbridgeReitzNormals normals = TrowbridgeReitz(alpha).normals();
     return make_warp_case(
         info, [normals](Point2f u) { return normals.sample(u); },

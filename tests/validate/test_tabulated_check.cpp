@@ -34,7 +34,7 @@ std::unique_ptr<WarpCase> exponential_case(float a, float scale = 1.0f, float pd
     MonotoneMarginal m;
     m.hi = std::log(1000.0) / a;
     m.tail_mass = std::exp(-a * m.hi);
-    info.marginal = m;
+    info.views = {m};
     const Exponential e(a);
     return make_warp_case(
         info,
@@ -56,7 +56,7 @@ std::unique_ptr<WarpCase> tr_normal_case_declared_increasing(float alpha) {
     m.increasing = true;
     m.coordinate = [](const WarpOutput& o) { return static_cast<double>(o[2]); };
     m.pdf = [alpha](double z) { return TrowbridgeReitz::isotropic_cos_theta_pdf(alpha, z); };
-    info.marginal = m;
+    info.views = {m};
     const TrowbridgeReitz tr(alpha);
     return make_warp_case(info, tr.normals());
 }

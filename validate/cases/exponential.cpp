@@ -25,7 +25,7 @@ void register_exponential_cases(Registry& registry) {
         view.hi = static_cast<double>(static_cast<float>(std::log(1000.0) / a));
         view.tail_mass = std::exp(-static_cast<double>(e.rate()) * view.hi);
         view.label = "x";
-        info.marginal = view;
+        info.views = {view};
         registry.add_case(make_warp_case(info, e));
     }
     // c = 1e-6: c xmax is tiny, the density is uniform to 1e-6 and the naive

@@ -41,7 +41,7 @@ void add_2d(Registry& registry, const std::string& family, const std::string& wh
                       .description = what,
                       .input = InputKind::Uniform2D,
                       .domain = chi2::Domain::box(x0, x1, y0, y1),
-                      .marginal = std::move(m)};
+                      .views = {std::move(m)}};
     registry.add_case(make_warp_case(info, [d](Point2f u) { return d->sample(u).p; },
                                      [d](Point2f p) { return d->pdf(p); }, [d](Point2f p) { return d->invert(p); }));
 }

@@ -52,7 +52,7 @@ void register_trowbridge_reitz_cases(Registry& registry) {
              .params = {{"ax", ax}, {"ay", ay}},
              .description = "Trowbridge-Reitz microfacet normals; pdf D(wm) cos(theta_m) per solid angle",
              .domain = Domain::hemisphere(),
-             .marginal = normal_marginal(ax, ay)},
+             .views = {normal_marginal(ax, ay)}},
             tr.normals()));
     }
     for (auto [ax, ay] : kAlphas) {

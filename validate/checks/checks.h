@@ -22,7 +22,7 @@ std::unique_ptr<Check> make_binade_check();
 std::unique_ptr<Check> make_exhaustive_roundtrip_check();
 /// "chi2": Pearson chi-square test of samples against the pdf integrated over cells.
 std::unique_ptr<Check> make_chi2_check();
-/// "tabulated": for 1D warps and monotone 1D marginals (WarpCaseInfo::marginal),
+/// "tabulated": for 1D warps and the monotone 1D views of a case (WarpCaseInfo::views),
 /// sample(u) and the density against the inversion method on a 65536-bucket
 /// PiecewiseConstant1D of the density, with bucket-derived tolerances.
 std::unique_ptr<Check> make_tabulated_check();

@@ -23,21 +23,11 @@
 #include "chi2/power.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
+#include "validate/checks/line_resolution.h"
 #include "validate/checks/power_level.h"
 
 namespace warpcheck {
 namespace {
-
-/// The half-line's length scale when the case does not set one: 1 / pdf(a),
-/// the scale of the density at the start (1/rate for an exponential), so that
-/// its cells follow the distribution whatever its rate.
-double half_line_scale(const WarpCase& warp) {
-    const std::vector<WarpOutput> start = {{static_cast<float>(warp.domain().a()), 0.0f, 0.0f}};
-    std::vector<double> density(1);
-    warp.pdf(start, density);
-    const double s = 1.0 / density[0];
-    return std::isfinite(s) && s > 0.0 ? s : 1.0;
-}
 
 Plot heatmaps(const chi2::Binning& b, const chi2::Chi2Outcome& o, const std::string& case_name) {
     Plot plot;
@@ -189,8 +179,10 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning
         {"snapped_at_support_edge", static_cast<double>(h.snapped)},
         {"samples", static_cast<double>(samples)},
     };
-    if (binning.domain().is<chi2::HalfLine>())
+    if (binning.domain().unbounded_line())
         r.figures.push_back({"half_line_scale", binning.resolution().half_line_scale});
+    if (binning.domain().is<chi2::RealLine>())
+        r.figures.push_back({"line_center", binning.resolution().line_center});
     // The localised statistic (chi2/local_residual.h) and the stated power: the
     // noncentrality, and the tilt of a marginal (chi2/power.h), that Pearson's
     // statistic detects 90% of the time at the planned level (power_level.h).
@@ -226,10 +218,7 @@ public:
     bool applies_to(const WarpCase& warp) const override { return warp.has_pdf() && !warp.is_discrete(); }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
-        chi2::BinResolution resolution = warp.info().chi2_resolution;
-        if (warp.domain().is<chi2::HalfLine>() && resolution.half_line_scale == 0.0)
-            resolution.half_line_scale = half_line_scale(warp);
-        const chi2::Binning binning(warp.domain(), resolution);
+        const chi2::Binning binning(warp.domain(), line_resolution(warp));
         const chi2::Chi2Outcome outcome = compute(warp, ctx, binning);
         CheckResult r;
         add_figures(r, outcome, binning, ctx.options().samples);

@@ -206,6 +206,9 @@ public:
     bool applies_to(const WarpCase& warp) const override {
         return warp.input_kind() == InputKind::Uniform1D && warp.has_inverse();
     }
+    std::string not_applicable_because(const WarpCase& warp) const override {
+        return warp.input_kind() == InputKind::Uniform1D && !warp.has_inverse() ? "the warp has no inverse" : "";
+    }
     bool runs_by_default(const RunOptions& options) const override { return options.exhaustive; }
     double time_budget(const RunOptions& options) const override { return sweep_time_budget(options, kUnitFloats); }
 

@@ -336,6 +336,9 @@ public:
         return "invert(sample(u)) == u over a seeded stream plus edge inputs (exact for raw-bit inputs)";
     }
     bool applies_to(const WarpCase& warp) const override { return warp.has_inverse(); }
+    std::string not_applicable_because(const WarpCase& warp) const override {
+        return warp.has_inverse() ? "" : "the warp has no inverse";
+    }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const InputKind kind = warp.input_kind();

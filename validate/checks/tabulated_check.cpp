@@ -4,13 +4,15 @@
 //
 // The density of a 1D warp (or the marginal density of a monotone coordinate of
 // a 2D warp, see MonotoneMarginal) is tabulated and, for the same u, the warp's
-// sample and density are compared with the table's. A truncated half-line:
-// inputs beyond 1 - tail_mass are checked to land beyond the truncation point,
-// and the rest compare with the table scaled to 1 - tail_mass.
+// sample and density are compared with the table's. A truncated line (a
+// half-line either way, or the real line): inputs below lower_tail_mass are
+// checked to land below lo, inputs beyond 1 - tail_mass beyond hi, and the rest
+// compare with the table scaled to the body's mass between them.
 //
 // Three parts: compute (one pass over the input chunks), judge (the rule, with
 // the table's tolerances) and evidence (inverse CDFs, densities, worst points).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -32,37 +34,42 @@ namespace {
 constexpr std::size_t kWorstKept = 10;
 constexpr int kPlotPoints = 257;
 
+/// The probability between the view's truncation points.
+double body_mass(const MonotoneMarginal& m) { return 1.0 - m.tail_mass - m.lower_tail_mass; }
+
 /// The resolved 1D view: what is compared, from which input.
 struct View {
     MonotoneMarginal m;
     bool use_warp_pdf = false;
 };
 
-bool resolve(const WarpCase& warp, View& view) {
+/// The case's views: each declared one (one without a density uses the warp's
+/// own pdf, 1D warps only), or a 1D warp on an interval as its own view.
+std::vector<View> resolve(const WarpCase& warp) {
     const WarpCaseInfo& info = warp.info();
     const chi2::Domain& d = warp.domain();
-    if (info.marginal) {
-        view.m = *info.marginal;
-        if (!view.m.pdf) {
-            if (info.input != InputKind::Uniform1D) return false;
-            view.use_warp_pdf = true;
-        }
-        return true;
+    std::vector<View> views;
+    for (const MonotoneMarginal& m : info.views) {
+        View view{m, !m.pdf};
+        if (view.use_warp_pdf && info.input != InputKind::Uniform1D) continue;
+        views.push_back(std::move(view));
     }
-    if (info.input == InputKind::Uniform1D && d.is<chi2::Interval>()) {
+    if (info.views.empty() && info.input == InputKind::Uniform1D && d.is<chi2::Interval>()) {
+        View view;
         view.m.lo = d.a();
         view.m.hi = d.b();
         view.m.label = std::string(1, 'x');  // not = "x": GCC 12 reports a false -Wrestrict there
         view.use_warp_pdf = true;
-        return true;
+        views.push_back(std::move(view));
     }
-    return false;
+    return views;
 }
 
 void validate_view(const View& view, const WarpCase& warp) {
     const MonotoneMarginal& m = view.m;
-    if (!(m.lo < m.hi) || !(m.tail_mass >= 0.0 && m.tail_mass < 1.0) || (m.tail_mass > 0.0 && !m.increasing))
-        throw std::runtime_error("invalid marginal: needs lo < hi, 0 <= tail_mass < 1, and increasing if truncated");
+    if (!(m.lo < m.hi) || !(m.tail_mass >= 0.0) || !(m.lower_tail_mass >= 0.0) ||
+        !(m.tail_mass + m.lower_tail_mass < 1.0))
+        throw std::runtime_error("invalid marginal: needs lo < hi and tail masses >= 0 that sum to less than 1");
     if (m.input_coordinate < 0 || m.input_coordinate >= input_dimension(warp.input_kind()))
         throw std::runtime_error("invalid marginal: input_coordinate out of range");
 }
@@ -146,13 +153,14 @@ struct Comparison {
     const TabulatedReference& ref;
     double body_mass;
 
-    /// Inputs beyond the body: the warp must land beyond the truncation point.
-    void tail(Stats& s, Point p, uint64_t index) const {
+    /// Inputs beyond the body: the warp must land beyond the truncation point
+    /// at that end.
+    void tail(Stats& s, Point p, bool upper, uint64_t index) const {
         ++s.tail_samples;
         p.tail = true;
-        p.x_table = f.view.m.hi;
+        p.x_table = upper ? f.view.m.hi : f.view.m.lo;
         p.x_tol = ref.x_slack();
-        if (p.x_warp >= f.view.m.hi - ref.x_slack()) return;
+        if (upper ? p.x_warp >= f.view.m.hi - ref.x_slack() : p.x_warp <= f.view.m.lo + ref.x_slack()) return;
         ++s.tail_failures;
         s.worst.offer(std::numeric_limits<double>::infinity(), index, p);
     }
@@ -194,8 +202,9 @@ struct Comparison {
         }
         const double u_in = in.u[static_cast<std::size_t>(f.view.m.input_coordinate)];
         const double u = f.view.m.increasing ? u_in : 1.0 - u_in;  // exact for u on the float grid of [0,1)
-        if (u >= body_mass) tail(s, p, index);
-        else body(s, p, u, warp_pdf, index);
+        const double lower = f.view.m.lower_tail_mass;
+        if (u < lower || u >= lower + body_mass) tail(s, p, u >= lower, index);
+        else body(s, p, u - lower, warp_pdf, index);
     }
 };
 
@@ -223,9 +232,9 @@ struct Reach {
 
 Reach reach_of(const Stats& s, const MonotoneMarginal& m, const TabulatedReference& ref) {
     if (!(s.reach_lo <= s.reach_hi)) return {0.0, 0.0};  // no body sample: nothing reached, nothing to say
-    const double body_mass = 1.0 - m.tail_mass;
-    const double below = ref.cdf(s.reach_lo), above = m.tail_mass > 0.0 ? 0.0 : 1.0 - ref.cdf(s.reach_hi);
-    return {(below + above) * body_mass, 0x1p-24 + 2.0 * ref.cdf_uncertainty()};
+    const double below = m.lower_tail_mass > 0.0 ? 0.0 : ref.cdf(s.reach_lo);
+    const double above = m.tail_mass > 0.0 ? 0.0 : 1.0 - ref.cdf(s.reach_hi);
+    return {(below + above) * body_mass(m), 0x1p-24 + 2.0 * ref.cdf_uncertainty()};
 }
 
 /// The verdict: the density integrates to the body's mass within the midpoint
@@ -233,16 +242,16 @@ Reach reach_of(const Stats& s, const MonotoneMarginal& m, const TabulatedReferen
 /// of TabulatedReference (each justified there); every tail input lands beyond
 /// the truncation point (within 16 ulps of the range).
 void judge(CheckResult& r, const Stats& s, const MonotoneMarginal& m, const TabulatedReference& ref) {
-    const double body_mass = 1.0 - m.tail_mass;
+    const double body = body_mass(m), tails = m.tail_mass + m.lower_tail_mass;
     const double integral = ref.integral();
-    const bool normalised = std::abs(integral + m.tail_mass - 1.0) <= ref.integral_tolerance();
+    const bool normalised = std::abs(integral + tails - 1.0) <= ref.integral_tolerance();
     std::vector<std::string> problems;
     if (!normalised)
         problems.push_back(fmt::format("the density integrates to {:.6g} over [{:.6g}, {:.6g}]{}, not {:.6g} "
                                        "(tolerance {:.2g})",
                                        integral, m.lo, m.hi,
-                                       m.tail_mass > 0.0 ? fmt::format(" with tail mass {:.3g}", m.tail_mass) : "",
-                                       body_mass, ref.integral_tolerance()));
+                                       tails > 0.0 ? fmt::format(" with tail mass {:.3g}", tails) : "",
+                                       body, ref.integral_tolerance()));
     if (s.x_failures > 0)
         problems.push_back(fmt::format("{} of {} samples differ from the table's by more than the bucket "
                                        "bound (worst {:.3g} x tolerance, at {} = {:.6g})",
@@ -257,13 +266,14 @@ void judge(CheckResult& r, const Stats& s, const MonotoneMarginal& m, const Tabu
                                        "mass lies where no input float can land (tolerance {:.2g})",
                                        s.reach_lo, s.reach_hi, m.lo, m.hi, reach.outside, reach.tolerance));
     if (s.tail_failures > 0)
-        problems.push_back(fmt::format("{} of {} inputs in the tail (u >= {:.6g}) land below the truncation "
-                                       "point {:.6g}",
-                                       s.tail_failures, s.tail_samples, body_mass, m.hi));
+        problems.push_back(fmt::format("{} of {} inputs in the tails (u < {:.6g} or u >= {:.6g}) land inside the "
+                                       "truncation points [{:.6g}, {:.6g}]",
+                                       s.tail_failures, s.tail_samples, m.lower_tail_mass,
+                                       m.lower_tail_mass + body, m.lo, m.hi));
     r.verdict = problems.empty() ? Verdict::Pass : Verdict::Fail;
     r.summary = fmt::format("max |dx| {:.2e} ({:.2f} of tol), pdf {:.2e} ({:.2f} of tol)", s.x.error, s.x.ratio,
                             s.pdf.error, s.pdf.ratio);
-    if (!normalised) r.summary = fmt::format("density integrates to {:.6g}", integral + m.tail_mass);
+    if (!normalised) r.summary = fmt::format("density integrates to {:.6g}", integral + tails);
     r.message = join_reasons(problems);
 }
 
@@ -283,6 +293,7 @@ void add_figures(CheckResult& r, const Stats& s, const MonotoneMarginal& m, cons
                  {"integral_tolerance", ref.integral_tolerance()},
                  {"cdf_uncertainty", ref.cdf_uncertainty()},
                  {"tail_mass", m.tail_mass},
+                 {"lower_tail_mass", m.lower_tail_mass},
                  {"reach_lo", s.reach_lo},
                  {"reach_hi", s.reach_hi},
                  {"mass_outside_reach", reach_of(s, m, ref).outside},
@@ -296,7 +307,7 @@ void add_figures(CheckResult& r, const Stats& s, const MonotoneMarginal& m, cons
 
 /// The two inverse CDFs (the warp's with the other input at 0.5) and their
 /// difference against the tolerance.
-std::vector<Plot> inverse_cdf_plots(const ViewFunctions& f, const TabulatedReference& ref, double body_mass) {
+std::vector<Plot> inverse_cdf_plots(const ViewFunctions& f, const TabulatedReference& ref) {
     const MonotoneMarginal& m = f.view.m;
     const auto k = static_cast<std::size_t>(m.input_coordinate);
     Plot inverse{Plot::Kind::Lines, "Inverse CDF: warp and table", "u", m.label, false, false, {}, {}};
@@ -317,14 +328,15 @@ std::vector<Plot> inverse_cdf_plots(const ViewFunctions& f, const TabulatedRefer
         if (std::isnan(xw)) continue;
         sw.x.push_back(u);
         sw.y.push_back(xw);
-        if (u >= body_mass) continue;
-        const auto t = ref.sample(u / body_mass);
+        const double u_body = (u - m.lower_tail_mass) / body_mass(m);
+        if (!(u_body >= 0.0 && u_body < 1.0)) continue;
+        const auto t = ref.sample(u_body);
         st.x.push_back(u);
         st.y.push_back(t.x);
         sd.x.push_back(u);
         sd.y.push_back(std::max(std::abs(xw - t.x), 1e-30));
         stol.x.push_back(u);
-        stol.y.push_back(ref.x_tolerance(t.offset, u / body_mass));
+        stol.y.push_back(ref.x_tolerance(t.offset, u_body));
     }
     inverse.series = {std::move(sw), std::move(st)};
     diff.series = {std::move(sd), std::move(stol)};
@@ -361,7 +373,8 @@ Table worst_points(const Stats& s, const MonotoneMarginal& m, InputKind kind) {
         const Point& p = e.item;
         if (p.tail) {
             worst.rows.push_back({format_input(p.input, kind), fmt::format("{:.9g}", p.x_warp),
-                                  fmt::format(">= {:.9g}", p.x_table), "tail", "", "", "", "", ""});
+                                  fmt::format("{} {:.9g}", p.x_table == m.hi ? ">=" : "<=", p.x_table), "tail", "",
+                                  "", "", "", ""});
             continue;
         }
         worst.rows.push_back({format_input(p.input, kind), fmt::format("{:.9g}", p.x_warp),
@@ -374,6 +387,34 @@ Table worst_points(const Stats& s, const MonotoneMarginal& m, InputKind kind) {
     return worst;
 }
 
+/// "cos theta" -> "cos_theta": a view's label as part of a figure name.
+std::string figure_label(const std::string& label) {
+    std::string out;
+    for (char ch : label) out += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+    return out;
+}
+
+CheckResult merge_views(const std::vector<View>& views, std::vector<CheckResult>& parts) {
+    CheckResult r;
+    r.verdict = Verdict::Pass;
+    std::vector<std::string> summaries, messages;
+    for (std::size_t k = 0; k < views.size(); ++k) {
+        CheckResult& p = parts[k];
+        const std::string& label = views[k].m.label;
+        if (p.verdict != Verdict::Pass) r.verdict = Verdict::Fail;
+        summaries.push_back(fmt::format("{}: {}", label, p.summary));
+        if (!p.message.empty()) messages.push_back(fmt::format("view {}: {}", label, p.message));
+        for (const Figure& f : p.figures) r.figures.push_back({figure_label(label) + "_" + f.name, f.value});
+        for (Plot& plot : p.plots) r.plots.push_back(std::move(plot));
+        for (Table& t : p.tables) r.tables.push_back(std::move(t));
+        r.samples += p.samples;
+    }
+    r.figures.push_back({"views", static_cast<double>(views.size())});
+    r.summary = join_reasons(summaries);
+    r.message = join_reasons(messages);
+    return r;
+}
+
 class TabulatedCheck final : public Check {
 public:
     std::string name() const override { return "tabulated"; }
@@ -382,26 +423,38 @@ public:
                "(1D warps and monotone 1D marginals)";
     }
     bool applies_to(const WarpCase& warp) const override {
-        View v;
-        return !takes_bits(warp.input_kind()) && warp.has_pdf() && !warp.is_discrete() && resolve(warp, v);
+        return !takes_bits(warp.input_kind()) && warp.has_pdf() && !warp.is_discrete() && !resolve(warp).empty();
     }
 
+    /// One result per view, merged: a single view's result as it is; several
+    /// views' results with each view's figures, plots and tables named by its
+    /// label, the verdict failing if any view fails, and the messages prefixed
+    /// with the view.
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
-        View view;
-        if (!resolve(warp, view)) throw std::runtime_error("the tabulated check does not apply to this case");
+        const std::vector<View> views = resolve(warp);
+        if (views.empty()) throw std::runtime_error("the tabulated check does not apply to this case");
+        if (views.size() == 1) return run_view(warp, views[0], ctx);
+        std::vector<CheckResult> parts;
+        for (const View& view : views) parts.push_back(run_view(warp, view, ctx));
+        return merge_views(views, parts);
+    }
+
+private:
+    static CheckResult run_view(const WarpCase& warp, const View& view, const CheckContext& ctx) {
         validate_view(view, warp);
         const MonotoneMarginal& m = view.m;
         const ViewFunctions f{warp, view};
-        const double body_mass = 1.0 - m.tail_mass;
-        const TabulatedReference ref([&f](double x) { return f.density(x); }, m.lo, m.hi, body_mass);
-        const Stats stats = compute(warp, ctx, Comparison{f, ref, body_mass});
+        const TabulatedReference ref([&f](double x) { return f.density(x); }, m.lo, m.hi, body_mass(m));
+        const Stats stats = compute(warp, ctx, Comparison{f, ref, body_mass(m)});
 
         CheckResult r;
         judge(r, stats, m, ref);
         add_figures(r, stats, m, ref);
-        r.plots = inverse_cdf_plots(f, ref, body_mass);
+        r.plots = inverse_cdf_plots(f, ref);
         r.plots.push_back(density_plot(f, ref));
         r.tables.push_back(worst_points(stats, m, warp.input_kind()));
+        for (Plot& plot : r.plots) plot.title += " (view " + m.label + ")";
+        for (Table& t : r.tables) t.title += " (view " + m.label + ")";
         return r;
     }
 };

@@ -5,7 +5,7 @@
 //
 // Marginals: the domain's parameters (chi2::Binning): x for 1D domains, x and y
 // on boxes, phi and r^2 on the disk, phi and cos theta on spherical caps; plus
-// the case's declared 1D view (WarpCaseInfo::marginal) on 2D domains when it is
+// the case's declared 1D views (WarpCaseInfo::views) on 2D domains when they are
 // a different coordinate. Each marginal's CDF is tabulated from the pdf by the
 // engine's cubature (chi2/marginal_cdf.h) and normalised by the density's
 // integral: whether that integral is 1 is the chi2 check's rule, this one
@@ -31,6 +31,7 @@
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/input_chunks.h"
+#include "validate/checks/line_resolution.h"
 #include "validate/checks/power_level.h"
 
 namespace warpcheck {
@@ -90,24 +91,13 @@ chi2::ParallelFor parallel(const CheckContext& ctx) {
     return [&ctx](std::size_t n, const std::function<void(std::size_t)>& body) { ctx.parallel_for(n, body); };
 }
 
-/// The half-line's parameter scale: the case's own, else 1 / pdf(a) (the
-/// density's scale at the start), else 1.
-double half_line_scale(const WarpCase& warp) {
-    double s = warp.info().chi2_resolution.half_line_scale;
-    if (s > 0.0 || !warp.domain().is<chi2::HalfLine>()) return s;
-    std::vector<double> density(1);
-    warp.pdf(std::vector<WarpOutput>{{static_cast<float>(warp.domain().a()), 0.0f, 0.0f}}, density);
-    s = 1.0 / density[0];
-    return std::isfinite(s) && s > 0.0 ? s : 1.0;
-}
-
 std::vector<Marginal> natural_marginals(const WarpCase& warp, const CheckContext& ctx,
                                         const chi2::QuadratureOptions& q) {
     std::vector<Marginal> out;
-    const double scale = half_line_scale(warp);
-    const int dims = chi2::Binning(warp.domain(), {0, 0, scale}).parameter_dimension();
+    const chi2::BinResolution line = line_resolution(warp);
+    const int dims = warp.domain().point_dimension() == 1 ? 1 : 2;
     for (int axis = 0; axis < dims; ++axis) {
-        const chi2::Binning strips = chi2::strip_binning(warp.domain(), axis, kStrips, scale);
+        const chi2::Binning strips = chi2::strip_binning(warp.domain(), axis, kStrips, line);
         Marginal m;
         m.label = axis == 0 ? strips.u_label() : strips.v_label();
         m.coordinate = [strips, axis](const WarpOutput& o) { return strips.parameters_of(to_domain_point(o))[axis]; };
@@ -118,20 +108,24 @@ std::vector<Marginal> natural_marginals(const WarpCase& warp, const CheckContext
     return out;
 }
 
-/// The declared 1D view on a 2D domain, if it is bounded (no tail mass) and a
-/// coordinate the natural marginals do not already test.
-std::optional<Marginal> declared_marginal(const WarpCase& warp, const std::vector<Marginal>& natural,
-                                          const chi2::QuadratureOptions& q) {
-    const auto& view = warp.info().marginal;
-    if (!view || natural.size() < 2 || view->tail_mass != 0.0 || !view->pdf || !view->coordinate) return std::nullopt;
-    for (const Marginal& m : natural)
-        if (m.label == view->label) return std::nullopt;
-    const chi2::Binning strips(chi2::Domain::interval(view->lo, view->hi), {kStrips, 0, 0.0});
-    const chi2::BatchPdf pdf = [&view](std::span<const chi2::DomainPoint> points, std::span<double> density) {
-        for (std::size_t i = 0; i < points.size(); ++i) density[i] = view->pdf(points[i][0]);
-    };
-    return Marginal{view->label, view->coordinate, chi2::tabulate_marginal_cdf(strips, 0, pdf, q),
-                    chi2::UnbinnedTest::AndersonDarling};
+/// The declared 1D views on a 2D domain that are bounded (no tail mass) and
+/// coordinates the natural marginals do not already test, each a marginal.
+std::vector<Marginal> declared_marginals(const WarpCase& warp, const std::vector<Marginal>& natural,
+                                         const chi2::QuadratureOptions& q) {
+    std::vector<Marginal> out;
+    if (natural.size() < 2) return out;
+    for (const MonotoneMarginal& view : warp.info().views) {
+        if (view.tail_mass != 0.0 || view.lower_tail_mass != 0.0 || !view.pdf || !view.coordinate) continue;
+        if (std::any_of(natural.begin(), natural.end(), [&](const Marginal& m) { return m.label == view.label; }))
+            continue;
+        const chi2::Binning strips(chi2::Domain::interval(view.lo, view.hi), {kStrips, 0, 0.0});
+        const chi2::BatchPdf pdf = [&view](std::span<const chi2::DomainPoint> points, std::span<double> density) {
+            for (std::size_t i = 0; i < points.size(); ++i) density[i] = view.pdf(points[i][0]);
+        };
+        out.push_back(Marginal{view.label, view.coordinate, chi2::tabulate_marginal_cdf(strips, 0, pdf, q),
+                               chi2::UnbinnedTest::AndersonDarling});
+    }
+    return out;
 }
 
 /// Per chunk: each marginal's probability transforms F(t), and the samples
@@ -155,7 +149,7 @@ Computed compute(const WarpCase& warp, const CheckContext& ctx) {
     q.accuracy_fraction = kCdfAccuracyFraction;
     Computed c;
     c.marginals = natural_marginals(warp, ctx, q);
-    if (auto m = declared_marginal(warp, c.marginals, q)) c.marginals.push_back(std::move(*m));
+    for (Marginal& m : declared_marginals(warp, c.marginals, q)) c.marginals.push_back(std::move(m));
     const std::size_t k = c.marginals.size();
     const auto parts = map_input_chunks<ChunkTransforms>(
         ctx, warp.input_kind(), ctx.options().samples, false, [&](std::size_t, std::span<const WarpInput> in) {
