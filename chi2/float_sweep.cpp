@@ -4,6 +4,7 @@
 #include <array>
 #include <atomic>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #if defined(__x86_64__)
@@ -648,9 +649,14 @@ SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, fl
     if (count == 0 || count > (uint64_t{1} << 32))
         throw std::invalid_argument("exhaustive_sweep: needs 1 <= count <= 2^32");
 
+    using Clock = std::chrono::steady_clock;
+    const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     const SweepFrame frame = make_frame(count, a, b);
     RunCounter total(frame);
+    const auto start = Clock::now();
     const uint64_t steps_down = count_runs(f, count, parallel_for, total);
+    const double runs_seconds = since(start);
+    const auto recount_start = Clock::now();
     if (steps_down > 0) {
         // Equal outputs may not be adjacent: recount exactly.
         const std::array<uint64_t, kGroups> touched = total.group_inputs_all;
@@ -661,6 +667,8 @@ SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, fl
     SweepSummary s = summarize(frame, total, count);
     s.non_monotone_steps = steps_down;
     s.exact_fallback = steps_down > 0;
+    s.recount_seconds = steps_down > 0 ? since(recount_start) : 0.0;
+    s.runs_seconds = runs_seconds;
     return s;
 }
 

@@ -82,6 +82,8 @@ struct SweepSummary {
     uint64_t never_produced = 0;      ///< floats of [a,b) no input produced
     uint64_t non_monotone_steps = 0;  ///< i with f(i+1) < f(i) (NaN steps count as decreasing)
     bool exact_fallback = false;      ///< whether the non-monotone recount ran
+    /// Wall seconds of the run-counting pass and of the non-monotone recount.
+    double runs_seconds = 0.0, recount_seconds = 0.0;
     /// Total variation distance between the output distribution and the ideal
     /// measure: half the sum over all floats of |count/inputs - ideal/inputs|,
     /// outside outputs included (their ideal is 0).

@@ -35,6 +35,7 @@ struct CliOptions {
     bool all = false;
     bool list = false;
     bool failures_only = false;
+    bool timings = false;
     std::string color = "auto";
     std::vector<std::string> filters;
     std::vector<std::string> checks;
@@ -192,6 +193,8 @@ int run_cli(int argc, char** argv, const Registry& registry) {
                    "Fail an exhaustive sweep when a float's count is off its ideal by more than this factor")
         ->check(kFinite & CLI::Range(1.0, 1e6));
     app.add_flag("--failures-only", o.failures_only, "Print only the rows that did not pass");
+    app.add_flag("--timings", o.timings,
+                 "After the table, where the run's time went: seconds per check, the slowest rows and their parts");
     app.add_option("--color", o.color, "Colour the table: auto, always, never")
         ->check(CLI::IsMember({"auto", "always", "never"}))
         ->capture_default_str();
@@ -262,6 +265,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     TableStyle style;
     style.color = o.color == "always" || (o.color == "auto" && isatty(STDOUT_FILENO));
     style.failures_only = o.failures_only;
+    style.timings = o.timings;
     // With a report on standard output, the table goes to standard error.
     const bool report_to_stdout =
         std::any_of(outputs.begin(), outputs.end(), [](const Output& out) { return *out.path == "-"; });
