@@ -12,8 +12,11 @@
 //                                 plain single-thread run-length loop
 //   BM_NonMonotoneSweepVsCounters a hash of u scaled to [0,1) on 2 threads vs a
 //                                 plain single-thread loop over a 4 GiB counter
-//                                 array. Heavy (minutes, 4 GiB): registered only
-//                                 when --benchmark_filter names it.
+//                                 array, the subject built as an external
+//                                 program would (make_u32_float_case). Heavy
+//                                 (minutes, 4 GiB for the reference, 1 GiB for
+//                                 the sweep): registered only when
+//                                 --benchmark_filter names it.
 #include <benchmark/benchmark.h>
 
 #include <sys/resource.h>
@@ -26,6 +29,7 @@
 
 #include "paired_timing.h"
 #include "sampling/hash.h"
+#include "validate/external.h"
 
 #include "sampling/unit_float.h"
 #include "validate/exhaustive_sweep.h"
@@ -116,7 +120,11 @@ uint64_t counter_array_loop() {
 
 void BM_NonMonotoneSweepVsCounters(benchmark::State& state) {
     warpcheck::ThreadPool pool(2);
-    const auto fn = warpcheck::u32_block_fn(hashed_unit);
+    // The sampler as an external program registers it (validate/external.h).
+    const auto warp = warpcheck::make_u32_float_case(
+        {.family = "hashed_unit", .domain = warpcheck::chi2::Domain::interval(0, 1)}, warpcheck::Monotone::NotClaimed,
+        [](uint32_t u) { return hashed_unit(u); }, [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; });
+    const auto fn = dynamic_cast<const warpcheck::SweepableCase&>(*warp).sweep_fn();
     uint64_t distinct = 0, reference_distinct = 0;
     warpcheck::bench::run_paired(
         state, [&] { distinct = warpcheck::exhaustive_sweep(fn, uint64_t{1} << 32, 0.0f, 1.0f, pool_for(pool)).distinct; },
