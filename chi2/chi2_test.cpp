@@ -1,6 +1,7 @@
 #include "chi2/chi2_test.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -159,10 +160,21 @@ Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const Sample
     qo.sample_count = samples;
     qo.accuracy_fraction = options.accuracy_fraction;
     qo.max_regions_per_cell = options.max_regions_per_cell;
+    using Clock = std::chrono::steady_clock;
+    const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+    const auto start = Clock::now();
     CellIntegrals integrals = integrate_cells(binning, pdf, qo, parallel_for);
+    const double integration = since(start);
+    const auto sampling_start = Clock::now();
     const std::vector<unsigned char> zero = zero_cells_of(integrals);
     Histogram hist = sample_histogram(binning, samples, options.chunk_size, generate, zero, parallel_for);
-    return evaluate_chi2(binning, std::move(hist), std::move(integrals), samples, options);
+    const double sampling = since(sampling_start);
+    const auto statistics_start = Clock::now();
+    Chi2Outcome out = evaluate_chi2(binning, std::move(hist), std::move(integrals), samples, options);
+    out.integration_seconds = integration;
+    out.sampling_seconds = sampling;
+    out.statistics_seconds = since(statistics_start);
+    return out;
 }
 
 }  // namespace warpcheck::chi2

@@ -67,6 +67,9 @@ struct Chi2Outcome {
     uint64_t zero_expected_hits = 0;      ///< samples that landed in them
     uint64_t boundary_hits = 0;           ///< of those, exactly on the domain's boundary (accepted up to a cap)
     double integral_tolerance = 0.0;      ///< the tolerance applied to |integral - 1|
+    /// Wall seconds of the parts (run_chi2_test sets them): expected-count
+    /// integration, drawing and binning the samples, and the statistics.
+    double integration_seconds = 0.0, sampling_seconds = 0.0, statistics_seconds = 0.0;
 
     /// Failures that need no significance level, one message each.
     std::vector<std::string> failures;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #if defined(__x86_64__)
@@ -27,8 +27,6 @@ constexpr uint64_t kChunkSize = uint64_t{1} << 22;  // inputs per chunk: fixed, 
 constexpr std::size_t kBlockSize = 1024;            // outputs evaluated per call of f
 constexpr int kGroups = 512;                        // binades: 256 negative, 256 positive (by sign + exponent)
 constexpr std::size_t kOutsideKept = 16;
-constexpr uint64_t kSortLimit = uint64_t{1} << 26;  // non-monotone recount: sort up to this many outputs
-constexpr int kWindowGroups = 8;                    // otherwise: histogram windows of 8 binades (256 MiB)
 constexpr uint32_t kNanKey = 0xffffffffu;
 
 // Floats as keys whose unsigned order is the numeric order; -0 is +0, every NaN
@@ -566,7 +564,7 @@ uint64_t count_runs(const FloatBlockFn& f, uint64_t count, const ParallelFor& pa
     return steps_down;
 }
 
-// Exact recount of a non-monotone f with at most kSortLimit inputs: sort all outputs.
+// Exact recount of a non-monotone f with at most SweepLimits::sort_limit inputs: sort all outputs.
 void recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, RunCounter& total) {
     const auto chunks = static_cast<std::size_t>(chunk_count(count));
     std::vector<uint32_t> keys(static_cast<std::size_t>(count));
@@ -590,49 +588,79 @@ void recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& pa
     }
 }
 
-// Exact recount of a non-monotone f: histogram passes over windows of the
-// binades it touched.
+// Keys of one block split by their slice of the window's counters (radix
+// partitioning): slice s holds window indices [s, s + 1) * kSliceKeys.
+constexpr std::size_t kSliceBits = 20;  // 2^20 counters (4 MiB) a slice
+constexpr std::size_t kPartitionBlock = std::size_t{1} << 16;
+
+struct WindowCounters {
+    std::vector<uint32_t> counts;
+    std::vector<std::mutex> slice_locks;
+    std::array<int, kGroups> slot{};  // the group's place in the window, -1 if not in it
+    explicit WindowCounters(std::size_t groups)
+        : counts(groups << 23), slice_locks(std::max<std::size_t>(1, (groups << 23) >> kSliceBits)) {}
+};
+
+// Counts the keys of one chunk that fall in the window.
+void count_chunk_in_window(const FloatBlockFn& f, uint64_t first, uint64_t n, WindowCounters& w) {
+    const std::size_t slices = w.slice_locks.size();
+    const std::size_t slice_shift = slices > 1 ? kSliceBits : 31;
+    std::vector<float> values(kBlockSize);
+    std::vector<uint32_t> keys(kBlockSize), index(kPartitionBlock), parted(kPartitionBlock);
+    std::vector<uint32_t> offsets(slices + 1);
+    for (uint64_t done = 0; done < n;) {
+        std::size_t kept = 0;  // window indices of this partition block
+        for (; kept + kBlockSize <= kPartitionBlock && done < n; done += kBlockSize) {
+            const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
+            f(first + done, len, values.data());
+            to_keys(values.data(), len, keys.data());
+            for (std::size_t i = 0; i < len; ++i) {
+                const int g = group_of(keys[i]);
+                const int sl = w.slot[static_cast<std::size_t>(g)];
+                index[kept] = (static_cast<uint32_t>(sl) << 23) + (keys[i] - static_cast<uint32_t>(group_key_lo(g)));
+                kept += sl >= 0;
+            }
+        }
+        std::fill(offsets.begin(), offsets.end(), 0u);
+        for (std::size_t i = 0; i < kept; ++i) ++offsets[(index[i] >> slice_shift) + 1];
+        for (std::size_t s = 1; s <= slices; ++s) offsets[s] += offsets[s - 1];
+        std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
+        for (std::size_t i = 0; i < kept; ++i) parted[fill[index[i] >> slice_shift]++] = index[i];
+        for (std::size_t s = 0; s < slices; ++s) {
+            if (offsets[s] == offsets[s + 1]) continue;
+            std::lock_guard lock(w.slice_locks[s]);
+            for (uint32_t i = offsets[s]; i < offsets[s + 1]; ++i) ++w.counts[parted[i]];
+        }
+    }
+}
+
+// Exact recount of a non-monotone f: counting passes over windows of the
+// binades it touched (see the header for the method and its memory bound).
 void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for,
-                     const std::array<uint64_t, kGroups>& touched, RunCounter& total) {
+                     const std::array<uint64_t, kGroups>& touched, int window_binades, RunCounter& total) {
     const auto chunks = static_cast<std::size_t>(chunk_count(count));
     std::vector<int> touched_groups;
     for (int g = 0; g < kGroups; ++g)
         if (touched[static_cast<std::size_t>(g)] > 0) touched_groups.push_back(g);
-    constexpr std::size_t kGroupKeys = std::size_t{1} << 23;
-    std::vector<uint32_t> counts(kWindowGroups * kGroupKeys);
-    for (std::size_t w = 0; w < touched_groups.size(); w += kWindowGroups) {
-        const std::size_t groups_here = std::min<std::size_t>(kWindowGroups, touched_groups.size() - w);
-        std::array<int, kGroups> slot;
-        slot.fill(-1);
+    const auto per_window = static_cast<std::size_t>(std::max(window_binades, 1));
+    WindowCounters w(std::min(per_window, touched_groups.size()));
+    for (std::size_t first_group = 0; first_group < touched_groups.size(); first_group += per_window) {
+        const std::size_t groups_here = std::min(per_window, touched_groups.size() - first_group);
+        w.slot.fill(-1);
         for (std::size_t k = 0; k < groups_here; ++k)
-            slot[static_cast<std::size_t>(touched_groups[w + k])] = static_cast<int>(k);
-        std::fill(counts.begin(), counts.end(), 0u);
+            w.slot[static_cast<std::size_t>(touched_groups[first_group + k])] = static_cast<int>(k);
+        std::fill(w.counts.begin(), w.counts.end(), 0u);
         parallel_for(chunks, [&](std::size_t c) {
             const uint64_t first = c * kChunkSize;
-            const uint64_t n = std::min(kChunkSize, count - first);
-            std::vector<float> values(kBlockSize);
-            std::vector<uint32_t> keys(kBlockSize);
-            for (uint64_t done = 0; done < n; done += kBlockSize) {
-                const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
-                f(first + done, len, values.data());
-                to_keys(values.data(), len, keys.data());
-                for (std::size_t i = 0; i < len; ++i) {
-                    const int g = group_of(keys[i]);
-                    const int sl = slot[static_cast<std::size_t>(g)];
-                    if (sl < 0) continue;
-                    const std::size_t index = static_cast<std::size_t>(sl) * kGroupKeys +
-                                              (keys[i] - static_cast<uint32_t>(group_key_lo(g)));
-                    std::atomic_ref<uint32_t>(counts[index]).fetch_add(1, std::memory_order_relaxed);
-                }
-            }
+            count_chunk_in_window(f, first, std::min(kChunkSize, count - first), w);
         });
         // A non-monotone f has two outputs at least, so no count reaches 2^32.
         for (std::size_t k = 0; k < groups_here; ++k) {
-            const int g = touched_groups[w + k];
+            const int g = touched_groups[first_group + k];
             const auto lo = static_cast<uint32_t>(group_key_lo(g));
             const uint64_t size = group_key_hi(g) - group_key_lo(g);
             for (uint64_t i = 0; i < size; ++i) {
-                const uint32_t m = counts[k * kGroupKeys + i];
+                const uint32_t m = w.counts[(k << 23) + i];
                 if (m != 0) total.add(lo + static_cast<uint32_t>(i), m);
             }
         }
@@ -642,25 +670,32 @@ void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& p
 }  // namespace
 
 SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, float b,
-                              const ParallelFor& parallel_for) {
+                              const ParallelFor& parallel_for, const SweepLimits& limits) {
     if (!(std::isfinite(a) && std::isfinite(b) && a < b))
         throw std::invalid_argument("exhaustive_sweep: needs finite a < b");
     if (count == 0 || count > (uint64_t{1} << 32))
         throw std::invalid_argument("exhaustive_sweep: needs 1 <= count <= 2^32");
 
+    using Clock = std::chrono::steady_clock;
+    const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     const SweepFrame frame = make_frame(count, a, b);
     RunCounter total(frame);
+    const auto start = Clock::now();
     const uint64_t steps_down = count_runs(f, count, parallel_for, total);
+    const double runs_seconds = since(start);
+    const auto recount_start = Clock::now();
     if (steps_down > 0) {
         // Equal outputs may not be adjacent: recount exactly.
         const std::array<uint64_t, kGroups> touched = total.group_inputs_all;
         total = RunCounter(frame);
-        if (count <= kSortLimit) recount_sorted(f, count, parallel_for, total);
-        else recount_windows(f, count, parallel_for, touched, total);
+        if (count <= limits.sort_limit) recount_sorted(f, count, parallel_for, total);
+        else recount_windows(f, count, parallel_for, touched, limits.window_binades, total);
     }
     SweepSummary s = summarize(frame, total, count);
     s.non_monotone_steps = steps_down;
     s.exact_fallback = steps_down > 0;
+    s.recount_seconds = steps_down > 0 ? since(recount_start) : 0.0;
+    s.runs_seconds = runs_seconds;
     return s;
 }
 

@@ -15,9 +15,14 @@
 // monotone function that is the exact histogram in O(1) memory. If an output is
 // ever smaller than the one before (a non-monotone step), equal outputs may be
 // far apart, and the counts are redone exactly: by sorting all outputs when
-// there are at most 2^26 inputs, otherwise by passes of an atomic histogram over
-// windows of at most 8 binades (256 MiB). Every figure is an integer count, or
-// computed at the end from integer counts, so results do not depend on threads.
+// there are at most 2^26 inputs, otherwise by counting passes over windows of
+// the binades the first pass touched, at most 32 binades (2^28 counters, 1 GiB)
+// a window. A pass partitions each block of 2^16 keys by their top bits within
+// the window (radix partitioning, in cache) and adds each part to its slice of
+// the shared counters under that slice's lock, so the increments stay within a
+// few MiB at a time instead of wandering over the window. Every figure is an
+// integer count, or computed at the end from integer counts, so results do not
+// depend on threads or on how the recount was done.
 #pragma once
 
 #include <cstddef>
@@ -82,6 +87,8 @@ struct SweepSummary {
     uint64_t never_produced = 0;      ///< floats of [a,b) no input produced
     uint64_t non_monotone_steps = 0;  ///< i with f(i+1) < f(i) (NaN steps count as decreasing)
     bool exact_fallback = false;      ///< whether the non-monotone recount ran
+    /// Wall seconds of the run-counting pass and of the non-monotone recount.
+    double runs_seconds = 0.0, recount_seconds = 0.0;
     /// Total variation distance between the output distribution and the ideal
     /// measure: half the sum over all floats of |count/inputs - ideal/inputs|,
     /// outside outputs included (their ideal is 0).
@@ -98,8 +105,15 @@ struct SweepSummary {
     const BinadeCount* binade(int sign, int exponent) const;
 };
 
+/// How the non-monotone recount works; the defaults are the stated bounds.
+/// Tests lower them to reach the window recount on a reduced range.
+struct SweepLimits {
+    uint64_t sort_limit = uint64_t{1} << 26;  ///< recount by sorting up to this many inputs (4 bytes each)
+    int window_binades = 32;                  ///< binades per counting window: 2^23 4-byte counters each
+};
+
 /// Sweeps f over inputs [0, count), count <= 2^32, against [a,b) (finite a < b).
 SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, float b,
-                              const ParallelFor& parallel_for);
+                              const ParallelFor& parallel_for, const SweepLimits& limits = {});
 
 }  // namespace warpcheck::chi2

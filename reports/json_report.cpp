@@ -87,6 +87,8 @@ Json result_json(const CheckResult& r) {
     for (const Plot& p : r.plots) plots.push_back(plot_json(p));
     Json tables = Json::array();
     for (const Table& t : r.tables) tables.push_back({{"title", t.title}, {"columns", t.columns}, {"rows", t.rows}});
+    Json phases = Json::object();
+    for (const PhaseTime& p : r.phases) phases[p.phase] = number(p.seconds);
     return {{"case", r.case_name},
             {"check", r.check_name},
             {"verdict", verdict_name(r.verdict)},
@@ -97,6 +99,7 @@ Json result_json(const CheckResult& r) {
             {"figures", std::move(figures)},
             {"samples", r.samples},
             {"seconds", number(r.seconds)},
+            {"phases", std::move(phases)},
             {"stream", {{"seed", r.stream_seed}, {"sequence", r.stream_sequence}}},
             {"rerun_command", r.rerun_command},
             {"plots", std::move(plots)},

@@ -87,6 +87,12 @@ struct Table {
     std::vector<std::vector<std::string>> rows;
 };
 
+/// Time spent in one part of a check's compute, e.g. "integration" or "sampling+binning".
+struct PhaseTime {
+    std::string phase;
+    double seconds = 0.0;
+};
+
 /// The outcome of one check on one warp case: one row of the pass/fail table.
 struct CheckResult {
     std::string case_name;   ///< e.g. "uniform_cone[cos_theta_max=0.3]"
@@ -110,6 +116,9 @@ struct CheckResult {
     uint64_t stream_sequence = 0;  ///< PCG32 sequence index of this stream
     uint64_t samples = 0;          ///< inputs evaluated (0 where not meaningful)
     double seconds = 0.0;          ///< wall time of this check
+    /// Where the compute time went, for the checks that time their parts
+    /// (validate --timings); the rest of `seconds` is judging and evidence.
+    std::vector<PhaseTime> phases;
     std::string rerun_command;     ///< the one command that reruns just this case and check
 
     std::optional<double> figure(std::string_view name) const {

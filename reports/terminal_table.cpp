@@ -1,7 +1,9 @@
 #include "reports/terminal_table.h"
 
 #include <algorithm>
+#include <map>
 #include <ostream>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -30,6 +32,35 @@ void print_summary(const RunResult& run, std::ostream& out) {
                            i.statistical_tests, i.per_test_alpha, i.family_alpha);
 }
 
+void print_timings(const RunResult& run, std::ostream& out, std::size_t slowest) {
+    double total = 0.0;
+    std::map<std::string, std::pair<double, int>> by_check;
+    for (const auto& r : run.results) {
+        total += r.seconds;
+        by_check[r.check_name].first += r.seconds;
+        ++by_check[r.check_name].second;
+    }
+    std::vector<std::pair<std::string, std::pair<double, int>>> checks(by_check.begin(), by_check.end());
+    std::stable_sort(checks.begin(), checks.end(),
+                     [](const auto& x, const auto& y) { return x.second.first > y.second.first; });
+    out << fmt::format("\nWhere the time went ({:.1f} s of check time over {} rows, {:.1f} s wall):\n", total,
+                       run.results.size(), run.info.wall_seconds);
+    for (const auto& [name, t] : checks)
+        out << fmt::format("  {:<22} {:>9.2f} s  {:>5.1f}%  {} rows\n", name, t.first,
+                           total > 0 ? 100.0 * t.first / total : 0.0, t.second);
+    std::vector<const CheckResult*> rows;
+    for (const auto& r : run.results) rows.push_back(&r);
+    std::stable_sort(rows.begin(), rows.end(), [](const auto* x, const auto* y) { return x->seconds > y->seconds; });
+    rows.resize(std::min(rows.size(), slowest));
+    out << "Slowest rows, with the parts of their compute:\n";
+    for (const CheckResult* r : rows) {
+        std::string parts;
+        for (const PhaseTime& p : r->phases) parts += fmt::format("{}{} {:.3f} s", parts.empty() ? "" : ", ", p.phase, p.seconds);
+        out << fmt::format("  {:>9.3f} s  {} {}{}\n", r->seconds, r->check_name, r->case_name,
+                           parts.empty() ? "" : "  (" + parts + ")");
+    }
+}
+
 void print_table(const RunResult& run, std::ostream& out, const TableStyle& style) {
     std::size_t case_width = 4, check_width = 5;
     for (const auto& r : run.results) {
@@ -53,6 +84,7 @@ void print_table(const RunResult& run, std::ostream& out, const TableStyle& styl
         out << fmt::format("  {} {} {}: {}\n    rerun: {}\n", to_string(r.verdict), r.check_name, r.case_name,
                            r.message, r.rerun_command);
     }
+    if (style.timings) print_timings(run, out);
     out << "\n";
     print_summary(run, out);
 }

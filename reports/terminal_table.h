@@ -10,10 +10,15 @@ namespace warpcheck {
 struct TableStyle {
     bool color = false;         ///< ANSI colours for verdicts (only on a terminal)
     bool failures_only = false; ///< print only rows that did not pass
+    bool timings = false;       ///< after the table, where the run's time went (print_timings)
 };
 
 /// Prints the table, then the summary line and the rerun command of each failure.
 void print_table(const RunResult& run, std::ostream& out, const TableStyle& style = {});
+
+/// Where the time went: seconds per check name over all cases, then the
+/// slowest rows with the parts of their compute (CheckResult::phases).
+void print_timings(const RunResult& run, std::ostream& out, std::size_t slowest = 10);
 
 /// The one-line summary: "42 checks: 41 passed, 1 failed, 0 errors in 3.2 s (seed 1, ...)".
 void print_summary(const RunResult& run, std::ostream& out);

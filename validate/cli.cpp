@@ -39,6 +39,7 @@ struct CliOptions {
     bool all = false;
     bool list = false;
     bool failures_only = false;
+    bool timings = false;
     std::string color = "auto";
     std::vector<std::string> filters;
     std::vector<std::string> checks;
@@ -209,6 +210,8 @@ void add_output_options(CLI::App& app, CliOptions& o) {
     app.add_option("--junit", o.junit_path, "Write the results as JUnit XML ('-': standard output)")
         ->type_name("FILE");
     app.add_flag("--failures-only", o.failures_only, "Print only the rows that did not pass");
+    app.add_flag("--timings", o.timings,
+                 "After the table, where the run's time went: seconds per check, the slowest rows and their parts");
     app.add_option("--color", o.color, "Colour the table: auto, always, never")
         ->check(CLI::IsMember({"auto", "always", "never"}))
         ->capture_default_str();
@@ -249,6 +252,7 @@ int present(const RunResult& run, const CliOptions& o, const std::vector<Output>
     TableStyle style;
     style.color = o.color == "always" || (o.color == "auto" && isatty(STDOUT_FILENO));
     style.failures_only = o.failures_only;
+    style.timings = o.timings;
     // With a report on standard output, the table goes to standard error.
     const bool report_to_stdout =
         std::any_of(outputs.begin(), outputs.end(), [](const Output& out) { return *out.path == "-"; });

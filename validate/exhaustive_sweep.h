@@ -5,10 +5,14 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <string>
+#include <utility>
 
 #include "chi2/float_sweep.h"
 #include "validate/check.h"
+#include "validate/warp_case.h"
 
 namespace warpcheck {
 
@@ -34,6 +38,35 @@ public:
     /// Whether the sampler is meant to be monotone in its input: then a
     /// decreasing step is a failure, not just a figure.
     virtual bool claims_monotone() const = 0;
+};
+
+/// A warp case that also offers its sampler to the exhaustive sweep: it forwards
+/// sample/pdf/invert to an ordinary case and adds the block function. Built by
+/// the interval cases and by make_u32_float_case / make_u64_float_case
+/// (validate/external.h).
+class SweepableWarpCase final : public WarpCase, public SweepableCase {
+public:
+    SweepableWarpCase(std::unique_ptr<WarpCase> inner, FloatBlockFn fn, uint64_t inputs, std::string grid,
+                      bool monotone)
+        : WarpCase(inner->info()), inner_(std::move(inner)), fn_(std::move(fn)), inputs_(inputs),
+          grid_(std::move(grid)), monotone_(monotone) {}
+
+    void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override { inner_->sample(in, out); }
+    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override { inner_->pdf(x, out); }
+    void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override { inner_->invert(x, out); }
+    bool has_inverse() const override { return inner_->has_inverse(); }
+
+    FloatBlockFn sweep_fn() const override { return fn_; }
+    uint64_t sweep_inputs() const override { return inputs_; }
+    std::string sweep_grid() const override { return grid_; }
+    bool claims_monotone() const override { return monotone_; }
+
+private:
+    std::unique_ptr<WarpCase> inner_;
+    FloatBlockFn fn_;
+    uint64_t inputs_;
+    std::string grid_;
+    bool monotone_;
 };
 
 /// The time budget of a check that makes `calls` sampler calls: the run's
@@ -93,6 +126,16 @@ FloatBlockFn u32_block_fn(F f) {
         return [f](uint64_t first, std::size_t n, float* out) { detail::u32_block_avx2(f, first, n, out); };
 #endif
     return [f](uint64_t first, std::size_t n, float* out) { detail::u32_block_baseline(f, first, n, out); };
+}
+
+/// A FloatBlockFn evaluating a 64-bit sampler `f(uint64_t) -> float` on the
+/// inputs (i << shift) | low_bits, i consecutive (32 <= shift < 64): the high
+/// bits swept, the low bits fixed.
+template <typename F>
+FloatBlockFn u64_block_fn(F f, int shift, uint64_t low_bits) {
+    return [f, shift, low_bits](uint64_t first, std::size_t n, float* out) {
+        for (std::size_t i = 0; i < n; ++i) out[i] = f(((first + i) << shift) | low_bits);
+    };
 }
 
 }  // namespace warpcheck

@@ -79,6 +79,8 @@ std::string encode_result(const CheckResult& r) {
     for (const auto& f : r.figures) figures.push_back({f.name, bits(f.value)});
     for (const auto& p : r.plots) plots.push_back(encode_plot(p));
     for (const auto& t : r.tables) tables.push_back({{"title", t.title}, {"columns", t.columns}, {"rows", t.rows}});
+    json phases = json::array();
+    for (const auto& p : r.phases) phases.push_back({p.phase, bits(p.seconds)});
     const json j = {{"case", r.case_name},      {"check", r.check_name},
                     {"verdict", static_cast<int>(r.verdict)},
                     {"summary", r.summary},     {"message", r.message},
@@ -86,7 +88,7 @@ std::string encode_result(const CheckResult& r) {
                     {"level", optional_double(r.level)},
                     {"plots", plots},           {"tables", tables},
                     {"stream_seed", r.stream_seed}, {"stream_sequence", r.stream_sequence},
-                    {"samples", r.samples},     {"seconds", bits(r.seconds)},
+                    {"samples", r.samples},     {"seconds", bits(r.seconds)}, {"phases", phases},
                     {"rerun", r.rerun_command}};
     // CBOR: compact, and strings from a warp's messages need not be valid UTF-8.
     const std::vector<uint8_t> bytes = json::to_cbor(j);
@@ -114,6 +116,7 @@ std::optional<CheckResult> decode_result(const std::string& bytes) {
         r.stream_sequence = j.at("stream_sequence").get<uint64_t>();
         r.samples = j.at("samples").get<uint64_t>();
         r.seconds = from_bits(j.at("seconds"));
+        for (const auto& p : j.at("phases")) r.phases.push_back({p.at(0).get<std::string>(), from_bits(p.at(1))});
         r.rerun_command = j.at("rerun").get<std::string>();
         return r;
     } catch (const nlohmann::json::exception&) {

@@ -23,6 +23,18 @@ TEST(Cli, FilteredRunPassesAndPrintsTheTable) {
     EXPECT_NE(r.output.find("0 failed, 0 errors"), std::string::npos) << r.output;
 }
 
+// --timings: seconds per check and the slowest rows with the parts of their
+// compute (the chi-square check times integration, sampling and statistics).
+TEST(Cli, TimingsShowWhereTheTimeWent) {
+    const auto r = run_validate("--filter 'cosine_hemisphere' --samples 20000 --check chi2 --check roundtrip --timings");
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("Where the time went"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("integration "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("sampling+binning "), std::string::npos) << r.output;
+    const auto without = run_validate("--filter 'cosine_hemisphere' --samples 20000 --check chi2");
+    EXPECT_EQ(without.output.find("Where the time went"), std::string::npos) << without.output;
+}
+
 TEST(Cli, ExactCaseNameSelectsOneCase) {
     const auto r = run_validate("--filter 'uniform_cone[cos_theta_max=0.3]' --check roundtrip --samples 10000");
     EXPECT_EQ(r.status, 0) << r.output;

@@ -179,6 +179,46 @@ TEST(ExhaustiveSweep, NonMonotoneFunctionsAreRecountedExactlyByHistogramWindows)
     expect_matches_direct_count<scrambled_top>((uint64_t{1} << 26) + 12345, 2);  // above the sort limit
 }
 
+// The window recount (radix-partitioned counting within the memory bound),
+// reached on a reduced range by lowering the limits: three binades a window and
+// seven, against the recount by sorting every output, field by field.
+void expect_same_summary(const SweepSummary& x, const SweepSummary& y) {
+    EXPECT_EQ(x.distinct, y.distinct);
+    EXPECT_EQ(x.never_produced, y.never_produced);
+    EXPECT_EQ(x.outside_inputs, y.outside_inputs);
+    EXPECT_EQ(x.tv_distance, y.tv_distance);
+    EXPECT_EQ(x.lowest_inside, y.lowest_inside);
+    ASSERT_EQ(x.binades.size(), y.binades.size());
+    for (std::size_t k = 0; k < x.binades.size(); ++k) {
+        const BinadeCount &a = x.binades[k], &b = y.binades[k];
+        EXPECT_EQ(a.distinct, b.distinct) << k;
+        EXPECT_EQ(a.inputs, b.inputs) << k;
+        EXPECT_EQ(a.min_multiplicity, b.min_multiplicity) << k;
+        EXPECT_EQ(a.max_multiplicity, b.max_multiplicity) << k;
+        EXPECT_EQ(a.most_produced, b.most_produced) << k;
+        EXPECT_EQ(a.abs_deviation, b.abs_deviation) << k;
+    }
+}
+
+TEST(ExhaustiveSweep, WindowRecountWithinItsMemoryBoundMatchesSorting) {
+    const FloatBlockFn f = [](uint64_t first, std::size_t n, float* out) {
+        for (std::size_t i = 0; i < n; ++i) out[i] = scrambled(first + i);
+    };
+    const uint64_t count = (uint64_t{1} << 22) + 777;  // a full chunk and a partial one
+    ThreadPool pool(2);
+    const ParallelFor parallel = [&pool](std::size_t n, const std::function<void(std::size_t)>& body) {
+        pool.parallel_for(n, body);
+    };
+    const SweepSummary sorted = exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = count});
+    ASSERT_TRUE(sorted.exact_fallback);
+    EXPECT_GT(sorted.binades.size(), 5u);
+    for (const int window : {3, 7}) {
+        SCOPED_TRACE(window);
+        expect_same_summary(exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = 0, .window_binades = window}),
+                            sorted);
+    }
+}
+
 TEST(ExhaustiveSweep, NegativeAndZeroSpanningIntervals) {
     // t on the 2^-24 grid mapped to [-1, 1): x = 2t - 1 exactly, each value once.
     const SweepSummary s = sweep(

@@ -58,6 +58,7 @@ TEST(ResultCodec, EveryFieldRoundTripsBitForBit) {
     r.stream_sequence = 7;
     r.samples = 123;
     r.seconds = 0.25;
+    r.phases = {{"integration", 0.125}, {"sampling+binning", 0x1.123456789abcdp-7}};
     r.rerun_command = "validate --filter 'c[a=1]'";
 
     const auto back = decode_result(encode_result(r));
@@ -69,6 +70,9 @@ TEST(ResultCodec, EveryFieldRoundTripsBitForBit) {
     EXPECT_TRUE(std::isnan(*back->p_value));
     EXPECT_EQ(back->plots.at(0).heatmaps.at(0).values.at(1), 5e-324);
     EXPECT_EQ(back->tables.at(0).rows.at(1).at(1), "4");
+    ASSERT_EQ(back->phases.size(), 2u);
+    EXPECT_EQ(back->phases[1].phase, "sampling+binning");
+    EXPECT_EQ(back->phases[1].seconds, 0x1.123456789abcdp-7);
     // Half an encoding (a worker that died while writing) is no result.
     const std::string bytes = encode_result(r);
     EXPECT_FALSE(decode_result(bytes.substr(0, bytes.size() / 2)).has_value());

@@ -23,33 +23,6 @@
 namespace warpcheck {
 namespace {
 
-// A warp case that also offers its sampler to the exhaustive sweep: it forwards
-// sample/pdf/invert to an ordinary lambda case and adds the block function.
-class SweepableWarpCase final : public WarpCase, public SweepableCase {
-public:
-    SweepableWarpCase(std::unique_ptr<WarpCase> inner, FloatBlockFn fn, uint64_t inputs, std::string grid,
-                      bool monotone)
-        : WarpCase(inner->info()), inner_(std::move(inner)), fn_(std::move(fn)), inputs_(inputs),
-          grid_(std::move(grid)), monotone_(monotone) {}
-
-    void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override { inner_->sample(in, out); }
-    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override { inner_->pdf(x, out); }
-    void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override { inner_->invert(x, out); }
-    bool has_inverse() const override { return inner_->has_inverse(); }
-
-    FloatBlockFn sweep_fn() const override { return fn_; }
-    uint64_t sweep_inputs() const override { return inputs_; }
-    std::string sweep_grid() const override { return grid_; }
-    bool claims_monotone() const override { return monotone_; }
-
-private:
-    std::unique_ptr<WarpCase> inner_;
-    FloatBlockFn fn_;
-    uint64_t inputs_;
-    std::string grid_;
-    bool monotone_;
-};
-
 // A [0,1) sampler of 32 bits with its first-preimage inverse, sweepable. The
 // sweep gets a lambda, not a member pointer, so that the call is inlined into
 // its vectorised loop.

@@ -224,6 +224,9 @@ public:
         add_figures(r, outcome, binning, ctx.options().samples);
         judge(r, outcome);
         add_plots(r, outcome, binning, warp.name());
+        r.phases = {{"integration", outcome.integration_seconds},
+                    {"sampling+binning", outcome.sampling_seconds},
+                    {"statistics", outcome.statistics_seconds}};
         return r;
     }
 };

@@ -327,6 +327,8 @@ public:
         CheckResult r = judge(s, sw);
         add_evidence(r, s, sw.grid);
         add_bias_table(r, biased_floats(s));
+        r.phases = {{"run counting", s.runs_seconds}};
+        if (s.exact_fallback) r.phases.push_back({"non-monotone recount", s.recount_seconds});
         return r;
     }
 };
