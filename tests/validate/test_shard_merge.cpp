@@ -75,7 +75,10 @@ TEST(ShardMerge, FourShardsMergedAreTheUnshardedRun) {
     ASSERT_GT(a["results"].size(), 20u);
     int failed = 0;
     for (auto* document : {&a, &b})
-        for (auto& r : (*document)["results"]) r.erase("seconds");
+        for (auto& r : (*document)["results"]) {
+            r.erase("seconds");  // timings differ from run to run
+            r.erase("phases");
+        }
     for (const auto& r : a["results"]) failed += r["verdict"] == "fail";
     EXPECT_GT(failed, 0) << "the selection should have rows that fail at alpha 0.5";
     EXPECT_EQ(a["results"], b["results"]);
