@@ -167,7 +167,8 @@ void judge(CheckResult& r, const chi2::Chi2Outcome& o) {
     }
 }
 
-void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& binning, uint64_t samples) {
+void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& binning, const RunOptions& options) {
+    const uint64_t samples = options.samples;
     r.samples = samples;
     const chi2::Histogram& h = o.histogram;
     r.figures = {
@@ -197,7 +198,7 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning
     // noncentrality, and the tilt of a marginal (chi2/power.h), that Pearson's
     // statistic detects 90% of the time at the planned level (power_level.h).
     const chi2::LocalResidual local = chi2::largest_cell_residual(h.counts, o.expected, samples);
-    const double level = (1.0 - chi2::kLocalLevelShare) * power_level(RunOptions{}, 1);  // default alpha
+    const double level = (1.0 - chi2::kLocalLevelShare) * power_level(options, 1);
     const double lambda = chi2::pearson_noncentrality_for_power(o.dof(), level);
     r.figures.insert(r.figures.end(), {{"local_max_residual", local.residual},
                                        {"local_cell", static_cast<double>(local.cell)},
@@ -233,7 +234,7 @@ public:
         const chi2::Binning binning(warp.domain(), resolution);
         const chi2::Chi2Outcome outcome = compute(warp, ctx, binning);
         CheckResult r;
-        add_figures(r, outcome, binning, ctx.options().samples);
+        add_figures(r, outcome, binning, ctx.options());
         judge(r, outcome);
         add_plots(r, outcome, binning, warp.name());
         return r;
