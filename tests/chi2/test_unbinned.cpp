@@ -141,7 +141,7 @@ TEST(Power, StatedUnbinnedTiltIsDetectedNinetyPercentOfTheTime) {
     // at n = 10^4; at half of it the rate is far lower.
     constexpr std::size_t n = 10'000;
     constexpr double level = 1e-3;
-    for (UnbinnedTest test : {UnbinnedTest::KolmogorovSmirnov, UnbinnedTest::AndersonDarling}) {
+    for (UnbinnedTest test : kUnbinnedTests) {
         SCOPED_TRACE(short_name(test));
         const double eps = unbinned_tilt_for_power(test, level, n);
         EXPECT_GT(eps, 0.02);
