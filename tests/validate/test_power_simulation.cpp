@@ -10,6 +10,8 @@
 #include "support/builtin_case.h"
 #include "validate/checks/checks.h"
 #include "validate/power_simulation.h"
+#include "validate/registry.h"
+#include "validate/runner.h"
 
 namespace warpcheck {
 namespace {
@@ -64,6 +66,33 @@ TEST(PowerSimulation, StatedPowerOnTheHemisphereIsMet) {
     const auto chi2 = make_chi2_check();
     EXPECT_TRUE(
         consistent_with(simulate_stated_power(warp, *chi2, 0, "power_tilt_eps", reduced_options(), kRuns), 0.9));
+}
+
+/// Every result with a p-value states its power: a finite power_* deviation
+/// and the level it is stated at in the figures (JSON, HTML), and "90% power"
+/// in the summary (the table's key figure, the HTML row).
+TEST(StatedPower, EveryStatisticalResultStatesItsPower) {
+    Registry registry;
+    register_builtin_cases(registry);
+    register_builtin_checks(registry);
+    RunOptions options;
+    options.samples = 100'000;
+    const auto jobs = select_jobs(registry, {"uniform_float_interval[a=-3,b=5]", "cosine_hemisphere", "linear[a=1,b=3]"},
+                                  {}, options);
+    const RunResult run = run_jobs(jobs, options);
+    int statistical = 0;
+    for (const CheckResult& r : run.results) {
+        if (!r.p_value) continue;
+        ++statistical;
+        SCOPED_TRACE(r.check_name + " " + r.case_name);
+        int stated = 0;
+        for (const Figure& f : r.figures)
+            stated += f.name.starts_with("power_") && f.name != "power_level" && std::isfinite(f.value) && f.value > 0.0;
+        EXPECT_GE(stated, 1);
+        EXPECT_GT(r.figure("power_level").value_or(0.0), 0.0);
+        EXPECT_NE(r.summary.find("90% power"), std::string::npos) << r.summary;
+    }
+    EXPECT_EQ(statistical, 7);  // chi2 and unbinned of each, binade of the float interval
 }
 
 }  // namespace

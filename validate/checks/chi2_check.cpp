@@ -154,7 +154,8 @@ void judge(CheckResult& r, const chi2::Chi2Outcome& o) {
     const double local_p = chi2::largest_cell_residual(o.histogram.counts, o.expected, r.samples).p_value;
     if (o.dof() >= 1)
         r.p_value = chi2::weighted_min_p({o.p_value(), local_p}, {1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare});
-    r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}", o.statistic(), o.dof(), o.p_value());
+    r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}; 90% power: tilt {:.2g}", o.statistic(), o.dof(),
+                            o.p_value(), r.figure("power_tilt_eps").value_or(std::nan("")));
     if (!o.errors.empty()) {
         r.verdict = Verdict::Error;
         r.message = join_reasons(o.errors);

@@ -343,6 +343,7 @@ public:
         CheckResult r;
         const int tests = std::max(1, judge(r, c, ctx.options().samples));
         add_figures(r, c, ctx.options(), tests);
+        if (r.p_value) r.summary += fmt::format("; 90% power: tilt {:.2g}", *r.figure("power_tilt_eps"));
         add_evidence(r, c, warp.name(), power_level(ctx.options(), tests));
         return r;
     }
