@@ -10,15 +10,19 @@ double MarginalCdf::operator()(double t) const {
     if (std::isnan(t)) return t;
     if (!(t > edges.front())) return 0.0;
     if (!(t < edges.back())) return 1.0;
-    // Strips are uniform in the parameter up to float rounding of their edges:
-    // guess the strip arithmetically, then step to the exact one.
-    const std::size_t last = edges.size() - 2;
+    // The uniform grid's strips are uniform in the parameter up to float
+    // rounding of their edges: guess the strip arithmetically, step to the
+    // exact one, then search its refined strips (usually just itself).
+    const std::size_t last = first_edge.size() - 2;
     const double guess = (t - edges.front()) / (edges.back() - edges.front()) * static_cast<double>(last + 1);
     std::size_t k = std::min(last, static_cast<std::size_t>(std::max(0.0, guess)));
-    while (k > 0 && t < edges[k]) --k;
-    while (k < last && t >= edges[k + 1]) ++k;
-    const double w = (t - edges[k]) / (edges[k + 1] - edges[k]);
-    return cdf[k] + w * (cdf[k + 1] - cdf[k]);
+    while (k > 0 && t < edges[first_edge[k]]) --k;
+    while (k < last && t >= edges[first_edge[k + 1]]) ++k;
+    const auto begin = edges.begin() + static_cast<std::ptrdiff_t>(first_edge[k]);
+    const auto end = edges.begin() + static_cast<std::ptrdiff_t>(first_edge[k + 1]);
+    const std::size_t j = static_cast<std::size_t>(std::upper_bound(begin + 1, end, t) - edges.begin()) - 1;
+    const double w = (t - edges[j]) / (edges[j + 1] - edges[j]);
+    return cdf[j] + w * (cdf[j + 1] - cdf[j]);
 }
 
 Binning strip_binning(const Domain& domain, int axis, int strips, const BinResolution& line) {
@@ -30,39 +34,187 @@ Binning strip_binning(const Domain& domain, int axis, int strips, const BinResol
     return b;
 }
 
-MarginalCdf tabulate_marginal_cdf(const Binning& strips, int axis, const BatchPdf& pdf,
-                                  const QuadratureOptions& options, const ParallelFor& parallel_for) {
-    const CellIntegrals in = integrate_cells(strips, pdf, options, parallel_for);
+namespace {
+
+struct Strip {
+    double lo = 0.0, hi = 0.0;
+    std::size_t coarse = 0;  ///< the uniform grid's strip it lies in
+    double p = 0.0, err = 0.0;
+};
+
+struct Tally {
+    uint64_t evaluations = 0, bad_values = 0;
+    std::size_t unconverged = 0;
+};
+
+/// The strips' integrals: each strip as the rows between `rows` (the cross
+/// parameter's bounds and the cuts), integrated apart and summed.
+struct StripIntegrator {
+    const Binning& binning;
+    int axis;
+    std::vector<double> rows;
+    const BatchPdf& pdf;
+    const QuadratureOptions& options;
+    const ParallelFor& parallel_for;
+    Tally tally;
+
+    void operator()(std::span<Strip> strips) {
+        const std::size_t per_strip = rows.size() - 1;
+        std::vector<ParamRect> rects;
+        rects.reserve(strips.size() * per_strip);
+        for (const Strip& s : strips)
+            for (std::size_t r = 0; r < per_strip; ++r)
+                rects.push_back(axis == 0 ? ParamRect{s.lo, s.hi, rows[r], rows[r + 1]}
+                                          : ParamRect{rows[r], rows[r + 1], s.lo, s.hi});
+        const CellIntegrals in = integrate_rects(binning, rects, pdf, options, parallel_for);
+        for (std::size_t s = 0; s < strips.size(); ++s) {
+            strips[s].p = strips[s].err = 0.0;
+            for (std::size_t r = 0; r < per_strip; ++r) {
+                strips[s].p += in.probability[s * per_strip + r];
+                strips[s].err += in.error[s * per_strip + r];
+            }
+        }
+        tally.evaluations += in.evaluations;
+        tally.bad_values += in.negative_values + in.nonfinite_values;
+        tally.unconverged += in.unconverged_cells;
+    }
+};
+
+double total_of(const std::vector<Strip>& strips) {
+    double sum = 0.0;
+    for (const Strip& s : strips) sum += s.p;
+    return sum;
+}
+
+/// Linear interpolation on strips of width h errs by ~h^2 |F''| / 8; on the
+/// pair of sibling strips k, k + 1 (width 2h) the error at their shared edge is
+/// measured exactly, |F(mid) - (F(a) + F(b)) / 2| = |p_k - p_k+1| / 2, and a
+/// quarter of it estimates the error on the strips used (the h^2 law). Where
+/// F'' changes within the pair (the flank of a peak) that falls a few percent
+/// short (tests/chi2/test_marginal_cdf.cpp), so half of it is stated. Where F
+/// is linear within the pair (a piecewise-constant density with edges on the
+/// strips' edges) it is 0, as the true error is.
+double pair_error(const std::vector<Strip>& strips, std::size_t k, double total) {
+    return std::abs(strips[k].p - strips[k + 1].p) / 4.0 / total;
+}
+
+/// Splits the pairs whose error exceeds the target, worst first within the
+/// budget, until none does (or the budget or the float resolution stops it).
+void refine(std::vector<Strip>& strips, StripIntegrator& integrate, const CdfRefinement& r) {
+    while (r.interpolation_target > 0.0) {
+        const double total = total_of(strips);
+        if (!(std::isfinite(total) && total > 0.0)) return;
+        std::vector<std::pair<double, std::size_t>> over;
+        for (std::size_t k = 0; k + 1 < strips.size(); k += 2) {
+            const double e = pair_error(strips, k, total);
+            const double mid_lo = 0.5 * (strips[k].lo + strips[k].hi);
+            if (e > r.interpolation_target && mid_lo > strips[k].lo && mid_lo < strips[k].hi) over.push_back({e, k});
+        }
+        const std::size_t budget = r.max_strips > strips.size() ? (r.max_strips - strips.size()) / 2 : 0;
+        if (over.empty() || budget == 0) return;
+        std::sort(over.begin(), over.end(), [](const auto& a, const auto& b) {
+            return a.first != b.first ? a.first > b.first : a.second < b.second;
+        });
+        over.resize(std::min(over.size(), budget));
+        std::vector<char> split(strips.size(), 0);
+        for (const auto& o : over) split[o.second] = split[o.second + 1] = 1;
+        std::vector<Strip> halves;
+        for (std::size_t k = 0; k < strips.size(); ++k) {
+            if (!split[k]) continue;
+            const double mid = 0.5 * (strips[k].lo + strips[k].hi);
+            halves.push_back({strips[k].lo, mid, strips[k].coarse});
+            halves.push_back({mid, strips[k].hi, strips[k].coarse});
+        }
+        integrate(halves);
+        std::vector<Strip> next;
+        next.reserve(strips.size() + halves.size() / 2);
+        for (std::size_t k = 0, h = 0; k < strips.size(); ++k) {
+            if (!split[k]) next.push_back(strips[k]);
+            else {
+                next.push_back(halves[h++]);
+                next.push_back(halves[h++]);
+            }
+        }
+        strips = std::move(next);
+    }
+}
+
+/// The rows of every strip: the cross parameter's range cut at the cuts inside it.
+std::vector<double> row_edges(const Binning& b, int axis, const std::vector<double>& cuts) {
+    const ParamRect whole = b.cell_rect(0);
+    const double lo = axis == 0 ? whole.v0 : whole.u0, hi = axis == 0 ? whole.v1 : whole.u1;
+    std::vector<double> rows = {lo};
+    for (double c : cuts)
+        if (c > rows.back() && c < hi) rows.push_back(c);
+    rows.push_back(hi);
+    return rows;
+}
+
+MarginalCdf assemble(const std::vector<Strip>& strips, std::size_t coarse_count, int axis) {
     MarginalCdf m;
     m.axis = axis;
-    m.total = in.total;
-    m.quadrature_error = in.error_total / in.total;
-    m.unconverged_strips = in.unconverged_cells;
-    m.evaluations = in.evaluations;
-    m.bad_values = in.negative_values + in.nonfinite_values;
-    const std::size_t n = strips.cell_count();
+    m.total = total_of(strips);
+    const std::size_t n = strips.size();
     m.edges.resize(n + 1);
     m.cdf.resize(n + 1);
-    double sum = 0.0;
+    m.first_edge.assign(coarse_count + 1, n);
+    double sum = 0.0, err = 0.0;
+    for (std::size_t k = n; k-- > 0;) m.first_edge[strips[k].coarse] = k;
+    for (std::size_t k = 0; k < n; ++k) {
+        m.edges[k] = strips[k].lo;
+        m.cdf[k] = sum / m.total;
+        sum += strips[k].p;
+        err += strips[k].err;
+    }
+    m.edges[n] = strips.back().hi;
+    m.cdf[n] = 1.0;
+    m.quadrature_error = err / m.total;
+    for (std::size_t k = 0; k + 1 < n; k += 2)
+        m.interpolation_error = std::max(m.interpolation_error, pair_error(strips, k, m.total));
+    if (!std::isfinite(m.total) || !(m.total > 0.0)) m.interpolation_error = std::nan("");
+    m.refined_strips = n - coarse_count;
+    return m;
+}
+
+}  // namespace
+
+MarginalCdf tabulate_marginal_cdf(const Binning& strips, int axis, const BatchPdf& pdf,
+                                  const QuadratureOptions& options, const ParallelFor& parallel_for,
+                                  const CdfRefinement& refinement) {
+    const std::size_t n = strips.cell_count();
+    if (n < 2 || n % 2 != 0) throw std::invalid_argument("tabulate_marginal_cdf: an even number of strips is needed");
+    const ParallelFor& run = parallel_for ? parallel_for : ParallelFor(serial_for);
+    StripIntegrator integrate{strips, axis, row_edges(strips, axis, refinement.cross_cuts), pdf, options, run, {}};
+    std::vector<Strip> s(n);
     for (std::size_t c = 0; c < n; ++c) {
         const ParamRect r = strips.cell_rect(c);
-        m.edges[c] = axis == 0 ? r.u0 : r.v0;
-        m.edges[c + 1] = axis == 0 ? r.u1 : r.v1;
-        m.cdf[c] = sum / in.total;
-        sum += in.probability[c];
+        s[c] = {axis == 0 ? r.u0 : r.v0, axis == 0 ? r.u1 : r.v1, c};
     }
-    m.cdf[n] = 1.0;
-    // Linear interpolation on the strips of width h errs by ~h^2 |F''| / 8; on
-    // strips of width 2h (pairs) the error at the pair's midpoint is measured
-    // exactly, |F(mid) - (F(a) + F(b)) / 2|, and a quarter of it estimates the
-    // error on the strips used. Where F is linear within each pair (a
-    // piecewise-constant density with edges on the strips' edges) it is 0, as
-    // the true error is; where F bends sharply within a strip it is large.
-    for (std::size_t k = 1; k < n; k += 2)
-        m.interpolation_error =
-            std::max(m.interpolation_error, std::abs(m.cdf[k] - 0.5 * (m.cdf[k - 1] + m.cdf[k + 1])) / 4.0);
-    if (!std::isfinite(m.total) || !(m.total > 0.0)) m.interpolation_error = std::nan("");
+    integrate(s);
+    refine(s, integrate, refinement);
+    MarginalCdf m = assemble(s, n, axis);
+    m.evaluations = integrate.tally.evaluations;
+    m.bad_values = integrate.tally.bad_values;
+    m.unconverged_strips = integrate.tally.unconverged;
     return m;
+}
+
+std::vector<double> quantile_cuts(const MarginalCdf& cdf, int parts) {
+    std::vector<double> tails, levels;
+    for (double tail = 1e-6; tail < 0.5 / parts; tail *= 10.0) tails.push_back(tail);
+    levels.insert(levels.end(), tails.begin(), tails.end());
+    for (int k = 1; k < parts; ++k) levels.push_back(static_cast<double>(k) / parts);
+    for (auto t = tails.rbegin(); t != tails.rend(); ++t) levels.push_back(1.0 - *t);
+    std::vector<double> cuts;
+    for (double q : levels) {
+        const auto it = std::upper_bound(cdf.cdf.begin(), cdf.cdf.end(), q);
+        if (it == cdf.cdf.begin() || it == cdf.cdf.end()) continue;
+        const std::size_t j = static_cast<std::size_t>(it - cdf.cdf.begin()) - 1;
+        const double w = (q - cdf.cdf[j]) / (cdf.cdf[j + 1] - cdf.cdf[j]);
+        const double t = cdf.edges[j] + w * (cdf.edges[j + 1] - cdf.edges[j]);
+        if (std::isfinite(t) && (cuts.empty() || t > cuts.back())) cuts.push_back(t);
+    }
+    return cuts;
 }
 
 }  // namespace warpcheck::chi2

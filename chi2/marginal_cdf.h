@@ -11,6 +11,16 @@
 // the grid with every other edge (measured exactly at the left-out edges) by
 // the h^2 law of linear interpolation. Both are set far
 // below the 1/sqrt(N) resolution of the unbinned tests (see unbinned_check).
+//
+// Peaks: where the density is peaked within a few strips (a sharp specular
+// lobe's cos theta, a steep exponential), the interpolation error of the
+// uniform strips is large. With a CdfRefinement, each pair of sibling strips
+// whose estimate exceeds the target is split into two pairs of half the width
+// (the h^2 law: a quarter of the error), again and again where needed, within
+// a budget of strips. A strip can also be cut across the other parameter into
+// rows integrated apart (at the other marginal's quantiles), so that a peak
+// narrow in that parameter gets rows of its own instead of falling between
+// the cubature's first nodes across the whole strip.
 #pragma once
 
 #include <cstddef>
@@ -26,12 +36,16 @@ namespace warpcheck::chi2 {
 
 struct MarginalCdf {
     int axis = 0;                    ///< 0: the binning's u parameter, 1: its v parameter
-    std::vector<double> edges;       ///< strip edges in the parameter, ascending
+    std::vector<double> edges;       ///< strip edges in the parameter, ascending (refined strips included)
+    /// Per strip of the uniform grid (and one past the end): the index in
+    /// `edges` of its first edge; its refined strips lie up to the next one's.
+    std::vector<std::size_t> first_edge;
     std::vector<double> cdf;         ///< the normalised CDF at the edges: 0 ... 1
     double total = 0.0;              ///< the density's integral over the domain (before normalising)
     double quadrature_error = 0.0;   ///< sum of the strips' error estimates, relative to total
     double interpolation_error = 0.0;  ///< estimated max error of the linear interpolation
     std::size_t unconverged_strips = 0;
+    std::size_t refined_strips = 0;  ///< strips beyond the uniform grid's, from refinement
     uint64_t evaluations = 0;
     uint64_t bad_values = 0;         ///< negative or non-finite density values met
 
@@ -46,8 +60,27 @@ struct MarginalCdf {
 /// half_line_scale and line_center (BinResolution); its cell counts are ignored.
 Binning strip_binning(const Domain& domain, int axis, int strips, const BinResolution& line = {});
 
-/// Tabulates the marginal CDF along the strips of `strips` (from strip_binning).
+struct CdfRefinement {
+    /// Split sibling strips whose interpolation error estimate (as a CDF
+    /// difference) exceeds this; 0 never splits.
+    double interpolation_target = 0.0;
+    std::size_t max_strips = 0;  ///< no split beyond this many strips in all
+    /// Interior cuts across the other parameter (2D domains): every strip is
+    /// integrated as the rows between them, ascending.
+    std::vector<double> cross_cuts;
+};
+
+/// Tabulates the marginal CDF along the strips of `strips` (from strip_binning,
+/// an even number), refined as `refinement` asks.
 MarginalCdf tabulate_marginal_cdf(const Binning& strips, int axis, const BatchPdf& pdf,
-                                  const QuadratureOptions& options, const ParallelFor& parallel_for = serial_for);
+                                  const QuadratureOptions& options, const ParallelFor& parallel_for = serial_for,
+                                  const CdfRefinement& refinement = {});
+
+/// The parameter values where `cdf` reaches k / parts, k = 1 .. parts - 1, and
+/// towards each end 10^-j of the mass from it, down to 10^-6 (inverse linear
+/// interpolation): rows of 1 / parts of the mass each, and outermost rows that
+/// hold at most 10^-6, so that mass a row's cubature misses at its edge (a
+/// peak's tail) is bounded by the outer rows' or lies in narrow inner rows.
+std::vector<double> quantile_cuts(const MarginalCdf& cdf, int parts);
 
 }  // namespace warpcheck::chi2

@@ -208,9 +208,16 @@ double cell_tolerance(double probability, const QuadratureOptions& options) {
 
 CellIntegrals integrate_cells(const Binning& binning, const BatchPdf& pdf, const QuadratureOptions& options,
                               const ParallelFor& parallel_for) {
+    std::vector<ParamRect> rects(binning.cell_count());
+    for (std::size_t c = 0; c < rects.size(); ++c) rects[c] = binning.cell_rect(c);
+    return integrate_rects(binning, rects, pdf, options, parallel_for);
+}
+
+CellIntegrals integrate_rects(const Binning& binning, std::span<const ParamRect> rects, const BatchPdf& pdf,
+                              const QuadratureOptions& options, const ParallelFor& parallel_for) {
     if (!pdf) throw std::invalid_argument("integrate_cells: no density");
     if (!(options.accuracy_fraction > 0.0)) throw std::invalid_argument("integrate_cells: accuracy fraction must be > 0");
-    const std::size_t cells = binning.cell_count();
+    const std::size_t cells = rects.size();
     const bool one_d = binning.parameter_dimension() == 1;
     rule();  // build the node table before threads race to it
 
@@ -229,7 +236,7 @@ CellIntegrals integrate_cells(const Binning& binning, const BatchPdf& pdf, const
         heap.reserve(options.max_regions_per_cell + 2);
         const std::size_t end = std::min(cells, (block + 1) * kCellsPerBlock);
         for (std::size_t c = block * kCellsPerBlock; c < end; ++c)
-            outcomes[c] = integrate_cell(rr, binning.cell_rect(c), one_d, options, heap);
+            outcomes[c] = integrate_cell(rr, rects[c], one_d, options, heap);
         block_stats[block] = {rr.evaluations, rr.negative, rr.nonfinite};
     });
 

@@ -64,4 +64,10 @@ struct CellIntegrals {
 CellIntegrals integrate_cells(const Binning& binning, const BatchPdf& pdf, const QuadratureOptions& options,
                               const ParallelFor& parallel_for = serial_for);
 
+/// The same over any rectangles of `binning`'s parameter space, each as one
+/// cell (results in the rectangles' order): pieces of cells, e.g. the refined
+/// strips of a marginal CDF (chi2/marginal_cdf.h).
+CellIntegrals integrate_rects(const Binning& binning, std::span<const ParamRect> rects, const BatchPdf& pdf,
+                              const QuadratureOptions& options, const ParallelFor& parallel_for = serial_for);
+
 }  // namespace warpcheck::chi2

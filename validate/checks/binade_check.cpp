@@ -27,9 +27,11 @@
 #include <fmt/format.h>
 
 #include "chi2/pearson.h"
+#include "chi2/power.h"
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/input_chunks.h"
+#include "validate/checks/power_level.h"
 
 namespace warpcheck {
 namespace {
@@ -229,6 +231,35 @@ CheckResult judge(const Tests& t, uint64_t outside, uint64_t samples, double a, 
     return r;
 }
 
+// ---- stated power (chi2/power.h's noncentral chi-square) ----
+
+// The deviations each test detects with 90% probability at its share of the
+// planned level (Bonferroni over the tests with degrees of freedom): for the
+// mass test, a relative excess d of the largest binade's mass, the rest scaled
+// down to keep the total (noncentrality N p d^2 / (1 - p)); for the parity
+// test, a shift s of every tested binade's even share f (noncentrality
+// sum_b n_b s^2 / (f (1 - f))).
+void add_power(CheckResult& r, const Tests& t, const std::vector<Cell>& cells, double n, const RunOptions& options) {
+    const int tests = (t.mass.dof >= 1) + (t.parity.cells >= 1);
+    const double level = power_level(options, 1) / std::max(tests, 1);
+    double largest = 0.0, parity_weight = 0.0;
+    for (const Cell& c : cells) {
+        largest = std::max(largest, c.probability);
+        const double e_even = static_cast<double>(c.observed) * c.even_fraction;
+        if (e_even >= kMinParityExpected && static_cast<double>(c.observed) - e_even >= kMinParityExpected)
+            parity_weight += n * c.probability / (c.even_fraction * (1.0 - c.even_fraction));
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double mass_lambda = chi2::pearson_noncentrality_for_power(t.mass.dof, level);
+    const double parity_lambda = chi2::pearson_noncentrality_for_power(t.parity.cells, level);
+    const double mass = t.mass.dof >= 1 ? std::sqrt(mass_lambda * (1.0 - largest) / (n * largest)) : nan;
+    const double parity = t.parity.cells >= 1 ? std::sqrt(parity_lambda / parity_weight) : nan;
+    r.figures.insert(r.figures.end(), {{"power_mass_relative_excess", mass},
+                                       {"power_parity_shift", parity},
+                                       {"power_level", level}});
+    r.summary += fmt::format("; 90% power: largest binade {:+.2g}, even share {:+.2g}", mass, parity);
+}
+
 // ---- evidence: a table of binades and a plot of observed / expected ----
 
 void add_evidence(CheckResult& r, const std::vector<Cell>& cells, double n) {
@@ -276,6 +307,7 @@ public:
         const uint64_t outside = count_binades(warp, ctx, samples, cells);
         const Tests tests = test_binades(cells, static_cast<double>(samples));
         CheckResult r = judge(tests, outside, samples, a, b);
+        add_power(r, tests, cells, static_cast<double>(samples), ctx.options());
         add_evidence(r, cells, static_cast<double>(samples));
         return r;
     }

@@ -142,7 +142,8 @@ void judge(CheckResult& r, const chi2::Chi2Outcome& o) {
     const double local_p = chi2::largest_cell_residual(o.histogram.counts, o.expected, r.samples).p_value;
     if (o.dof() >= 1)
         r.p_value = chi2::weighted_min_p({o.p_value(), local_p}, {1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare});
-    r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}", o.statistic(), o.dof(), o.p_value());
+    r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}; 90% power: tilt {:.2g}", o.statistic(), o.dof(),
+                            o.p_value(), r.figure("power_tilt_eps").value_or(std::nan("")));
     if (!o.errors.empty()) {
         r.verdict = Verdict::Error;
         r.message = join_reasons(o.errors);
@@ -155,7 +156,8 @@ void judge(CheckResult& r, const chi2::Chi2Outcome& o) {
     }
 }
 
-void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& binning, uint64_t samples) {
+void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& binning, const RunOptions& options) {
+    const uint64_t samples = options.samples;
     r.samples = samples;
     const chi2::Histogram& h = o.histogram;
     r.figures = {
@@ -187,7 +189,7 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning
     // noncentrality, and the tilt of a marginal (chi2/power.h), that Pearson's
     // statistic detects 90% of the time at the planned level (power_level.h).
     const chi2::LocalResidual local = chi2::largest_cell_residual(h.counts, o.expected, samples);
-    const double level = (1.0 - chi2::kLocalLevelShare) * power_level(RunOptions{}, 1);  // default alpha
+    const double level = (1.0 - chi2::kLocalLevelShare) * power_level(options, 1);
     const double lambda = chi2::pearson_noncentrality_for_power(o.dof(), level);
     r.figures.insert(r.figures.end(), {{"local_max_residual", local.residual},
                                        {"local_cell", static_cast<double>(local.cell)},
@@ -221,7 +223,7 @@ public:
         const chi2::Binning binning(warp.domain(), line_resolution(warp));
         const chi2::Chi2Outcome outcome = compute(warp, ctx, binning);
         CheckResult r;
-        add_figures(r, outcome, binning, ctx.options().samples);
+        add_figures(r, outcome, binning, ctx.options());
         judge(r, outcome);
         add_plots(r, outcome, binning, warp.name());
         r.phases = {{"integration", outcome.integration_seconds},
