@@ -346,6 +346,28 @@ void register_sphere_views(warpcheck::Registry& registry) {
     }
 }
 
+// A float sampler of raw bits, on the exhaustive check's fast path: all 2^32
+// inputs are swept and every float counted. The correct one keeps the top 24
+// bits (each float of the 2^-24 grid exactly 256 times, in order); the wrong
+// twin swaps neighbouring grid values, so it still counts every float 256
+// times (the statistics cannot see it) but breaks the monotone order it claims.
+float unit_float_from_bits(uint32_t u, bool swap_neighbours) {
+    const uint32_t k = (u >> 8) ^ (swap_neighbours ? 1u : 0u);
+    return static_cast<float>(k) * 0x1p-24f;
+}
+
+void register_float_sampler(warpcheck::Registry& registry) {
+    for (bool wrong : {false, true}) {
+        registry.add_case(warpcheck::make_u32_float_case(
+            {.family = wrong ? "renderer_unit_float_swapped" : "renderer_unit_float",
+             .description = "float in [0,1) from the top 24 of 32 random bits",
+             .domain = warpcheck::chi2::Domain::interval(0, 1)},
+            warpcheck::Monotone::Claimed, [wrong](uint32_t u) { return unit_float_from_bits(u, wrong); },
+            [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
+            [wrong](float x) { return (static_cast<uint32_t>(x * 0x1p24f) ^ (wrong ? 1u : 0u)) << 8; }));
+    }
+}
+
 }  // namespace
 
 void warpcheck_register(warpcheck::Registry& registry) {
@@ -355,9 +377,11 @@ void warpcheck_register(warpcheck::Registry& registry) {
     register_no_inverse(registry);
     register_sphere_views(registry);
     register_renderer_kinds(registry);
+    register_float_sampler(registry);
     // The wrong twins: known flaws, run by name (or with --include-flawed).
     registry.mark_known_flaw("normal_pdf_forgets_sigma[mu=2,sigma=0.5]", "the density lacks its 1/sigma");
     registry.mark_known_flaw("mirrored_exponential_inverse_flipped[b=1,rate=4]", "invert returns 1 - u");
     registry.mark_known_flaw("cosine_hemisphere_no_inverse_half_pdf", "the density integrates to 1/2");
     registry.mark_known_flaw("uniform_sphere_azimuth_bent", "phi bent by 1e-3 of a turn");
+    registry.mark_known_flaw("renderer_unit_float_swapped", "neighbouring floats swapped: not monotone as claimed");
 }

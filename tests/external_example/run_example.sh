@@ -36,6 +36,7 @@ for point in "n=5,select=0.3" "n=5,select=0.6" "n=50,select=0.3" "n=50,select=0.
   for check in weight weight_mean chi2; do expect_row pass "$check" "phong_mixture[$point]"; done
 done
 for check in pmf discrete_chi2 remapped_u; do expect_row pass "$check" alias_table; done
+expect_row pass exhaustive renderer_unit_float  # all 2^32 inputs, on the fast path
 status=0
 "$program" --filter no_such_warp 2> /dev/null || status=$?
 [ "$status" -eq 2 ] || { echo "expected exit status 2 for an unknown warp, got $status"; exit 1; }
@@ -57,6 +58,7 @@ expect_fail cosine_returned_pdf_wrong sample_pdf
 expect_fail table_no_pdf_wrong inverse_pdf_mean
 expect_fail phong_mixture_wrong weight_mean
 expect_fail alias_table_wrong remapped_u
+expect_fail renderer_unit_float_swapped exhaustive
 
 # A C++17 translation unit registers its warps through validate/register17.h.
 "$work/build/validate_my_warps17" --all --samples 200000 --color never | tee "$work/all17.txt"
