@@ -14,6 +14,7 @@
 #include "support/check_harness.h"
 #include "validate/case_grid.h"
 #include "validate/checks/checks.h"
+#include "validate/registry.h"
 
 namespace warpcheck {
 namespace {
@@ -410,6 +411,33 @@ TEST(Declaration, InconsistentCasesAreRefusedNamingTheCase) {
     EXPECT_NE(refusal([&] { make_warp_case(table_info("n1"), [](float u) { return u; }); })
                   .find("warp case n1: it has no pdf"),
               std::string::npos);
+}
+
+// Every check whose results carry a p-value is judged at the run's corrected
+// level, so it must count in the Sidak family (Check::statistical), which the
+// runner sizes before anything runs: one that did not would make every test
+// of the run anti-conservative. Each built-in check is run on one case of each
+// kind; a p-value from a check that is not statistical fails.
+TEST(Kinds, EveryCheckThatReturnsAPValueCountsInTheFamily) {
+    Registry registry;
+    register_builtin_checks(registry);
+    std::vector<std::unique_ptr<WarpCase>> cases;
+    cases.push_back(make_warp_case(hemisphere_info("returned_pdf"), [](Point2f u) { return cosine_sample(u, 1.0f); },
+                                   cosine_pdf));
+    cases.push_back(make_warp_case(table_info("table"), [](float u) { return table_sample(u, false); }));
+    cases.push_back(mixture_case("mixture", Mixture{}));
+    cases.push_back(alias_case("alias", AliasTable({1, 0, 3, 2, 0.5f, 7, 0.01f})));
+    int with_p_value = 0;
+    for (const auto& warp : cases)
+        for (const auto& check : registry.checks()) {
+            if (!check->applies_to(*warp)) continue;
+            const CheckResult r = run_check(*check, *warp);
+            if (!r.p_value) continue;
+            ++with_p_value;
+            EXPECT_TRUE(check->statistical()) << check->name() << " returns a p-value on " << warp->name()
+                                              << " but is not counted in the family";
+        }
+    EXPECT_GE(with_p_value, 8) << "the kinds' statistical checks should have run";
 }
 
 }  // namespace

@@ -150,6 +150,7 @@ Plot counts_plot(const std::vector<double>& observed, const std::vector<double>&
 class DiscreteChi2Check final : public Check {
 public:
     std::string name() const override { return "discrete_chi2"; }
+    bool statistical() const override { return true; }
     std::string description() const override {
         return "discrete cases: indices are categories, none of pmf 0 is chosen, and the counts fit the pmf "
                "(Pearson, pooled, Sidak-corrected)";
@@ -281,6 +282,7 @@ Plot remapped_histogram(const std::vector<double>& sorted_u, const std::string& 
 class RemappedUCheck final : public Check {
 public:
     std::string name() const override { return "remapped_u"; }
+    bool statistical() const override { return true; }
     std::string description() const override {
         return "discrete cases returning a remapped u: it lies in [0,1) and is uniform, overall (KS) and within each "
                "category (chi-square), Sidak-corrected";

@@ -104,6 +104,7 @@ class ImportanceCheck final : public Check {
 public:
     explicit ImportanceCheck(Estimator which) : which_(which) {}
     std::string name() const override { return which_ == Estimator::Weight ? "weight_mean" : "inverse_pdf_mean"; }
+    bool statistical() const override { return true; }
     std::string description() const override {
         return which_ == Estimator::Weight
                    ? "the mean weight against the integral of eval over the domain (t-test, Sidak-corrected)"
