@@ -2,6 +2,10 @@
 # The build is kept warning-free with both GCC and Clang (presets test and clang).
 add_library(warpcheck_options INTERFACE)
 target_compile_options(warpcheck_options INTERFACE -Wall -Wextra -Wpedantic -Wshadow)
+# Floating point as written, on every target: no multiply-add contraction, so
+# the vectorised forms of the warps (sampling/lanes.h), compiled for AVX-512
+# inside the same program, give the same bits as their scalar forms.
+target_compile_options(warpcheck_options INTERFACE -ffp-contract=off)
 if(WARPCHECK_WERROR)
   target_compile_options(warpcheck_options INTERFACE -Werror)
 endif()

@@ -16,7 +16,8 @@ struct UniformDiskPolar {
     Point2f sample(Point2f u) const {
         const float r = std::sqrt(u.x);
         const float phi = kTwoPi * u.y;
-        return {r * std::cos(phi), r * std::sin(phi)};
+        const SinCos sc = sin_cos(phi);
+        return {r * sc.cos, r * sc.sin};
     }
 
     /// Density of sample with respect to area: 1/pi on the disk.
@@ -47,7 +48,8 @@ struct UniformDiskConcentric {
             r = b;
             phi = kPiOver2 - kPiOver4 * (a / b);
         }
-        return {r * std::cos(phi), r * std::sin(phi)};
+        const SinCos sc = sin_cos(phi);
+        return {r * sc.cos, r * sc.sin};
     }
 
     /// Density of sample with respect to area: 1/pi on the disk.

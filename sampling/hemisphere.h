@@ -20,7 +20,8 @@ struct UniformHemisphere {
         const float z = u.x;
         const float r = sin_from_cos(z);
         const float phi = kTwoPi * u.y;
-        return {r * std::cos(phi), r * std::sin(phi), z};
+        const SinCos sc = sin_cos(phi);
+        return {r * sc.cos, r * sc.sin, z};
     }
 
     /// Density of sample: 1/(2 pi) for z >= 0, else 0.
@@ -66,7 +67,8 @@ public:
         const float z = std::pow(u.x, 1.0f / (n_ + 1.0f));
         const float r = sin_from_cos(z);
         const float phi = kTwoPi * u.y;
-        return {r * std::cos(phi), r * std::sin(phi), z};
+        const SinCos sc = sin_cos(phi);
+        return {r * sc.cos, r * sc.sin, z};
     }
 
     /// Density with respect to solid angle: (n+1)/(2 pi) z^n for z >= 0, else 0.

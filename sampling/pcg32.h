@@ -47,6 +47,10 @@ public:
     /// A double in [0,1) on the 2^-53 grid.
     constexpr double next_double() { return static_cast<double>(next_u64() >> 11) * 0x1p-53; }
 
+    /// The generator's state and increment (for copies stepped in lanes, sampling/lanes.h).
+    constexpr uint64_t state() const { return state_; }
+    constexpr uint64_t increment() const { return inc_; }
+
     /// Moves the stream by `delta` steps (negative: backwards, as unsigned
     /// wrap-around) in O(log delta), by composing the LCG step with itself.
     constexpr void advance(int64_t delta) {

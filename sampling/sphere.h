@@ -19,7 +19,8 @@ struct UniformSphere {
         const float z = 1.0f - 2.0f * u.x;
         const float r = sin_from_cos(z);
         const float phi = kTwoPi * u.y;
-        return {r * std::cos(phi), r * std::sin(phi), z};
+        const SinCos sc = sin_cos(phi);
+        return {r * sc.cos, r * sc.sin, z};
     }
 
     /// Density of sample: 1/(4 pi) everywhere.
@@ -52,7 +53,8 @@ public:
         const float z = 1.0f - one_minus_cos;
         const float r = safe_sqrt(one_minus_cos * (2.0f - one_minus_cos));
         const float phi = kTwoPi * u.y;
-        return {r * std::cos(phi), r * std::sin(phi), z};
+        const SinCos sc = sin_cos(phi);
+        return {r * sc.cos, r * sc.sin, z};
     }
 
     /// Density: 1 / (2 pi (1 - cos_theta_max)) inside the cap, 0 outside. The cap

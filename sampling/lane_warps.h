@@ -1,0 +1,82 @@
+// Lane forms of the common spherical and disk warps: sixteen samples at once,
+// each step the same IEEE operation as the scalar form in disk.h, hemisphere.h
+// and sphere.h, so they return the same bits (tests/sampling/lanes_test.cpp).
+// The scalar forms stay the readable definition; these feed the vectorised
+// chi-square path (validate/lane_sampling.h). Branches of the scalar forms
+// become selects: both sides are computed and the lane picks one.
+#pragma once
+
+#include "sampling/lanes.h"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // see sampling/lanes.h
+
+namespace warpcheck::lanes {
+
+/// A point per lane; z is 0 for points of the disk.
+struct Points {
+    F32 x, y, z;
+};
+
+/// UniformDiskPolar::sample.
+struct UniformDiskPolarLanes {
+    WARPCHECK_LANE Points operator()(F32 u0, F32 u1) const {
+        const F32 r = sqrt(u0);
+        const F32 phi = kTwoPi * u1;
+        const SinCos sc = sin_cos(phi);
+        return {r * sc.cos, r * sc.sin, F32{}};
+    }
+};
+
+/// UniformDiskConcentric::sample: the wedge |a| > |b| and the other one both
+/// computed, one selected; the centre (a = b = 0) maps to the origin.
+struct UniformDiskConcentricLanes {
+    WARPCHECK_LANE Points operator()(F32 u0, F32 u1) const {
+        const F32 a = 2.0f * u0 - 1.0f;
+        const F32 b = 2.0f * u1 - 1.0f;
+        // Conditions stay inside ?: (see validate/lane_cells.h). |a| + |b| is 0
+        // exactly at the centre a = b = 0, whose 0/0 becomes 0/1.
+        const F32 size = abs(a) + abs(b);
+        const F32 r = abs(a) > abs(b) ? a : b;
+        const F32 ratio = (abs(a) > abs(b) ? b : a) / (size == 0.0f ? F32{} + 1.0f : r);
+        const F32 t = kPiOver4 * ratio;
+        const F32 phi = abs(a) > abs(b) ? t : kPiOver2 - t;
+        const SinCos sc = sin_cos(phi);
+        const F32 x = r * sc.cos, y = r * sc.sin;
+        return {size == 0.0f ? F32{} : x, size == 0.0f ? F32{} : y, F32{}};
+    }
+};
+
+/// CosineHemisphere::sample: the concentric disk lifted to the hemisphere.
+struct CosineHemisphereLanes {
+    WARPCHECK_LANE Points operator()(F32 u0, F32 u1) const {
+        const Points d = UniformDiskConcentricLanes{}(u0, u1);
+        return {d.x, d.y, safe_sqrt(1.0f - d.x * d.x - d.y * d.y)};
+    }
+};
+
+/// UniformHemisphere::sample.
+struct UniformHemisphereLanes {
+    WARPCHECK_LANE Points operator()(F32 u0, F32 u1) const {
+        const F32 z = u0;
+        const F32 r = sin_from_cos(z);
+        const F32 phi = kTwoPi * u1;
+        const SinCos sc = sin_cos(phi);
+        return {r * sc.cos, r * sc.sin, z};
+    }
+};
+
+/// UniformSphere::sample.
+struct UniformSphereLanes {
+    WARPCHECK_LANE Points operator()(F32 u0, F32 u1) const {
+        const F32 z = 1.0f - 2.0f * u0;
+        const F32 r = sin_from_cos(z);
+        const F32 phi = kTwoPi * u1;
+        const SinCos sc = sin_cos(phi);
+        return {r * sc.cos, r * sc.sin, z};
+    }
+};
+
+}  // namespace warpcheck::lanes
+
+#pragma GCC diagnostic pop

@@ -1,0 +1,125 @@
+// Sixteen samples at once: the lane types of the vectorised chi-square path
+// (validate/lane_sampling.h) and the lane forms of the helpers the warps use.
+//
+// The types are GCC vector extensions (also understood by Clang). Code written
+// with them compiles to AVX-512 inside a function built for that target and to
+// plain SSE2 or scalar code elsewhere, with the same IEEE operations in the same
+// order, so both give the same bits: no library calls, no fused multiply-add
+// (the project builds with -ffp-contract=off), no approximate reciprocals.
+// Every helper is always_inline, so none is ever compiled for one target and
+// called from another.
+//
+// Each lane form repeats its scalar twin operation for operation; the tests in
+// tests/sampling/lanes_test.cpp compare them bit for bit.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+
+#include "sampling/math.h"
+#include "sampling/pcg32.h"
+
+// GCC notes that passing 64-byte vectors changes the ABI without AVX-512; these
+// functions are always inlined and never cross a translation unit.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace warpcheck::lanes {
+
+inline constexpr int kWidth = 8;
+
+using F32 = float __attribute__((vector_size(4 * kWidth)));
+using I32 = int32_t __attribute__((vector_size(4 * kWidth)));
+using U32 = uint32_t __attribute__((vector_size(4 * kWidth)));
+using F64 = double __attribute__((vector_size(8 * kWidth)));
+using I64 = int64_t __attribute__((vector_size(8 * kWidth)));
+using U64 = uint64_t __attribute__((vector_size(8 * kWidth)));
+
+#define WARPCHECK_LANE [[gnu::always_inline]] inline
+
+/// a where the mask is set (all ones), b elsewhere.
+template <typename Mask, typename V>
+WARPCHECK_LANE V select(Mask m, V a, V b) {
+    return m ? a : b;
+}
+
+WARPCHECK_LANE F64 to_f64(F32 x) { return __builtin_convertvector(x, F64); }
+WARPCHECK_LANE F32 to_f32(F64 x) { return __builtin_convertvector(x, F32); }
+
+/// |x| by clearing the sign bit, as std::abs does (-0 becomes +0).
+WARPCHECK_LANE F32 abs(F32 x) { return std::bit_cast<F32>(std::bit_cast<U32>(x) & 0x7fffffffu); }
+WARPCHECK_LANE F64 abs(F64 x) { return std::bit_cast<F64>(std::bit_cast<U64>(x) & 0x7fffffffffffffffull); }
+
+/// IEEE square root per lane (one vsqrtps inside an AVX-512 function).
+WARPCHECK_LANE F32 sqrt(F32 x) {
+    F32 r;
+    for (int i = 0; i < kWidth; ++i) r[i] = __builtin_sqrtf(x[i]);
+    return r;
+}
+
+/// std::max(x, 0.0f) as the standard defines it ((x < 0) ? 0 : x, so NaN and -0 pass through).
+WARPCHECK_LANE F32 max_zero(F32 x) { return select(x < 0.0f, F32{} + 0.0f, x); }
+
+/// safe_sqrt of sampling/math.h.
+WARPCHECK_LANE F32 safe_sqrt(F32 x) { return sqrt(max_zero(x)); }
+
+/// sin_from_cos of sampling/math.h.
+WARPCHECK_LANE F32 sin_from_cos(F32 z) { return safe_sqrt((1.0f - z) * (1.0f + z)); }
+
+/// The operations of detail::sin_cos_core on lanes of doubles.
+struct DoubleOps {
+    using Real = F64;
+    using Int = I64;
+    WARPCHECK_LANE static Int truncate(Real x) { return __builtin_convertvector(x, Int); }
+    WARPCHECK_LANE static Real to_real(Int k) { return __builtin_convertvector(k, Real); }
+    WARPCHECK_LANE static Real select(Int m, Real a, Real b) { return m ? a : b; }
+};
+
+struct SinCos {
+    F32 sin, cos;
+};
+
+/// warpcheck::sin_cos on lanes. Every lane must hold |phi| <= 10 (the scalar
+/// form defers to libm beyond; the lane form is only used where the warp's
+/// angles lie in [-pi/4, 2 pi]).
+WARPCHECK_LANE SinCos sin_cos(F32 phi) {
+    F64 s, c;
+    detail::sin_cos_core<DoubleOps>(to_f64(phi), s, c);
+    return {to_f32(s), to_f32(c)};
+}
+
+/// Sixteen PCG32 generators stepped together, lane l a copy of one Pcg32.
+struct Pcg32Lanes {
+    U64 state{}, inc{};
+
+    WARPCHECK_LANE U32 next_u32() {
+        const U64 old = state;
+        state = old * Pcg32::kMultiplier + inc;
+        const U32 xorshifted = __builtin_convertvector(((old >> 18u) ^ old) >> 27u, U32);
+        const U32 rot = __builtin_convertvector(old >> 59u, U32);
+        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
+    }
+    /// Pcg32::next_u64: the first draw is the high half.
+    WARPCHECK_LANE U64 next_u64() {
+        const U64 hi = __builtin_convertvector(next_u32(), U64);
+        return (hi << 32u) | __builtin_convertvector(next_u32(), U64);
+    }
+};
+
+/// uniform_float_from_bits (validate/check.h) on lanes: w * 2^-64 rounded down
+/// to a float. The 24 leading bits of w are cut from the double nearest to w
+/// (exact for w < 2^53) or to w >> 11 (exact for any w, and it keeps all of
+/// w's leading 24 bits when w >= 2^53), by clearing the low 29 of the
+/// double's 52 stored significand bits; then the power of two rescales.
+WARPCHECK_LANE F32 uniform_float_from_bits(U64 w) {
+    constexpr uint64_t kBig = uint64_t{1} << 53;
+    const U64 part = w >= kBig ? w >> 11u : w;
+    const F64 d = __builtin_convertvector(part, F64);
+    const F64 cut = std::bit_cast<F64>(std::bit_cast<U64>(d) & ~((uint64_t{1} << 29) - 1));
+    const F64 scale = w >= kBig ? F64{} + 0x1p-53 : F64{} + 0x1p-64;
+    return to_f32(cut) * to_f32(scale);
+}
+
+}  // namespace warpcheck::lanes
+
+#pragma GCC diagnostic pop
