@@ -118,7 +118,10 @@ void Binning::build_phi_table() {
     const double hi = std::max(ax, ay), lo = std::min(ax, ay);
     // t = lo / hi in [0, 1]; (0, 0) maps to t = 0, column 0.
     const double t = hi > 0.0 ? lo / hi : 0.0;
+    // The lookup lands on or next to the last edge <= t (its own rounding of
+    // t * scale may put it one too high); the comparisons settle it.
     int j = edge_lookup_[static_cast<std::size_t>(t * lookup_scale_)];
+    while (j > 0 && t < tan_edges_[static_cast<std::size_t>(j)]) --j;
     while (t >= tan_edges_[static_cast<std::size_t>(j) + 1]) ++j;
     const int quadrant_cols = 2 * octant_cols_;
     const int steep = ay > ax;  // above the diagonal: phi = pi/2 - atan(t) within the quadrant
@@ -313,6 +316,26 @@ void Binning::bin(std::span<const std::array<float, 3>> points, Histogram& hist,
 
 void Binning::bin(std::span<const DomainPoint> points, Histogram& hist, std::span<const unsigned char> zero_cells) const {
     bin_impl(points, hist, zero_cells);
+}
+
+std::optional<LanePlan> Binning::lane_plan() const {
+    if (octant_cols_ == 0 || octant_cols_ > LanePlan::kMaxOctantCols) return std::nullopt;
+    LanePlan plan;
+    if (domain_.is<SphericalCap>()) {
+        plan.sphere = true;
+        plan.len2_lo = (1.0 - tol_x_) * (1.0 - tol_x_);
+        plan.z_floor = domain_.as<SphericalCap>().z_min - tol_x_;
+    } else if (!domain_.is<Disk>()) {
+        return std::nullopt;
+    }
+    plan.len2_hi = (1.0 + tol_x_) * (1.0 + tol_x_);
+    plan.v0 = bounds_.v0;
+    plan.inv_dv = 1.0 / dv_;
+    plan.rows = rows_;
+    plan.cols = cols_;
+    plan.octant_cols = octant_cols_;
+    for (int k = 1; k < octant_cols_; ++k) plan.tan_edges[k - 1] = tan_edges_[static_cast<std::size_t>(k)];
+    return plan;
 }
 
 std::string Binning::u_label() const {

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,6 +31,20 @@ struct Histogram {
     uint64_t total() const;
     /// Adds another histogram of the same binning (integer sums: any order gives the same result).
     void merge(const Histogram& other);
+};
+
+/// What a vectorised binning loop needs (validate/lane_cells.h): the constants
+/// of Binning's own arithmetic for an azimuthal domain, so that the lanes put
+/// every ordinary sample in the cell bin() would.
+struct LanePlan {
+    static constexpr int kMaxOctantCols = 16;
+    bool sphere = false;        ///< SphericalCap (else Disk)
+    double len2_lo = 0.0, len2_hi = 0.0;  ///< bin_contains' bounds on |p|^2 (len2_lo unused on the disk)
+    double z_floor = 0.0;       ///< SphericalCap: z_min - slack
+    double v0 = 0.0, inv_dv = 1.0;
+    int rows = 1, cols = 1, octant_cols = 1;
+    /// tan(k du) for k = 1 .. octant_cols - 1 (column edges within an octant).
+    double tan_edges[kMaxOctantCols] = {};
 };
 
 class Binning {
@@ -85,6 +100,11 @@ public:
     void bin(std::span<const std::array<float, 3>> points, Histogram& hist,
              std::span<const unsigned char> zero_cells = {}) const;
     void bin(std::span<const DomainPoint> points, Histogram& hist, std::span<const unsigned char> zero_cells = {}) const;
+
+    /// The constants for validate/lane_cells.h, when this binning has them: an
+    /// azimuthal domain (disk, sphere, cap) with the octant table and at most
+    /// LanePlan::kMaxOctantCols columns per octant. Empty otherwise.
+    std::optional<LanePlan> lane_plan() const;
 
     /// Axis names for plots: "x", "phi", "cos theta", "r^2", "t = d/(s+d)".
     std::string u_label() const;

@@ -156,6 +156,14 @@ Chi2Outcome evaluate_chi2(const Binning& binning, Histogram histogram, CellInteg
 
 Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const SampleChunk& generate, const BatchPdf& pdf,
                           const Chi2Options& options, const ParallelFor& parallel_for) {
+    const SampleHistogram histogram = [&](std::span<const unsigned char> zero) {
+        return sample_histogram(binning, samples, options.chunk_size, generate, zero, parallel_for);
+    };
+    return run_chi2_test(binning, samples, histogram, pdf, options, parallel_for);
+}
+
+Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const SampleHistogram& histogram,
+                          const BatchPdf& pdf, const Chi2Options& options, const ParallelFor& parallel_for) {
     QuadratureOptions qo;
     qo.sample_count = samples;
     qo.accuracy_fraction = options.accuracy_fraction;
@@ -167,7 +175,7 @@ Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const Sample
     const double integration = since(start);
     const auto sampling_start = Clock::now();
     const std::vector<unsigned char> zero = zero_cells_of(integrals);
-    Histogram hist = sample_histogram(binning, samples, options.chunk_size, generate, zero, parallel_for);
+    Histogram hist = histogram(zero);
     const double sampling = since(sampling_start);
     const auto statistics_start = Clock::now();
     Chi2Outcome out = evaluate_chi2(binning, std::move(hist), std::move(integrals), samples, options);

@@ -20,6 +20,8 @@
 
 namespace warpcheck {
 
+struct LaneSampler;
+
 /// What a warp consumes.
 enum class InputKind {
     Uniform1D,  ///< one float in [0,1)
@@ -131,6 +133,10 @@ struct WarpCaseInfo {
     /// of 0 .. categories - 1 and the pdf is a pmf over them. A discrete case
     /// leaves `domain` unset (0 here means a continuous case).
     std::size_t categories = 0;
+    /// Built-in 2D warps only: the warp's lane form (validate/lane_sampling.h),
+    /// which the chi-square check uses to draw, warp and bin 16 samples at a
+    /// time. It must give the same bits as sample(); leave it empty otherwise.
+    const LaneSampler* lanes = nullptr;
 };
 
 class WarpCase {

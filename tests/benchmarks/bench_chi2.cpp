@@ -35,6 +35,7 @@
 #include "sampling/hemisphere.h"
 #include "validate/check.h"
 #include "validate/checks/checks.h"
+#include "validate/lane_sampling.h"
 #include "validate/thread_pool.h"
 #include "validate/warp_case.h"
 
@@ -182,6 +183,9 @@ uint64_t fused_scalar_loop(uint64_t samples, std::vector<uint64_t>& counts) {
     return outside;
 }
 
+// Draw + warp + bin on one thread, by the path `path` (0: the scalar chunk path
+// that other 2D warps take; 1: the lane path the check takes, chosen at run
+// time; 2: the lane path's portable build), beside the plain fused loop.
 void BM_DrawWarpBinPerCore(benchmark::State& state) {
     Fixture f(1);
     const CheckContext ctx = f.context();
@@ -192,18 +196,25 @@ void BM_DrawWarpBinPerCore(benchmark::State& state) {
         draw_inputs(rng, f.warp->input_kind(), inputs);
         f.warp->sample(inputs, out);
     };
+    const auto chunk_rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
+    const int path = static_cast<int>(state.range(0));
     std::vector<uint64_t> counts;
     bench::run_paired(
         state,
         [&] {
-            chi2::Histogram h = chi2::sample_histogram(binning, kSamples, 4096, generate, {}, f.parallel());
+            chi2::Histogram h =
+                path == 0 ? chi2::sample_histogram(binning, kSamples, 4096, generate, {}, f.parallel())
+                          : lane_histogram(binning, kSamples, 4096, chunk_rng, *f.warp->info().lanes, {}, f.parallel(),
+                                           path == 1 ? LanePath::Auto : LanePath::Portable);
             benchmark::DoNotOptimize(h.counts.data());
         },
         [&] { benchmark::DoNotOptimize(fused_scalar_loop(kSamples, counts)); });
     state.counters["subject_Msamples_per_s"] = 1e-3 * kSamples / state.counters["subject_min_ms"];
     state.counters["reference_Msamples_per_s"] = 1e-3 * kSamples / state.counters["reference_min_ms"];
+    state.SetLabel(path == 0 ? "scalar chunks" : path == 1 ? std::string("lanes, ") + lane_path_name(LanePath::Auto)
+                                                           : "lanes, portable");
 }
-BENCHMARK(BM_DrawWarpBinPerCore)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
+BENCHMARK(BM_DrawWarpBinPerCore)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
 
 }  // namespace
 }  // namespace warpcheck

@@ -5,6 +5,7 @@
 #include "sampling/disk.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sphere.h"
+#include "validate/lane_sampling.h"
 #include "validate/registry.h"
 
 namespace warpcheck {
@@ -45,7 +46,8 @@ void register_geometric_cases(Registry& registry) {
     registry.add_case(
         make_warp_case({.family = "uniform_disk_concentric",
                         .description = "uniform on the unit disk, Shirley-Chiu concentric map; pdf 1/pi per area",
-                        .domain = Domain::unit_disk()},
+                        .domain = Domain::unit_disk(),
+                        .lanes = &builtin_lanes::uniform_disk_concentric()},
                        UniformDiskConcentric{}));
     MonotoneMarginal radius;
     radius.label = "r";
@@ -54,17 +56,20 @@ void register_geometric_cases(Registry& registry) {
     registry.add_case(make_warp_case({.family = "uniform_disk_polar",
                                       .description = "uniform on the unit disk, r = sqrt(u.x); pdf 1/pi per area",
                                       .domain = Domain::unit_disk(),
-                                      .views = {radius}},
+                                      .views = {radius},
+                                      .lanes = &builtin_lanes::uniform_disk_polar()},
                                      UniformDiskPolar{}));
     registry.add_case(make_warp_case({.family = "uniform_hemisphere",
                                       .description = "uniform over the hemisphere; pdf 1/(2 pi) per solid angle",
                                       .domain = Domain::hemisphere(),
-                                      .views = {cos_theta_marginal(true, 0.0, [](double) { return 1.0; }), azimuth()}},
+                                      .views = {cos_theta_marginal(true, 0.0, [](double) { return 1.0; }), azimuth()},
+                                      .lanes = &builtin_lanes::uniform_hemisphere()},
                                      UniformHemisphere{}));
     registry.add_case(
         make_warp_case({.family = "cosine_hemisphere",
                         .description = "cosine-weighted hemisphere via the concentric disk; pdf cos(theta)/pi",
-                        .domain = Domain::hemisphere()},
+                        .domain = Domain::hemisphere(),
+                        .lanes = &builtin_lanes::cosine_hemisphere()},
                        CosineHemisphere{}));
     for (double n : {0.5, 4.0, 50.0}) {
         registry.add_case(make_warp_case(
@@ -78,7 +83,8 @@ void register_geometric_cases(Registry& registry) {
     registry.add_case(make_warp_case({.family = "uniform_sphere",
                                       .description = "uniform over the sphere; pdf 1/(4 pi) per solid angle",
                                       .domain = Domain::sphere(),
-                                      .views = {cos_theta_marginal(false, -1.0, [](double) { return 0.5; }), azimuth()}},
+                                      .views = {cos_theta_marginal(false, -1.0, [](double) { return 0.5; }), azimuth()},
+                                      .lanes = &builtin_lanes::uniform_sphere()},
                                      UniformSphere{}));
     for (double c : {-0.5, 0.3, 0.99}) {
         const UniformCone cone(static_cast<float>(c));

@@ -25,6 +25,7 @@
 #include "validate/checks/evidence.h"
 #include "validate/checks/line_resolution.h"
 #include "validate/checks/power_level.h"
+#include "validate/lane_sampling.h"
 
 namespace warpcheck {
 namespace {
@@ -129,6 +130,18 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
         for (std::size_t i = 0; i < points.size(); ++i) x[i] = to_warp_output(points[i]);
         warp.pdf(x, density);
     };
+    if (warp.info().lanes && kind == InputKind::Uniform2D && binning.lane_plan()) {
+        // The same histogram, 16 samples at a time (validate/lane_sampling.h).
+        const chi2::SampleHistogram lanes = [&](std::span<const unsigned char> zero) {
+            const auto chunk_rng = [&](uint64_t chunk) {
+                ctx.throw_if_cancelled();
+                return ctx.chunk_rng(chunk);
+            };
+            return lane_histogram(binning, ctx.options().samples, options.chunk_size, chunk_rng, *warp.info().lanes,
+                                  zero, ctx.executor());
+        };
+        return chi2::run_chi2_test(binning, ctx.options().samples, lanes, pdf, options, ctx.executor());
+    }
     return chi2::run_chi2_test(binning, ctx.options().samples, generate, pdf, options, ctx.executor());
 }
 
@@ -137,9 +150,9 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
 /// integrate to 1 within the quadrature's error bound) are decided by the
 /// engine and fail here; the p-value is judged by the runner at the
 /// Sidak-corrected level of the whole run (its size: the family-wise alpha).
-void judge(CheckResult& r, const chi2::Chi2Outcome& o) {
+void judge(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual& local) {
     // Pearson's statistic and the largest cell residual, one p-value (chi2/min_p.h).
-    const double local_p = chi2::largest_cell_residual(o.histogram.counts, o.expected, r.samples).p_value;
+    const double local_p = local.p_value;
     if (o.dof() >= 1)
         r.p_value = chi2::weighted_min_p({o.p_value(), local_p}, {1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare});
     r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}; 90% power: tilt {:.2g}", o.statistic(), o.dof(),
@@ -156,7 +169,8 @@ void judge(CheckResult& r, const chi2::Chi2Outcome& o) {
     }
 }
 
-void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& binning, const RunOptions& options) {
+void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual& local,
+                 const chi2::Binning& binning, const RunOptions& options) {
     const uint64_t samples = options.samples;
     r.samples = samples;
     const chi2::Histogram& h = o.histogram;
@@ -188,7 +202,6 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning
     // The localised statistic (chi2/local_residual.h) and the stated power: the
     // noncentrality, and the tilt of a marginal (chi2/power.h), that Pearson's
     // statistic detects 90% of the time at the planned level (power_level.h).
-    const chi2::LocalResidual local = chi2::largest_cell_residual(h.counts, o.expected, samples);
     const double level = (1.0 - chi2::kLocalLevelShare) * power_level(options, 1);
     const double lambda = chi2::pearson_noncentrality_for_power(o.dof(), level);
     r.figures.insert(r.figures.end(), {{"local_max_residual", local.residual},
@@ -223,8 +236,10 @@ public:
         const chi2::Binning binning(warp.domain(), line_resolution(warp));
         const chi2::Chi2Outcome outcome = compute(warp, ctx, binning);
         CheckResult r;
-        add_figures(r, outcome, binning, ctx.options());
-        judge(r, outcome);
+        const chi2::LocalResidual local =
+            chi2::largest_cell_residual(outcome.histogram.counts, outcome.expected, ctx.options().samples);
+        add_figures(r, outcome, local, binning, ctx.options());
+        judge(r, outcome, local);
         add_plots(r, outcome, binning, warp.name());
         r.phases = {{"integration", outcome.integration_seconds},
                     {"sampling+binning", outcome.sampling_seconds},
