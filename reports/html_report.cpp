@@ -326,6 +326,8 @@ void append_details(std::string& html, const RunResult& run, std::size_t index) 
     if (r.level) fact("level", format_probability(*r.level));
     if (r.samples > 0) fact("samples", format_grouped(static_cast<double>(r.samples)));
     fact("time", format_seconds(r.seconds));
+    // Where that time went (--timings prints the same): integration, sampling, ...
+    for (const PhaseTime& p : r.phases) fact(p.phase, format_seconds(p.seconds));
     fact("stream seed", fmt::format("{:#x}", r.stream_seed));
     fact("sequence", fmt::format("{:#x}", r.stream_sequence));
     html += "</div>\n";

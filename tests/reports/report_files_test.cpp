@@ -201,6 +201,15 @@ TEST(HostileText, IsEscapedInHtmlAndJunit) {
     EXPECT_EQ(count_of(junit, "<testsuite "), 5u);  // one per check
 }
 
+TEST(HtmlReport, ShowsWhereACheckSpentItsTime) {
+    RunResult run = sample_everything();
+    run.results.front().phases = {{"integration", 0.25}, {"sampling+binning", 1.5}};
+    const std::string html = render_html(run);
+    EXPECT_THAT(html, HasSubstr("integration <b>"));
+    EXPECT_THAT(html, HasSubstr("sampling+binning <b>"));
+    EXPECT_THAT(xml_problem(html), IsEmpty());
+}
+
 TEST(EmptyRun, StillMakesValidReports) {
     RunResult run;
     run.info = sample_info();
