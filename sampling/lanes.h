@@ -116,8 +116,8 @@ WARPCHECK_LANE F32 uniform_float_from_bits(U64 w) {
     const U64 part = w >= kBig ? w >> 11u : w;
     const F64 d = __builtin_convertvector(part, F64);
     const F64 cut = std::bit_cast<F64>(std::bit_cast<U64>(d) & ~((uint64_t{1} << 29) - 1));
-    const F64 scale = w >= kBig ? F64{} + 0x1p-53 : F64{} + 0x1p-64;
-    return to_f32(cut) * to_f32(scale);
+    // 24 significant bits times a power of two >= 2^-64: exact in double and in float.
+    return to_f32(cut * (w >= kBig ? F64{} + 0x1p-53 : F64{} + 0x1p-64));
 }
 
 }  // namespace warpcheck::lanes

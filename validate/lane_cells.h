@@ -34,12 +34,13 @@ WARPCHECK_LANE lanes::I64 lane_cells(const chi2::LanePlan& plan, lanes::F32 xf, 
     const F64 t = hi > 0.0 ? lo / (hi > 0.0 ? hi : F64{} + 1.0) : F64{};
     I64 j = zero;
     for (int k = 0; k + 1 < plan.octant_cols; ++k) j += t >= plan.tan_edges[k] ? one : zero;
+    // Quadrant and octant by selects: above the diagonal the octant's columns run
+    // backwards; (+,+) q, (-,+) 2Q-1-q, (-,-) 2Q+q, (+,-) 4Q-1-q.
     const int64_t quadrant_cols = 2 * int64_t{plan.octant_cols};
-    const I64 steep = ay > ax ? one : zero;
-    const I64 q = j + steep * (quadrant_cols - 1 - 2 * j);
-    const I64 sx = x < 0.0 ? one : zero, sy = y < 0.0 ? one : zero;
-    const I64 mirrored = sx ^ sy;
-    const I64 col = q + mirrored * (2 * quadrant_cols - 1 - 2 * q) + sy * 2 * quadrant_cols;
+    const I64 q = ay > ax ? (quadrant_cols - 1) - j : j;
+    const I64 mirrored_q = (2 * quadrant_cols - 1) - q;
+    const I64 col = x < 0.0 ? (y < 0.0 ? q + 2 * quadrant_cols : mirrored_q)
+                            : (y < 0.0 ? mirrored_q + 2 * quadrant_cols : q);
     // The row, as clamp_index((v - v0) / dv, rows): NaN and negatives to 0, at most rows - 1.
     F64 f = (v - plan.v0) * plan.inv_dv;
     f = f >= 0.0 ? f : F64{};
