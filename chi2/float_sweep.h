@@ -110,6 +110,9 @@ struct SweepSummary {
 struct SweepLimits {
     uint64_t sort_limit = uint64_t{1} << 26;  ///< recount by sorting up to this many inputs (4 bytes each)
     int window_binades = 32;                  ///< binades per counting window: 2^23 4-byte counters each
+    /// Take the portable loops even where the CPU has AVX-512 (tests check
+    /// that both give the same counts).
+    bool portable = false;
 };
 
 /// Sweeps f over inputs [0, count), count <= 2^32, against [a,b) (finite a < b).
