@@ -257,41 +257,50 @@ __attribute__((target("avx512f"))) inline __m512i float_keys_avx512(__m512i bits
 __attribute__((target("avx512f,popcnt"))) std::size_t borders_avx512(const float* x, std::size_t n, uint32_t base,
                                                                      uint32_t* positions, uint32_t* bits) {
     const __m512i lanes = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    __m512i previous = _mm512_set1_epi32(static_cast<int>(float_to_bits(x[-1])));
     std::size_t count = 0;
     __m512i index = _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(base)), lanes);  // of x[i]
     const __m512i sixteen = _mm512_set1_epi32(16), sixty_four = _mm512_set1_epi32(64);
-    const auto emit = [&](__mmask16 m, __m512i v, __m512i at) __attribute__((target("avx512f,popcnt"))) {
+    const auto emit = [&](__mmask16 m, __m512i v, __m512i at, std::size_t i) __attribute__((target("avx512f,popcnt"))) {
+        const auto mask = static_cast<unsigned>(m);
+        if ((mask & (mask - 1)) == 0) {
+            // One border (runs of 16 and more): two scalar stores.
+            const auto j = static_cast<uint32_t>(i) + static_cast<uint32_t>(std::countr_zero(mask));
+            positions[count] = base + j;
+            bits[count] = float_to_bits(x[j]);
+            ++count;
+            return;
+        }
         // Compress in a register and store all 16 lanes: the store form of
         // vpcompressd is slow on some cores.
         _mm512_storeu_si512(positions + count, _mm512_maskz_compress_epi32(m, at));
         _mm512_storeu_si512(bits + count, _mm512_maskz_compress_epi32(m, v));
-        count += static_cast<std::size_t>(std::popcount(static_cast<unsigned>(m)));
+        count += static_cast<std::size_t>(std::popcount(mask));
     };
     for (std::size_t i = 0; i < n; i += 64) {
+        // No border among these 64 outputs iff all of them equal x[i - 1]:
+        // three bitwise ops and one mask test, no lane shifts.
+        const __m512i previous = _mm512_set1_epi32(static_cast<int>(float_to_bits(x[i - 1])));
         const __m512i v0 = _mm512_load_si512(x + i), v1 = _mm512_load_si512(x + i + 16);
         const __m512i v2 = _mm512_load_si512(x + i + 32), v3 = _mm512_load_si512(x + i + 48);
-        // Each lane against the one before it ([previous[15], v[0..14]]) by a
-        // xor: one mask test (the port that also shifts lanes) per 64 outputs.
-        const __m512i d0 = _mm512_xor_si512(v0, _mm512_maskz_alignr_epi32(0xffff, v0, previous, 15));
-        const __m512i d1 = _mm512_xor_si512(v1, _mm512_maskz_alignr_epi32(0xffff, v1, v0, 15));
-        const __m512i d2 = _mm512_xor_si512(v2, _mm512_maskz_alignr_epi32(0xffff, v2, v1, 15));
-        const __m512i d3 = _mm512_xor_si512(v3, _mm512_maskz_alignr_epi32(0xffff, v3, v2, 15));
-        previous = v3;
-        const __m512i any = _mm512_or_si512(_mm512_or_si512(d0, d1), _mm512_or_si512(d2, d3));
+        const __m512i d01 = _mm512_ternarylogic_epi32(v0, v1, previous, 0x7e);  // (v0 ^ p) | (v1 ^ p)
+        const __m512i d23 = _mm512_ternarylogic_epi32(v2, v3, previous, 0x7e);
+        const __m512i any = _mm512_or_si512(d01, d23);
         if (_mm512_test_epi32_mask(any, any) == 0) {
             index = _mm512_add_epi32(index, sixty_four);
             continue;
         }
-        const __mmask16 m0 = _mm512_test_epi32_mask(d0, d0), m1 = _mm512_test_epi32_mask(d1, d1);
-        const __mmask16 m2 = _mm512_test_epi32_mask(d2, d2), m3 = _mm512_test_epi32_mask(d3, d3);
-        if (m0) emit(m0, v0, index);
+        // Each lane against the one before it: [previous[15], v[0..14]].
+        const __mmask16 m0 = _mm512_cmpneq_epu32_mask(v0, _mm512_maskz_alignr_epi32(0xffff, v0, previous, 15));
+        const __mmask16 m1 = _mm512_cmpneq_epu32_mask(v1, _mm512_maskz_alignr_epi32(0xffff, v1, v0, 15));
+        const __mmask16 m2 = _mm512_cmpneq_epu32_mask(v2, _mm512_maskz_alignr_epi32(0xffff, v2, v1, 15));
+        const __mmask16 m3 = _mm512_cmpneq_epu32_mask(v3, _mm512_maskz_alignr_epi32(0xffff, v3, v2, 15));
+        if (m0) emit(m0, v0, index, i);
         index = _mm512_add_epi32(index, sixteen);
-        if (m1) emit(m1, v1, index);
+        if (m1) emit(m1, v1, index, i + 16);
         index = _mm512_add_epi32(index, sixteen);
-        if (m2) emit(m2, v2, index);
+        if (m2) emit(m2, v2, index, i + 32);
         index = _mm512_add_epi32(index, sixteen);
-        if (m3) emit(m3, v3, index);
+        if (m3) emit(m3, v3, index, i + 48);
         index = _mm512_add_epi32(index, sixteen);
     }
     return count;
