@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -125,6 +126,11 @@ struct RunCounter {
     const SweepFrame* frame = nullptr;
     std::array<GroupCounts, kGroups> groups{};
     std::array<uint64_t, kGroups> group_inputs_all{};  // inputs per group, outside outputs included
+    // Binades where outputs may lie that group_inputs_all does not show: once a
+    // chunk is known to be non-monotone its runs are no longer counted (the
+    // recount redoes them); then group_inputs_all holds a sample and this the
+    // binades between each block's smallest and largest output.
+    std::array<uint8_t, kGroups> reach{};
     uint64_t outside_distinct = 0, outside_inputs = 0;
     std::vector<std::pair<uint32_t, uint64_t>> outside;  // smallest keys, sorted
 
@@ -180,6 +186,7 @@ struct RunCounter {
         for (std::size_t g = 0; g < kGroups; ++g) {
             groups[g].merge(o.groups[g]);
             group_inputs_all[g] += o.group_inputs_all[g];
+            reach[g] |= o.reach[g];
         }
         outside_distinct += o.outside_distinct;
         outside_inputs += o.outside_inputs;
@@ -413,8 +420,11 @@ public:
                 have_head_ = true;
                 start = 1;
             }
-            // Runs start..count-1 end in this block; run `count` goes on.
-            add_runs(positions.data() + start, keys.data() + start, count - start);
+            // Runs start..count-1 end in this block; run `count` goes on. Once
+            // the chunk has stepped down, the whole sweep will be recounted:
+            // only the steps down and where outputs lie are kept.
+            if (ends.steps_down == 0) add_runs(positions.data() + start, keys.data() + start, count - start);
+            else note_reach(keys.data(), count);
             positions[0] = positions[count];
             keys[0] = keys[count];
             values[-1] = values[len - 1];
@@ -455,6 +465,18 @@ private:
             positions[kept] = positions[k];
         }
         return kept;
+    }
+
+    // For the recount of a non-monotone sweep (keys[0..count]): the binades
+    // between the smallest and the largest key, and a sample of where they lie.
+    void note_reach(const uint32_t* keys, std::size_t count) {
+        uint32_t lo = keys[0], hi = keys[0];
+        for (std::size_t k = 1; k <= count; ++k) {
+            lo = std::min(lo, keys[k]);
+            hi = std::max(hi, keys[k]);
+        }
+        for (int g = group_of(lo); g <= group_of(hi); ++g) out_.reach[static_cast<std::size_t>(g)] = 1;
+        for (std::size_t k = 0; k <= count; k += 16) ++out_.group_inputs_all[static_cast<std::size_t>(group_of(keys[k]))];
     }
 
     // Adds runs i in [0, n): key keys[i], multiplicity positions[i + 1] - positions[i].
@@ -837,82 +859,276 @@ void recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& pa
     }
 }
 
-// Keys of one block split by their slice of the window's counters (radix
-// partitioning): slice s holds window indices [s, s + 1) * kSliceKeys.
-constexpr std::size_t kSliceBits = 20;  // 2^20 counters (4 MiB) a slice
-constexpr std::size_t kPartitionBlock = std::size_t{1} << 16;
+// The window recount (see the header): one-byte counters over the key ranges
+// of a window's binades, filled by radix partitioning in rounds of
+// kRoundChunks chunks. First each chunk of the round turns its outputs into
+// counter indices split by the slice of the counters they fall in (a slice is
+// 1/256 of the window, at most 2 MiB: within L2); then each slice adds the
+// parts of every chunk of the round, so the increments of a slice stay in
+// cache, and no two threads touch one counter (no locks, no atomics). A
+// counter that wraps past 255 records the wrap in its slice's list: a count is
+// its counter plus 256 per recorded wrap, so the lists hold at most count / 256
+// entries.
+constexpr std::size_t kRoundChunks = 16;  // 16 chunks' indices: 256 MiB
+// Keys outside the first window kept per chunk for counting by sorting: at
+// most 2^24 (64 MiB) over 2^32 inputs. A chunk with more makes the recount
+// count the remaining binades in further windows instead.
+constexpr std::size_t kStraysPerChunk = std::size_t{1} << 14;
 
-struct WindowCounters {
-    std::vector<uint32_t> counts;
-    std::vector<std::mutex> slice_locks;
-    std::array<int, kGroups> slot{};  // the group's place in the window, -1 if not in it
-    explicit WindowCounters(std::size_t groups)
-        : counts(groups << 23), slice_locks(std::max<std::size_t>(1, (groups << 23) >> kSliceBits)) {}
+struct Window {
+    // Keys [lo, lo + size) are counted at counters [base, base + size).
+    struct Range {
+        uint32_t lo = 0, size = 0, base = 0;
+    };
+    std::vector<Range> ranges;
+    std::vector<uint8_t> counts;
+    int slice_shift = 16;
+    std::size_t slices = 1;
+    std::vector<std::vector<uint32_t>> wraps;  // per slice
+
+    // The key ranges of these binades (in increasing order), adjacent ones joined.
+    explicit Window(const std::vector<int>& groups) {
+        uint32_t base = 0;
+        for (const int g : groups) {
+            const auto lo = static_cast<uint32_t>(group_key_lo(g));
+            const auto size = static_cast<uint32_t>(group_key_hi(g) - group_key_lo(g));
+            if (!ranges.empty() && ranges.back().lo + ranges.back().size == lo) ranges.back().size += size;
+            else ranges.push_back({lo, size, base});
+            base += size;
+        }
+        counts.assign(base, 0);
+        while ((uint64_t{base} >> slice_shift) > 256) ++slice_shift;
+        slices = (uint64_t{base} + (uint64_t{1} << slice_shift) - 1) >> slice_shift;
+        wraps.resize(slices);
+    }
 };
 
-// Counts the keys of one chunk that fall in the window.
-void count_chunk_in_window(const FloatBlockFn& f, uint64_t first, uint64_t n, WindowCounters& w) {
-    const std::size_t slices = w.slice_locks.size();
-    const std::size_t slice_shift = slices > 1 ? kSliceBits : 31;
-    std::vector<float> values(kBlockSize);
-    std::vector<uint32_t> keys(kBlockSize), index(kPartitionBlock), parted(kPartitionBlock);
-    std::vector<uint32_t> offsets(slices + 1);
-    for (uint64_t done = 0; done < n;) {
-        std::size_t kept = 0;  // window indices of this partition block
-        for (; kept + kBlockSize <= kPartitionBlock && done < n; done += kBlockSize) {
-            const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
-            f(first + done, len, values.data());
-            to_keys(values.data(), len, keys.data());
-            for (std::size_t i = 0; i < len; ++i) {
-                const int g = group_of(keys[i]);
-                const int sl = w.slot[static_cast<std::size_t>(g)];
-                index[kept] = (static_cast<uint32_t>(sl) << 23) + (keys[i] - static_cast<uint32_t>(group_key_lo(g)));
-                kept += sl >= 0;
+// One chunk of a round: the counter indices of its outputs that fall in the
+// window, split by slice into parted (offsets[s] .. offsets[s + 1]); with
+// `strays`, keeps the other outputs there (up to kStraysPerChunk; beyond, sets
+// strays_overflow).
+void partition_chunk(const FloatBlockFn& f, uint64_t first, uint64_t n, const Window& w, uint32_t* parted,
+                     uint32_t* offsets, std::vector<uint32_t>* strays, bool& strays_overflow) {
+    const int slice_shift = w.slice_shift;
+    // Scratch reused by the thread across chunks (no page faults per chunk).
+    thread_local std::vector<float> values;
+    thread_local std::vector<uint32_t> keys, index, fill;
+    values.resize(kBlockSize);
+    keys.resize(kBlockSize);
+    index.resize(kChunkSize);
+    fill.resize(w.slices);
+    const Window::Range* const ranges = w.ranges.data();
+    const std::size_t range_count = w.ranges.size();
+    const Window::Range first_range = w.ranges.front();
+    std::fill(offsets, offsets + w.slices + 1, 0u);
+    std::size_t kept = 0;
+    for (uint64_t done = 0; done < n; done += kBlockSize) {
+        const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
+        f(first + done, len, values.data());
+        to_keys(values.data(), len, keys.data());
+        for (std::size_t i = 0; i < len; ++i) {
+            const uint32_t key = keys[i];
+            uint32_t at = key - first_range.lo;
+            if (at < first_range.size) {
+                at += first_range.base;
+            } else {
+                std::size_t r = 1;
+                while (r < range_count && key - ranges[r].lo >= ranges[r].size) ++r;
+                if (r == range_count) {
+                    if (strays == nullptr) continue;
+                    if (strays->size() < kStraysPerChunk) strays->push_back(key);
+                    else strays_overflow = true;
+                    continue;
+                }
+                at = ranges[r].base + (key - ranges[r].lo);
             }
+            index[kept++] = at;
+            ++offsets[(at >> slice_shift) + 1];
         }
-        std::fill(offsets.begin(), offsets.end(), 0u);
-        for (std::size_t i = 0; i < kept; ++i) ++offsets[(index[i] >> slice_shift) + 1];
-        for (std::size_t s = 1; s <= slices; ++s) offsets[s] += offsets[s - 1];
-        std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-        for (std::size_t i = 0; i < kept; ++i) parted[fill[index[i] >> slice_shift]++] = index[i];
-        for (std::size_t s = 0; s < slices; ++s) {
-            if (offsets[s] == offsets[s + 1]) continue;
-            std::lock_guard lock(w.slice_locks[s]);
-            for (uint32_t i = offsets[s]; i < offsets[s + 1]; ++i) ++w.counts[parted[i]];
-        }
+    }
+    for (std::size_t s = 1; s <= w.slices; ++s) offsets[s] += offsets[s - 1];
+    for (std::size_t s = 0; s < w.slices; ++s) fill[s] = offsets[s];
+    for (std::size_t i = 0; i < kept; ++i) parted[fill[index[i] >> slice_shift]++] = index[i];
+}
+
+// Counts every chunk's outputs in the window, round by round (see above).
+void count_in_window(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, Window& w,
+                     std::vector<std::vector<uint32_t>>* strays, std::vector<uint8_t>& overflow) {
+    const auto chunks = static_cast<std::size_t>(chunk_count(count));
+    const std::size_t round = std::min(kRoundChunks, chunks);
+    std::vector<uint32_t> parted(round * kChunkSize);
+    std::vector<uint32_t> offsets(round * (w.slices + 1));
+    for (std::size_t from = 0; from < chunks; from += round) {
+        const std::size_t here = std::min(round, chunks - from);
+        parallel_for(here, [&](std::size_t k) {
+            const std::size_t c = from + k;
+            const uint64_t first = c * kChunkSize;
+            bool over = false;
+            partition_chunk(f, first, std::min(kChunkSize, count - first), w, parted.data() + k * kChunkSize,
+                            offsets.data() + k * (w.slices + 1), strays != nullptr ? &(*strays)[c] : nullptr, over);
+            overflow[c] = over;
+        });
+        parallel_for(w.slices, [&](std::size_t s) {
+            uint8_t* const counts = w.counts.data();
+            std::vector<uint32_t>& wraps = w.wraps[s];
+            for (std::size_t k = 0; k < here; ++k) {
+                const uint32_t* part = parted.data() + k * kChunkSize;
+                const uint32_t* off = offsets.data() + k * (w.slices + 1);
+                for (uint32_t i = off[s]; i < off[s + 1]; ++i)
+                    if (++counts[part[i]] == 0) wraps.push_back(part[i]);
+            }
+        });
     }
 }
 
-// Exact recount of a non-monotone f: counting passes over windows of the
-// binades it touched (see the header for the method and its memory bound).
-void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for,
-                     const std::array<uint64_t, kGroups>& touched, int window_binades, RunCounter& total) {
-    const auto chunks = static_cast<std::size_t>(chunk_count(count));
-    std::vector<int> touched_groups;
-    for (int g = 0; g < kGroups; ++g)
-        if (touched[static_cast<std::size_t>(g)] > 0) touched_groups.push_back(g);
-    const auto per_window = static_cast<std::size_t>(std::max(window_binades, 1));
-    WindowCounters w(std::min(per_window, touched_groups.size()));
-    for (std::size_t first_group = 0; first_group < touched_groups.size(); first_group += per_window) {
-        const std::size_t groups_here = std::min(per_window, touched_groups.size() - first_group);
-        w.slot.fill(-1);
-        for (std::size_t k = 0; k < groups_here; ++k)
-            w.slot[static_cast<std::size_t>(touched_groups[first_group + k])] = static_cast<int>(k);
-        std::fill(w.counts.begin(), w.counts.end(), 0u);
-        parallel_for(chunks, [&](std::size_t c) {
-            const uint64_t first = c * kChunkSize;
-            count_chunk_in_window(f, first, std::min(kChunkSize, count - first), w);
-        });
-        // A non-monotone f has two outputs at least, so no count reaches 2^32.
-        for (std::size_t k = 0; k < groups_here; ++k) {
-            const int g = touched_groups[first_group + k];
-            const auto lo = static_cast<uint32_t>(group_key_lo(g));
-            const uint64_t size = group_key_hi(g) - group_key_lo(g);
-            for (uint64_t i = 0; i < size; ++i) {
-                const uint32_t m = w.counts[(k << 23) + i];
-                if (m != 0) total.add(lo + static_cast<uint32_t>(i), m);
-            }
+// Adds counters [from, from + n) of a window range (all in binade g) to out,
+// key by key in increasing order: inside [a,b) and past the binade's first
+// float, straight into the binade's counts (ties go to the smaller key, as in
+// GroupCounts::merge); any other key through RunCounter::add.
+void add_counts(const Window& w, const Window::Range& r, uint32_t from, uint32_t n, int g,
+                const std::vector<uint32_t>& wraps, RunCounter& out) {
+    const SweepFrame& frame = *out.frame;
+    const uint64_t fast_lo = std::max<uint64_t>(group_key_lo(g) + 1, frame.key_a);
+    const uint64_t fast_hi = std::min<uint64_t>(group_key_hi(g), frame.key_b);
+    const uint64_t ceiling = frame.ideal_ceiling[static_cast<std::size_t>(g)];
+    const uint32_t flip = g >= 256 ? 0u : 1u;  // a negative key is ~bits
+    GroupCounts c;
+    uint64_t* const mins[2] = {&c.min_even, &c.min_odd};
+    uint64_t* const maxs[2] = {&c.max_even, &c.max_odd};
+    auto next_wrap = std::lower_bound(wraps.begin(), wraps.end(), r.base + from);
+    for (uint32_t i = from; i < from + n; ++i) {
+        const uint32_t at = r.base + i;
+        uint64_t m = w.counts[at];
+        for (; next_wrap != wraps.end() && *next_wrap == at; ++next_wrap) m += 256;
+        if (m == 0) continue;
+        const uint32_t key = r.lo + i;
+        if (key < fast_lo || key >= fast_hi) {
+            out.add(key, m);
+            continue;
         }
+        if (c.distinct == 0) c.lo_key = key;
+        c.hi_key = key;
+        ++c.distinct;
+        c.inputs += m;
+        const uint32_t odd = (key ^ flip) & 1u;
+        if (m < *mins[odd]) {
+            *mins[odd] = m;
+            c.min_key[odd] = key;
+        }
+        if (m > *maxs[odd]) {
+            *maxs[odd] = m;
+            c.max_key[odd] = key;
+        }
+        if (m >= ceiling) {
+            ++c.n_ge;
+            c.s_ge += m;
+        } else {
+            ++c.n_lt;
+            c.s_lt += m;
+        }
+    }
+    out.group_inputs_all[static_cast<std::size_t>(g)] += c.inputs;
+    out.groups[static_cast<std::size_t>(g)].merge(c);
+}
+
+// Adds the window's counts to total: pieces of 2^20 counters within a binade
+// in parallel, merged in key order.
+void add_window_counts(Window& w, const ParallelFor& parallel_for, RunCounter& total) {
+    std::vector<uint32_t> wraps;
+    for (auto& list : w.wraps) {
+        wraps.insert(wraps.end(), list.begin(), list.end());
+        std::vector<uint32_t>().swap(list);
+    }
+    std::sort(wraps.begin(), wraps.end());
+    struct Piece {
+        const Window::Range* range;
+        uint32_t from, n;
+        int group;
+    };
+    std::vector<Piece> pieces;
+    constexpr uint32_t kPiece = uint32_t{1} << 20;
+    for (const Window::Range& r : w.ranges) {
+        for (uint32_t i = 0; i < r.size;) {
+            const int g = group_of(r.lo + i);
+            const auto group_end = static_cast<uint32_t>(group_key_hi(g) - r.lo);
+            const uint32_t n = std::min({kPiece, r.size - i, group_end - i});
+            pieces.push_back({&r, i, n, g});
+            i += n;
+        }
+    }
+    std::vector<std::unique_ptr<RunCounter>> parts(pieces.size());
+    parallel_for(pieces.size(), [&](std::size_t p) {
+        parts[p] = std::make_unique<RunCounter>(*total.frame);
+        add_counts(w, *pieces[p].range, pieces[p].from, pieces[p].n, pieces[p].group, wraps, *parts[p]);
+    });
+    for (auto& part : parts) total.merge(*part);
+}
+
+// Exact recount of a non-monotone f with more inputs than the sort limit.
+// `mass` ranks the binades (inputs seen there, or a sample of them); `reach`
+// marks every binade an output may lie in. The first window takes the
+// window_binades binades of most mass; the outputs outside it are kept and
+// counted by sorting, unless there are too many: then the remaining binades
+// are counted in further windows (one more run of f each).
+void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for,
+                     const std::array<uint64_t, kGroups>& mass, const std::array<uint8_t, kGroups>& reach,
+                     int window_binades, RunCounter& total) {
+    const auto chunks = static_cast<std::size_t>(chunk_count(count));
+    std::vector<int> candidates;
+    for (int g = 0; g < kGroups; ++g)
+        if (mass[static_cast<std::size_t>(g)] > 0 || reach[static_cast<std::size_t>(g)]) candidates.push_back(g);
+    const auto per_window = static_cast<std::size_t>(std::max(window_binades, 1));
+    // The first window: most mass first, then by binade; no more binades than
+    // it takes to leave a quarter of the strays' room outside (a smaller
+    // window keeps its counters closer to the cores).
+    std::vector<int> by_mass = candidates;
+    std::stable_sort(by_mass.begin(), by_mass.end(), [&](int x, int y) {
+        return mass[static_cast<std::size_t>(x)] > mass[static_cast<std::size_t>(y)];
+    });
+    uint64_t mass_outside = 0;
+    for (const int g : by_mass) mass_outside += mass[static_cast<std::size_t>(g)];
+    const uint64_t mass_total = std::max<uint64_t>(mass_outside, 1);
+    std::size_t first_window = 0;
+    while (first_window < std::min(per_window, by_mass.size()) &&
+           static_cast<double>(mass_outside) / static_cast<double>(mass_total) * static_cast<double>(count) >
+               static_cast<double>(chunks * kStraysPerChunk / 4)) {
+        mass_outside -= mass[static_cast<std::size_t>(by_mass[first_window])];
+        ++first_window;
+    }
+    by_mass.resize(std::max<std::size_t>(first_window, 1));
+    std::sort(by_mass.begin(), by_mass.end());
+    std::vector<std::vector<uint32_t>> strays(chunks);
+    std::vector<uint8_t> overflow(chunks, 0);
+    {
+        Window w(by_mass);
+        count_in_window(f, count, parallel_for, w, &strays, overflow);
+        add_window_counts(w, parallel_for, total);
+    }
+    const bool overflowed = std::any_of(overflow.begin(), overflow.end(), [](uint8_t o) { return o != 0; });
+    if (!overflowed) {
+        std::vector<uint32_t> keys;
+        for (auto& s : strays) {
+            keys.insert(keys.end(), s.begin(), s.end());
+            std::vector<uint32_t>().swap(s);
+        }
+        std::sort(keys.begin(), keys.end());
+        for (std::size_t i = 0; i < keys.size();) {
+            std::size_t j = i + 1;
+            while (j < keys.size() && keys[j] == keys[i]) ++j;
+            total.add(keys[i], j - i);
+            i = j;
+        }
+        return;
+    }
+    std::vector<std::vector<uint32_t>>().swap(strays);
+    std::vector<int> rest;
+    std::set_difference(candidates.begin(), candidates.end(), by_mass.begin(), by_mass.end(), std::back_inserter(rest));
+    for (std::size_t from = 0; from < rest.size(); from += per_window) {
+        const std::vector<int> groups(rest.begin() + static_cast<std::ptrdiff_t>(from),
+                                      rest.begin() + static_cast<std::ptrdiff_t>(std::min(rest.size(), from + per_window)));
+        Window w(groups);
+        count_in_window(f, count, parallel_for, w, nullptr, overflow);
+        add_window_counts(w, parallel_for, total);
     }
 }
 
@@ -936,10 +1152,11 @@ SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, fl
     const auto recount_start = Clock::now();
     if (steps_down > 0) {
         // Equal outputs may not be adjacent: recount exactly.
-        const std::array<uint64_t, kGroups> touched = total.group_inputs_all;
+        const std::array<uint64_t, kGroups> mass = total.group_inputs_all;
+        const std::array<uint8_t, kGroups> reach = total.reach;
         total = RunCounter(frame);
         if (count <= limits.sort_limit) recount_sorted(f, count, parallel_for, total);
-        else recount_windows(f, count, parallel_for, touched, limits.window_binades, total);
+        else recount_windows(f, count, parallel_for, mass, reach, limits.window_binades, total);
     }
     SweepSummary s = summarize(frame, total, count);
     s.non_monotone_steps = steps_down;
