@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -24,7 +26,7 @@ inline uint32_t float_to_bits(float x) { return std::bit_cast<uint32_t>(x); }
 inline float bits_to_float(uint32_t b) { return std::bit_cast<float>(b); }
 
 constexpr uint64_t kChunkSize = uint64_t{1} << 22;  // inputs per chunk: fixed, so counts ignore threads
-constexpr std::size_t kBlockSize = 1024;            // outputs evaluated per call of f
+constexpr std::size_t kBlockSize = 4096;            // outputs evaluated per call of f
 constexpr int kGroups = 512;                        // binades: 256 negative, 256 positive (by sign + exponent)
 constexpr std::size_t kOutsideKept = 16;
 constexpr uint32_t kNanKey = 0xffffffffu;
@@ -124,6 +126,11 @@ struct RunCounter {
     const SweepFrame* frame = nullptr;
     std::array<GroupCounts, kGroups> groups{};
     std::array<uint64_t, kGroups> group_inputs_all{};  // inputs per group, outside outputs included
+    // Binades where outputs may lie that group_inputs_all does not show: once a
+    // chunk is known to be non-monotone its runs are no longer counted (the
+    // recount redoes them); then group_inputs_all holds a sample and this the
+    // binades between each block's smallest and largest output.
+    std::array<uint8_t, kGroups> reach{};
     uint64_t outside_distinct = 0, outside_inputs = 0;
     std::vector<std::pair<uint32_t, uint64_t>> outside;  // smallest keys, sorted
 
@@ -179,6 +186,7 @@ struct RunCounter {
         for (std::size_t g = 0; g < kGroups; ++g) {
             groups[g].merge(o.groups[g]);
             group_inputs_all[g] += o.group_inputs_all[g];
+            reach[g] |= o.reach[g];
         }
         outside_distinct += o.outside_distinct;
         outside_inputs += o.outside_inputs;
@@ -211,101 +219,276 @@ void to_keys(const float* x, std::size_t n, uint32_t* keys) {
     }
 }
 
-// Run borders of a block: writes the positions j in [0, n) where the bits of
-// x[j] differ from those of x[j - 1] (x[-1] must be readable), in increasing
-// order, and returns how many. positions needs n + 16 entries. Equal keys with
-// different bits (-0 and +0, NaNs) are merged by the caller. n is a multiple
-// of 16. One list per block, so the caller's loop over runs has no branch per
-// 16 values.
-std::size_t borders_portable(const float* x, std::size_t n, uint32_t* positions) {
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        positions[count] = static_cast<uint32_t>(i);
-        count += float_to_bits(x[i]) != float_to_bits(x[i - 1]);
-    }
-    return count;
-}
-
+// Which code the run scan takes: AVX-512 where the CPU has it, unless a test
+// asks for the portable loops (SweepLimits::portable). Both give the same counts.
 #if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target("avx512f"))) std::size_t borders_avx512(const float* x, std::size_t n, uint32_t* positions) {
-    __m512i previous = _mm512_set1_epi32(static_cast<int>(float_to_bits(x[-1])));
-    __m512i index = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    const __m512i sixteen = _mm512_set1_epi32(16);
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < n; i += 16) {
-        const __m512i v = _mm512_loadu_si512(x + i);
-        const __m512i before = _mm512_maskz_alignr_epi32(0xffff, v, previous, 15);  // [previous[15], v[0..14]]
-        const __mmask16 m = _mm512_cmpneq_epu32_mask(v, before);
-        // Compress in a register and store all 16 lanes: the store form of
-        // vpcompressd is slow on some cores.
-        _mm512_storeu_si512(positions + count, _mm512_maskz_compress_epi32(m, index));
-        count += static_cast<std::size_t>(std::popcount(static_cast<unsigned>(m)));
-        index = _mm512_add_epi32(index, sixteen);
-        previous = v;
-    }
-    return count;
-}
 bool have_avx512() {
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx512f");
 }
+#else
+bool have_avx512() { return false; }
 #endif
 
-std::size_t borders(const float* x, std::size_t n, uint32_t* positions) {
-#if defined(__x86_64__) && defined(__GNUC__)
-    static const bool avx512 = have_avx512();
-    if (avx512) return borders_avx512(x, n, positions);
-#endif
-    return borders_portable(x, n, positions);
+// Run borders of a block: for each j in [0, n) where the bits of x[j] differ
+// from those of x[j - 1] (x[-1] must be readable), in increasing order, writes
+// base + j to positions and the bits of x[j] to bits; returns how many. Both
+// arrays need n + 16 entries; n is a multiple of 64. Equal keys with different
+// bits (-0 and +0, NaNs) are merged by the caller.
+std::size_t borders_portable(const float* x, std::size_t n, uint32_t base, uint32_t* positions, uint32_t* bits) {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const uint32_t b = float_to_bits(x[i]);
+        positions[count] = base + static_cast<uint32_t>(i);
+        bits[count] = b;
+        count += b != float_to_bits(x[i - 1]);
+    }
+    return count;
 }
 
-// Counts the runs of one chunk. The running binade's counters live in locals
-// (a monotone sweep stays in one binade for millions of runs); the first float
-// of a binade (a power of two, where the spacing changes) and every change of
-// binade go through the slow path.
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target("avx512f"))) inline __m512i float_keys_avx512(__m512i bits) {
+    const __m512i sign = _mm512_set1_epi32(static_cast<int>(kFloatSignMask));
+    const __m512i magnitude = _mm512_and_si512(bits, _mm512_set1_epi32(0x7fffffff));
+    const __mmask16 negative = _mm512_test_epi32_mask(bits, sign);
+    __m512i key = _mm512_mask_xor_epi32(_mm512_or_si512(bits, sign), negative, bits, _mm512_set1_epi32(-1));
+    key = _mm512_mask_mov_epi32(key, _mm512_cmpeq_epu32_mask(magnitude, _mm512_setzero_si512()), sign);
+    return _mm512_mask_mov_epi32(key, _mm512_cmpgt_epu32_mask(magnitude, _mm512_set1_epi32(0x7f800000)),
+                                 _mm512_set1_epi32(-1));
+}
+
+// x must be 64-byte aligned. Most groups of 16 outputs hold no border in a
+// monotone sweep (runs are hundreds long): four groups cost four loads, four
+// lane shifts and compares and one predictable branch; the compresses run only
+// where borders are.
+__attribute__((target("avx512f,popcnt"))) std::size_t borders_avx512(const float* x, std::size_t n, uint32_t base,
+                                                                     uint32_t* positions, uint32_t* bits) {
+    const __m512i lanes = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    std::size_t count = 0;
+    __m512i index = _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(base)), lanes);  // of x[i]
+    const __m512i sixteen = _mm512_set1_epi32(16), sixty_four = _mm512_set1_epi32(64);
+    const auto emit = [&](__mmask16 m, __m512i v, __m512i at, std::size_t i) __attribute__((target("avx512f,popcnt"))) {
+        const auto mask = static_cast<unsigned>(m);
+        if ((mask & (mask - 1)) == 0) {
+            // One border (runs of 16 and more): two scalar stores.
+            const auto j = static_cast<uint32_t>(i) + static_cast<uint32_t>(std::countr_zero(mask));
+            positions[count] = base + j;
+            bits[count] = float_to_bits(x[j]);
+            ++count;
+            return;
+        }
+        // Compress in a register and store all 16 lanes: the store form of
+        // vpcompressd is slow on some cores.
+        _mm512_storeu_si512(positions + count, _mm512_maskz_compress_epi32(m, at));
+        _mm512_storeu_si512(bits + count, _mm512_maskz_compress_epi32(m, v));
+        count += static_cast<std::size_t>(std::popcount(mask));
+    };
+    for (std::size_t i = 0; i < n; i += 64) {
+        // No border among these 64 outputs iff all of them equal x[i - 1]:
+        // three bitwise ops and one mask test, no lane shifts.
+        const __m512i previous = _mm512_set1_epi32(static_cast<int>(float_to_bits(x[i - 1])));
+        const __m512i v0 = _mm512_load_si512(x + i), v1 = _mm512_load_si512(x + i + 16);
+        const __m512i v2 = _mm512_load_si512(x + i + 32), v3 = _mm512_load_si512(x + i + 48);
+        const __m512i d01 = _mm512_ternarylogic_epi32(v0, v1, previous, 0x7e);  // (v0 ^ p) | (v1 ^ p)
+        const __m512i d23 = _mm512_ternarylogic_epi32(v2, v3, previous, 0x7e);
+        const __m512i any = _mm512_or_si512(d01, d23);
+        if (_mm512_test_epi32_mask(any, any) == 0) {
+            index = _mm512_add_epi32(index, sixty_four);
+            continue;
+        }
+        // Each lane against the one before it: [previous[15], v[0..14]].
+        const __mmask16 m0 = _mm512_cmpneq_epu32_mask(v0, _mm512_maskz_alignr_epi32(0xffff, v0, previous, 15));
+        const __mmask16 m1 = _mm512_cmpneq_epu32_mask(v1, _mm512_maskz_alignr_epi32(0xffff, v1, v0, 15));
+        const __mmask16 m2 = _mm512_cmpneq_epu32_mask(v2, _mm512_maskz_alignr_epi32(0xffff, v2, v1, 15));
+        const __mmask16 m3 = _mm512_cmpneq_epu32_mask(v3, _mm512_maskz_alignr_epi32(0xffff, v3, v2, 15));
+        if (m0) emit(m0, v0, index, i);
+        index = _mm512_add_epi32(index, sixteen);
+        if (m1) emit(m1, v1, index, i + 16);
+        index = _mm512_add_epi32(index, sixteen);
+        if (m2) emit(m2, v2, index, i + 32);
+        index = _mm512_add_epi32(index, sixteen);
+        if (m3) emit(m3, v3, index, i + 48);
+        index = _mm512_add_epi32(index, sixteen);
+    }
+    return count;
+}
+
+// Entries 1..count hold the bits of each border's output: turns them into keys
+// (entry 0 is a key already) and returns how many keys are below the one
+// before (steps down); `equal` says whether one equals it.
+__attribute__((target("avx512f,popcnt"))) uint64_t keys_and_steps_down_avx512(uint32_t* keys, std::size_t count,
+                                                                               bool& equal) {
+    uint64_t down = 0;
+    __mmask16 any_equal = 0;
+    __m512i previous = _mm512_set1_epi32(static_cast<int>(keys[0]));
+    for (std::size_t k = 1; k <= count; k += 16) {
+        const __mmask16 valid =
+            count + 1 - k >= 16 ? __mmask16{0xffff} : static_cast<__mmask16>((1u << (count + 1 - k)) - 1);
+        const __m512i key = float_keys_avx512(_mm512_maskz_loadu_epi32(valid, keys + k));
+        _mm512_mask_storeu_epi32(keys + k, valid, key);
+        const __m512i before = _mm512_maskz_alignr_epi32(0xffff, key, previous, 15);
+        down += static_cast<uint64_t>(std::popcount(static_cast<unsigned>(_mm512_mask_cmplt_epu32_mask(valid, key, before))));
+        any_equal |= _mm512_mask_cmpeq_epu32_mask(valid, key, before);
+        previous = key;
+    }
+    equal = any_equal != 0;
+    return down;
+}
+#endif
+
+uint64_t keys_and_steps_down_portable(uint32_t* keys, std::size_t count, bool& equal) {
+    uint64_t down = 0;
+    bool any_equal = false;
+    for (std::size_t k = 1; k <= count; ++k) {
+        keys[k] = float_key(bits_to_float(keys[k]));
+        down += keys[k] < keys[k - 1];
+        any_equal |= keys[k] == keys[k - 1];
+    }
+    equal = any_equal;
+    return down;
+}
+
+// Steps-only scan of a block once its chunk has stepped down (the counts will
+// be redone): keys of x[0..n), n a multiple of 16, against the key before each
+// (previous: the key before x[0]; on return, that of x[n - 1]); returns the steps
+// down, widens [lo, hi] to the keys seen and adds to sample[g] one for every
+// 16th key's binade g.
+uint64_t steps_only_portable(const float* x, std::size_t n, uint32_t& previous, uint32_t& lo, uint32_t& hi,
+                             std::array<uint64_t, kGroups>& sample) {
+    uint64_t down = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const uint32_t key = float_key(x[i]);
+        down += key < previous;
+        previous = key;
+        lo = std::min(lo, key);
+        hi = std::max(hi, key);
+        if (i % 16 == 0) ++sample[static_cast<std::size_t>(group_of(key))];
+    }
+    return down;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target("avx512f,popcnt"))) uint64_t steps_only_avx512(const float* x, std::size_t n,
+                                                                     uint32_t& previous, uint32_t& lo, uint32_t& hi,
+                                                                     std::array<uint64_t, kGroups>& sample) {
+    uint64_t down = 0;
+    __m512i before = _mm512_set1_epi32(static_cast<int>(previous));
+    __m512i low = _mm512_set1_epi32(static_cast<int>(lo)), high = _mm512_set1_epi32(static_cast<int>(hi));
+    for (std::size_t i = 0; i < n; i += 16) {
+        const __m512i key = float_keys_avx512(_mm512_load_si512(x + i));
+        const __m512i shifted = _mm512_maskz_alignr_epi32(0xffff, key, before, 15);
+        down += static_cast<uint64_t>(std::popcount(static_cast<unsigned>(_mm512_cmplt_epu32_mask(key, shifted))));
+        low = _mm512_maskz_min_epu32(0xffff, low, key);
+        high = _mm512_maskz_max_epu32(0xffff, high, key);
+        ++sample[static_cast<std::size_t>(group_of(float_key(x[i])))];
+        before = key;
+    }
+    alignas(64) uint32_t lanes[16];
+    _mm512_store_si512(lanes, before);
+    previous = lanes[15];
+    _mm512_store_si512(lanes, low);
+    lo = *std::min_element(lanes, lanes + 16);
+    _mm512_store_si512(lanes, high);
+    hi = *std::max_element(lanes, lanes + 16);
+    return down;
+}
+#endif
+
+// Per-lane accumulators of the running binade's runs (the fast part of
+// GroupCounts). The AVX-512 scan gives lane l the runs l, l + 16, ... of each
+// group of 16; the portable scan uses lane 0 only. Within a lane the first run
+// in input order wins a tie (strict comparisons); flush() picks among lanes by
+// multiplicity, then position, so both scans keep the first run in input order.
+// Multiplicities and their sums fit 32 bits: a chunk has 2^22 inputs.
+struct LaneState {
+    static constexpr int kLanes = 16;
+    alignas(64) uint32_t min_m[2][kLanes], min_pos[2][kLanes], min_key[2][kLanes];
+    alignas(64) uint32_t max_m[2][kLanes], max_pos[2][kLanes], max_key[2][kLanes];
+    alignas(64) uint32_t lo[kLanes], hi[kLanes], sum[kLanes], sum_ge[kLanes];
+    uint64_t distinct = 0, n_ge = 0;
+
+    LaneState() { reset(); }
+    void reset() {
+        for (int p = 0; p < 2; ++p) {
+            std::fill_n(min_m[p], kLanes, std::numeric_limits<uint32_t>::max());
+            std::fill_n(max_m[p], kLanes, 0u);
+            std::fill_n(min_pos[p], kLanes, 0u);
+            std::fill_n(max_pos[p], kLanes, 0u);
+            std::fill_n(min_key[p], kLanes, 0u);
+            std::fill_n(max_key[p], kLanes, 0u);
+        }
+        std::fill_n(lo, kLanes, std::numeric_limits<uint32_t>::max());
+        std::fill_n(hi, kLanes, 0u);
+        std::fill_n(sum, kLanes, 0u);
+        std::fill_n(sum_ge, kLanes, 0u);
+        distinct = n_ge = 0;
+    }
+};
+
+// Counts the runs of one chunk. Per block of outputs: the run borders (position
+// and key of each run's first output), then the runs, 16 at a time while they
+// stay in the running binade's fast range (its floats inside [a,b) but its
+// first one), whose counters live in LaneState; the first float of a binade (a
+// power of two, where the spacing changes) and every change of binade go
+// through the slow path.
 class ChunkScanner {
 public:
-    ChunkScanner(const SweepFrame& frame, RunCounter& out) : frame_(frame), out_(out) {}
+    ChunkScanner(const SweepFrame& frame, RunCounter& out, bool avx512) : frame_(frame), out_(out), avx512_(avx512) {}
 
     ChunkEnds scan(const FloatBlockFn& f, uint64_t first, uint64_t n) {
-        // values[0] holds the last value of the previous block.
-        std::vector<float> buffer(kBlockSize + 16 + 1);
-        std::vector<uint32_t> positions(kBlockSize + 32);
-        float* values = buffer.data() + 1;
+        // values[-1] holds the last value of the previous block. Border lists:
+        // entry 0 is the run in progress (its start and key), then the borders.
+        // Outputs at a 64-byte boundary (the border scan loads whole cache lines).
+        std::vector<float> buffer(kBlockSize + 64 + 16);
+        float* values = buffer.data() + 16;
+        values += (64 - reinterpret_cast<std::uintptr_t>(values) % 64) % 64 / sizeof(float);
+        std::vector<uint32_t> positions(kBlockSize + 32), keys(kBlockSize + 32);
         ChunkEnds ends;
-        uint32_t run_key = 0;
-        uint64_t run_start = 0;  // index in the chunk
         for (uint64_t done = 0; done < n;) {
             const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
             f(first + done, len, values);
-            const std::size_t padded = (len + 15) / 16 * 16;
+            const std::size_t padded = (len + 63) / 64 * 64;
             for (std::size_t i = len; i < padded; ++i) values[i] = values[len - 1];  // no borders in the padding
             if (done == 0) {
                 values[-1] = values[0];
-                run_key = float_key(values[0]);
+                positions[0] = 0;
+                keys[0] = float_key(values[0]);
             }
-            const std::size_t borders_here = borders(values, padded, positions.data());
-            for (std::size_t k = 0; k < borders_here; ++k) {
-                const std::size_t j = positions[k];
-                const uint32_t key = float_key(values[j]);
-                if (key == run_key) continue;  // -0 after +0, or another NaN
-                const uint64_t at = done + j;
-                const uint64_t count = at - run_start;
-                if (!have_head_) {
-                    ends.head = Run{run_key, count};
-                    have_head_ = true;
-                } else {
-                    add(run_key, count);
-                }
-                ends.steps_down += key < run_key;
-                run_key = key;
-                run_start = at;
+            if (ends.steps_down > 0) {
+                // Non-monotone: the counts will be redone; keep only the steps
+                // down, the keys' reach and a sample of their binades.
+                uint32_t lo = keys[0], hi = keys[0];
+                ends.steps_down += block_steps_only(values, padded, keys[0], lo, hi);
+                for (int g = group_of(lo); g <= group_of(hi); ++g) out_.reach[static_cast<std::size_t>(g)] = 1;
+                positions[0] = static_cast<uint32_t>(done + len - 1);  // the tail: one output, not a run
+                values[-1] = values[len - 1];
+                done += len;
+                continue;
             }
+            std::size_t count = block_borders(values, padded, static_cast<uint32_t>(done), positions.data() + 1,
+                                              keys.data() + 1);
+            bool equal = false;
+            // Dropping a border between equal keys leaves the steps down as they are.
+            ends.steps_down += block_keys_and_steps_down(keys.data(), count, equal);
+            if (equal) count = merge_equal_keys(positions.data(), keys.data(), count);
+            std::size_t start = 0;  // the first run done in this block
+            if (!have_head_ && count > 0) {
+                ends.head = Run{keys[0], positions[1] - positions[0]};
+                have_head_ = true;
+                start = 1;
+            }
+            // Runs start..count-1 end in this block; run `count` goes on. Once
+            // the chunk has stepped down, the whole sweep will be recounted:
+            // only the steps down and where outputs lie are kept.
+            if (ends.steps_down == 0) add_runs(positions.data() + start, keys.data() + start, count - start);
+            else note_reach(keys.data(), count);
+            positions[0] = positions[count];
+            keys[0] = keys[count];
             values[-1] = values[len - 1];
             done += len;
         }
         flush();
-        ends.tail = Run{run_key, n - run_start};
+        ends.tail = Run{keys[0], n - positions[0]};
         if (!have_head_) {
             ends.head = ends.tail;
             ends.single = true;
@@ -314,83 +497,234 @@ public:
     }
 
 private:
-    void add(uint32_t key, uint64_t m) {
-        if (key - fast_lo_ < fast_size_) {
-            // Branch-free: parities and the side of the ideal alternate run by run.
-            ++distinct_;
-            inputs_ += m;
-            lo_key_ = std::min(lo_key_, key);
-            hi_key_ = std::max(hi_key_, key);
-            const uint32_t odd = (key ^ parity_flip_) & 1u;
-            // Rarely taken (a new extreme); the first in input order is kept.
-            if (m < min_[odd]) {
-                min_[odd] = m;
-                min_key_[odd] = key;
-            }
-            if (m > max_[odd]) {
-                max_[odd] = m;
-                max_key_[odd] = key;
-            }
-            const uint64_t ge = m >= ceiling_ ? 1 : 0;
-            n_ge_ += ge;
-            s_ge_ += m & (0 - ge);
-            s_all_ += m;
-            return;
-        }
-        slow_add(key, m);
+    std::size_t block_borders(const float* x, std::size_t n, uint32_t base, uint32_t* positions, uint32_t* keys) const {
+#if defined(__x86_64__) && defined(__GNUC__)
+        if (avx512_) return borders_avx512(x, n, base, positions, keys);
+#endif
+        return borders_portable(x, n, base, positions, keys);
     }
 
-    void slow_add(uint32_t key, uint64_t m) {
-        const int g = group_of(key);
-        if (g != group_) {
-            flush();
-            group_ = g;
-            // Fast range: the binade's floats inside [a,b), without its first one.
-            const uint64_t lo = std::max<uint64_t>(group_key_lo(g) + 1, frame_.key_a);
-            const uint64_t hi = std::min<uint64_t>(group_key_hi(g), frame_.key_b);
-            fast_lo_ = static_cast<uint32_t>(lo);
-            fast_size_ = hi > lo ? static_cast<uint32_t>(hi - lo) : 0;
-            ceiling_ = frame_.ideal_ceiling[static_cast<std::size_t>(g)];
-            parity_flip_ = g >= 256 ? 0u : 1u;  // a negative key is ~bits
+    uint64_t block_steps_only(const float* x, std::size_t n, uint32_t& previous, uint32_t& lo, uint32_t& hi) {
+#if defined(__x86_64__) && defined(__GNUC__)
+        if (avx512_) return steps_only_avx512(x, n, previous, lo, hi, out_.group_inputs_all);
+#endif
+        return steps_only_portable(x, n, previous, lo, hi, out_.group_inputs_all);
+    }
+
+    uint64_t block_keys_and_steps_down(uint32_t* keys, std::size_t count, bool& equal) const {
+#if defined(__x86_64__) && defined(__GNUC__)
+        if (avx512_) return keys_and_steps_down_avx512(keys, count, equal);
+#endif
+        return keys_and_steps_down_portable(keys, count, equal);
+    }
+
+    // Borders between equal keys (-0 after +0, another NaN) are no borders:
+    // drops them from entries 1..count; returns the new count. Rare.
+    static std::size_t merge_equal_keys(uint32_t* positions, uint32_t* keys, std::size_t count) {
+        std::size_t kept = 0;
+        for (std::size_t k = 1; k <= count; ++k) {
+            if (keys[k] == keys[kept]) continue;
+            ++kept;
+            keys[kept] = keys[k];
+            positions[kept] = positions[k];
         }
-        if (key - fast_lo_ < fast_size_) return add(key, m);
-        out_.add(key, m);  // the binade's first float, or outside [a,b)
+        return kept;
+    }
+
+    // For the recount of a non-monotone sweep (keys[0..count]): the binades
+    // between the smallest and the largest key, and a sample of where they lie.
+    void note_reach(const uint32_t* keys, std::size_t count) {
+        uint32_t lo = keys[0], hi = keys[0];
+        for (std::size_t k = 1; k <= count; ++k) {
+            lo = std::min(lo, keys[k]);
+            hi = std::max(hi, keys[k]);
+        }
+        for (int g = group_of(lo); g <= group_of(hi); ++g) out_.reach[static_cast<std::size_t>(g)] = 1;
+        for (std::size_t k = 0; k <= count; k += 16) ++out_.group_inputs_all[static_cast<std::size_t>(group_of(keys[k]))];
+    }
+
+    // Adds runs i in [0, n): key keys[i], multiplicity positions[i + 1] - positions[i].
+    void add_runs(const uint32_t* positions, const uint32_t* keys, std::size_t n) {
+        std::size_t i = 0;
+        while (i < n) {
+#if defined(__x86_64__) && defined(__GNUC__)
+            if (avx512_) i = fast_runs_avx512(positions, keys, i, n);
+            else i = fast_runs_portable(positions, keys, i, n);
+#else
+            i = fast_runs_portable(positions, keys, i, n);
+#endif
+            if (i == n) break;
+            // Run i is outside the fast range: a new binade, its first float, or outside [a,b).
+            const uint32_t key = keys[i];
+            const int g = group_of(key);
+            if (g != group_) {
+                enter_group(g);
+                if (key - fast_lo_ < fast_size_) continue;  // the fast loop takes it
+            }
+            out_.add(key, positions[i + 1] - positions[i]);
+            ++i;
+        }
+    }
+
+    // Runs from i on while they are in the fast range; returns the first that is not (or n).
+    std::size_t fast_runs_portable(const uint32_t* positions, const uint32_t* keys, std::size_t i, std::size_t n) {
+        LaneState& s = lanes_;
+        const auto ceiling = static_cast<uint32_t>(std::min<uint64_t>(ceiling_, std::numeric_limits<uint32_t>::max()));
+        for (; i < n; ++i) {
+            const uint32_t key = keys[i];
+            if (key - fast_lo_ >= fast_size_) return i;
+            const uint32_t m = positions[i + 1] - positions[i], pos = positions[i];
+            const uint32_t odd = (key ^ parity_flip_) & 1u;
+            ++s.distinct;
+            s.sum[0] += m;
+            s.lo[0] = std::min(s.lo[0], key);
+            s.hi[0] = std::max(s.hi[0], key);
+            if (m < s.min_m[odd][0]) {
+                s.min_m[odd][0] = m;
+                s.min_pos[odd][0] = pos;
+                s.min_key[odd][0] = key;
+            }
+            if (m > s.max_m[odd][0]) {
+                s.max_m[odd][0] = m;
+                s.max_pos[odd][0] = pos;
+                s.max_key[odd][0] = key;
+            }
+            const uint32_t ge = m >= ceiling ? 1u : 0u;
+            s.n_ge += ge;
+            s.sum_ge[0] += m & (0u - ge);
+        }
+        return n;
+    }
+
+#if defined(__x86_64__) && defined(__GNUC__)
+    __attribute__((target("avx512f,popcnt"))) std::size_t fast_runs_avx512(const uint32_t* positions,
+                                                                          const uint32_t* keys, std::size_t i,
+                                                                          std::size_t n) {
+        LaneState& s = lanes_;
+        __m512i min_m[2], min_pos[2], min_key[2], max_m[2], max_pos[2], max_key[2];
+        for (int p = 0; p < 2; ++p) {
+            min_m[p] = _mm512_load_si512(s.min_m[p]);
+            min_pos[p] = _mm512_load_si512(s.min_pos[p]);
+            min_key[p] = _mm512_load_si512(s.min_key[p]);
+            max_m[p] = _mm512_load_si512(s.max_m[p]);
+            max_pos[p] = _mm512_load_si512(s.max_pos[p]);
+            max_key[p] = _mm512_load_si512(s.max_key[p]);
+        }
+        __m512i lo = _mm512_load_si512(s.lo), hi = _mm512_load_si512(s.hi);
+        __m512i sum = _mm512_load_si512(s.sum), sum_ge = _mm512_load_si512(s.sum_ge);
+        uint64_t distinct = 0, n_ge = 0;
+        const __m512i fast_lo = _mm512_set1_epi32(static_cast<int>(fast_lo_));
+        const __m512i fast_size = _mm512_set1_epi32(static_cast<int>(fast_size_));
+        const __m512i ceiling = _mm512_set1_epi32(
+            static_cast<int>(std::min<uint64_t>(ceiling_, std::numeric_limits<uint32_t>::max())));
+        const __m512i one = _mm512_set1_epi32(1);
+        const __mmask16 flip = parity_flip_ ? 0xffff : 0;
+        while (i < n) {
+            const __mmask16 valid = n - i >= 16 ? __mmask16{0xffff} : static_cast<__mmask16>((1u << (n - i)) - 1);
+            const __m512i key = _mm512_maskz_loadu_epi32(valid, keys + i);
+            const __m512i pos = _mm512_maskz_loadu_epi32(valid, positions + i);
+            const __m512i m = _mm512_sub_epi32(_mm512_maskz_loadu_epi32(valid, positions + i + 1), pos);
+            const __mmask16 fast = _mm512_mask_cmplt_epu32_mask(valid, _mm512_sub_epi32(key, fast_lo), fast_size);
+            // The lanes before the first one outside the fast range.
+            const auto outside = static_cast<unsigned>(valid & ~fast);
+            const __mmask16 use = outside == 0 ? valid : static_cast<__mmask16>((1u << __builtin_ctz(outside)) - 1);
+            const __mmask16 odd = static_cast<__mmask16>(_mm512_test_epi32_mask(key, one) ^ flip);
+            const __mmask16 by_parity[2] = {static_cast<__mmask16>(use & ~odd), static_cast<__mmask16>(use & odd)};
+            for (int p = 0; p < 2; ++p) {
+                const __mmask16 lt = _mm512_mask_cmplt_epu32_mask(by_parity[p], m, min_m[p]);
+                min_m[p] = _mm512_mask_mov_epi32(min_m[p], lt, m);
+                min_pos[p] = _mm512_mask_mov_epi32(min_pos[p], lt, pos);
+                min_key[p] = _mm512_mask_mov_epi32(min_key[p], lt, key);
+                const __mmask16 gt = _mm512_mask_cmpgt_epu32_mask(by_parity[p], m, max_m[p]);
+                max_m[p] = _mm512_mask_mov_epi32(max_m[p], gt, m);
+                max_pos[p] = _mm512_mask_mov_epi32(max_pos[p], gt, pos);
+                max_key[p] = _mm512_mask_mov_epi32(max_key[p], gt, key);
+            }
+            lo = _mm512_mask_min_epu32(lo, use, lo, key);
+            hi = _mm512_mask_max_epu32(hi, use, hi, key);
+            sum = _mm512_mask_add_epi32(sum, use, sum, m);
+            const __mmask16 ge = _mm512_mask_cmpge_epu32_mask(use, m, ceiling);
+            sum_ge = _mm512_mask_add_epi32(sum_ge, ge, sum_ge, m);
+            distinct += static_cast<uint64_t>(__builtin_popcount(use));
+            n_ge += static_cast<uint64_t>(__builtin_popcount(ge));
+            i += static_cast<std::size_t>(__builtin_popcount(use));
+            if (use != valid) break;
+        }
+        for (int p = 0; p < 2; ++p) {
+            _mm512_store_si512(s.min_m[p], min_m[p]);
+            _mm512_store_si512(s.min_pos[p], min_pos[p]);
+            _mm512_store_si512(s.min_key[p], min_key[p]);
+            _mm512_store_si512(s.max_m[p], max_m[p]);
+            _mm512_store_si512(s.max_pos[p], max_pos[p]);
+            _mm512_store_si512(s.max_key[p], max_key[p]);
+        }
+        _mm512_store_si512(s.lo, lo);
+        _mm512_store_si512(s.hi, hi);
+        _mm512_store_si512(s.sum, sum);
+        _mm512_store_si512(s.sum_ge, sum_ge);
+        s.distinct += distinct;
+        s.n_ge += n_ge;
+        return i;
+    }
+#endif
+
+    void enter_group(int g) {
+        flush();
+        group_ = g;
+        // Fast range: the binade's floats inside [a,b), without its first one.
+        const uint64_t lo = std::max<uint64_t>(group_key_lo(g) + 1, frame_.key_a);
+        const uint64_t hi = std::min<uint64_t>(group_key_hi(g), frame_.key_b);
+        fast_lo_ = static_cast<uint32_t>(lo);
+        fast_size_ = hi > lo ? static_cast<uint32_t>(hi - lo) : 0;
+        ceiling_ = frame_.ideal_ceiling[static_cast<std::size_t>(g)];
+        parity_flip_ = g >= 256 ? 0u : 1u;  // a negative key is ~bits
     }
 
     void flush() {
         if (group_ < 0) return;
+        const LaneState& s = lanes_;
         GroupCounts c;
-        c.distinct = distinct_;
-        c.inputs = inputs_;
-        c.min_even = min_[0];
-        c.max_even = max_[0];
-        c.min_odd = min_[1];
-        c.max_odd = max_[1];
-        std::copy(min_key_, min_key_ + 2, c.min_key);
-        std::copy(max_key_, max_key_ + 2, c.max_key);
-        c.n_ge = n_ge_;
-        c.lo_key = lo_key_;
-        c.hi_key = hi_key_;
-        lo_key_ = std::numeric_limits<uint32_t>::max();
-        hi_key_ = 0;
-        c.s_ge = s_ge_;
-        c.n_lt = distinct_ - n_ge_;
-        c.s_lt = s_all_ - s_ge_;
-        out_.group_inputs_all[static_cast<std::size_t>(group_)] += inputs_;
+        c.distinct = s.distinct;
+        c.n_ge = s.n_ge;
+        for (int l = 0; l < LaneState::kLanes; ++l) {
+            c.inputs += s.sum[l];
+            c.s_ge += s.sum_ge[l];
+            c.lo_key = std::min(c.lo_key, s.lo[l]);
+            c.hi_key = std::max(c.hi_key, s.hi[l]);
+        }
+        c.n_lt = c.distinct - c.n_ge;
+        c.s_lt = c.inputs - c.s_ge;
+        uint64_t* const mins[2] = {&c.min_even, &c.min_odd};
+        uint64_t* const maxs[2] = {&c.max_even, &c.max_odd};
+        for (int p = 0; p < 2; ++p) {
+            // The first in input order among the lanes' extremes.
+            int lmin = 0, lmax = 0;
+            for (int l = 1; l < LaneState::kLanes; ++l) {
+                if (s.min_m[p][l] < s.min_m[p][lmin] ||
+                    (s.min_m[p][l] == s.min_m[p][lmin] && s.min_pos[p][l] < s.min_pos[p][lmin]))
+                    lmin = l;
+                if (s.max_m[p][l] > s.max_m[p][lmax] ||
+                    (s.max_m[p][l] == s.max_m[p][lmax] && s.max_pos[p][l] < s.max_pos[p][lmax]))
+                    lmax = l;
+            }
+            if (s.min_m[p][lmin] != std::numeric_limits<uint32_t>::max()) {
+                *mins[p] = s.min_m[p][lmin];
+                c.min_key[p] = s.min_key[p][lmin];
+            }
+            if (s.max_m[p][lmax] != 0) {
+                *maxs[p] = s.max_m[p][lmax];
+                c.max_key[p] = s.max_key[p][lmax];
+            }
+        }
+        out_.group_inputs_all[static_cast<std::size_t>(group_)] += c.inputs;
         out_.groups[static_cast<std::size_t>(group_)].merge(c);
-        distinct_ = inputs_ = n_ge_ = s_ge_ = s_all_ = 0;
-        min_[0] = min_[1] = std::numeric_limits<uint64_t>::max();
-        max_[0] = max_[1] = 0;
+        lanes_.reset();
     }
 
     const SweepFrame& frame_;
     RunCounter& out_;
-    // The running binade's counters (see GroupCounts); [0] even, [1] odd.
-    uint64_t distinct_ = 0, inputs_ = 0, n_ge_ = 0, s_ge_ = 0, s_all_ = 0;
-    uint64_t min_[2] = {std::numeric_limits<uint64_t>::max(), std::numeric_limits<uint64_t>::max()};
-    uint64_t max_[2] = {0, 0};
-    uint32_t min_key_[2] = {0, 0}, max_key_[2] = {0, 0};
-    uint32_t lo_key_ = std::numeric_limits<uint32_t>::max(), hi_key_ = 0;
+    const bool avx512_;
+    LaneState lanes_;
     int group_ = -1;
     uint32_t fast_lo_ = 0, fast_size_ = 0, parity_flip_ = 0;
     uint64_t ceiling_ = 0;
@@ -526,7 +860,8 @@ uint64_t chunk_count(uint64_t count) { return (count + kChunkSize - 1) / kChunkS
 
 // Pass 1: runs of equal outputs, chunk by chunk, then the runs that cross chunk
 // borders in chunk order. Returns the steps down (0: the counts are exact).
-uint64_t count_runs(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, RunCounter& total) {
+uint64_t count_runs(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, bool avx512,
+                    RunCounter& total) {
     const SweepFrame& frame = *total.frame;
     const auto chunks = static_cast<std::size_t>(chunk_count(count));
     std::vector<ChunkEnds> ends(chunks);
@@ -534,7 +869,7 @@ uint64_t count_runs(const FloatBlockFn& f, uint64_t count, const ParallelFor& pa
     parallel_for(chunks, [&](std::size_t c) {
         auto local = std::make_unique<RunCounter>(frame);
         const uint64_t first = c * kChunkSize;
-        ends[c] = ChunkScanner(frame, *local).scan(f, first, std::min(kChunkSize, count - first));
+        ends[c] = ChunkScanner(frame, *local, avx512).scan(f, first, std::min(kChunkSize, count - first));
         std::lock_guard lock(total_mutex);
         total.merge(*local);
     });
@@ -588,82 +923,276 @@ void recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& pa
     }
 }
 
-// Keys of one block split by their slice of the window's counters (radix
-// partitioning): slice s holds window indices [s, s + 1) * kSliceKeys.
-constexpr std::size_t kSliceBits = 20;  // 2^20 counters (4 MiB) a slice
-constexpr std::size_t kPartitionBlock = std::size_t{1} << 16;
+// The window recount (see the header): one-byte counters over the key ranges
+// of a window's binades, filled by radix partitioning in rounds of
+// kRoundChunks chunks. First each chunk of the round turns its outputs into
+// counter indices split by the slice of the counters they fall in (a slice is
+// 1/256 of the window, at most 2 MiB: within L2); then each slice adds the
+// parts of every chunk of the round, so the increments of a slice stay in
+// cache, and no two threads touch one counter (no locks, no atomics). A
+// counter that wraps past 255 records the wrap in its slice's list: a count is
+// its counter plus 256 per recorded wrap, so the lists hold at most count / 256
+// entries.
+constexpr std::size_t kRoundChunks = 16;  // 16 chunks' indices: 256 MiB
+// Keys outside the first window kept per chunk for counting by sorting: at
+// most 2^24 (64 MiB) over 2^32 inputs. A chunk with more makes the recount
+// count the remaining binades in further windows instead.
+constexpr std::size_t kStraysPerChunk = std::size_t{1} << 14;
 
-struct WindowCounters {
-    std::vector<uint32_t> counts;
-    std::vector<std::mutex> slice_locks;
-    std::array<int, kGroups> slot{};  // the group's place in the window, -1 if not in it
-    explicit WindowCounters(std::size_t groups)
-        : counts(groups << 23), slice_locks(std::max<std::size_t>(1, (groups << 23) >> kSliceBits)) {}
+struct Window {
+    // Keys [lo, lo + size) are counted at counters [base, base + size).
+    struct Range {
+        uint32_t lo = 0, size = 0, base = 0;
+    };
+    std::vector<Range> ranges;
+    std::vector<uint8_t> counts;
+    int slice_shift = 16;
+    std::size_t slices = 1;
+    std::vector<std::vector<uint32_t>> wraps;  // per slice
+
+    // The key ranges of these binades (in increasing order), adjacent ones joined.
+    explicit Window(const std::vector<int>& groups) {
+        uint32_t base = 0;
+        for (const int g : groups) {
+            const auto lo = static_cast<uint32_t>(group_key_lo(g));
+            const auto size = static_cast<uint32_t>(group_key_hi(g) - group_key_lo(g));
+            if (!ranges.empty() && ranges.back().lo + ranges.back().size == lo) ranges.back().size += size;
+            else ranges.push_back({lo, size, base});
+            base += size;
+        }
+        counts.assign(base, 0);
+        while ((uint64_t{base} >> slice_shift) > 256) ++slice_shift;
+        slices = (uint64_t{base} + (uint64_t{1} << slice_shift) - 1) >> slice_shift;
+        wraps.resize(slices);
+    }
 };
 
-// Counts the keys of one chunk that fall in the window.
-void count_chunk_in_window(const FloatBlockFn& f, uint64_t first, uint64_t n, WindowCounters& w) {
-    const std::size_t slices = w.slice_locks.size();
-    const std::size_t slice_shift = slices > 1 ? kSliceBits : 31;
-    std::vector<float> values(kBlockSize);
-    std::vector<uint32_t> keys(kBlockSize), index(kPartitionBlock), parted(kPartitionBlock);
-    std::vector<uint32_t> offsets(slices + 1);
-    for (uint64_t done = 0; done < n;) {
-        std::size_t kept = 0;  // window indices of this partition block
-        for (; kept + kBlockSize <= kPartitionBlock && done < n; done += kBlockSize) {
-            const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
-            f(first + done, len, values.data());
-            to_keys(values.data(), len, keys.data());
-            for (std::size_t i = 0; i < len; ++i) {
-                const int g = group_of(keys[i]);
-                const int sl = w.slot[static_cast<std::size_t>(g)];
-                index[kept] = (static_cast<uint32_t>(sl) << 23) + (keys[i] - static_cast<uint32_t>(group_key_lo(g)));
-                kept += sl >= 0;
+// One chunk of a round: the counter indices of its outputs that fall in the
+// window, split by slice into parted (offsets[s] .. offsets[s + 1]); with
+// `strays`, keeps the other outputs there (up to kStraysPerChunk; beyond, sets
+// strays_overflow).
+void partition_chunk(const FloatBlockFn& f, uint64_t first, uint64_t n, const Window& w, uint32_t* parted,
+                     uint32_t* offsets, std::vector<uint32_t>* strays, bool& strays_overflow) {
+    const int slice_shift = w.slice_shift;
+    // Scratch reused by the thread across chunks (no page faults per chunk).
+    thread_local std::vector<float> values;
+    thread_local std::vector<uint32_t> keys, index, fill;
+    values.resize(kBlockSize);
+    keys.resize(kBlockSize);
+    index.resize(kChunkSize);
+    fill.resize(w.slices);
+    const Window::Range* const ranges = w.ranges.data();
+    const std::size_t range_count = w.ranges.size();
+    const Window::Range first_range = w.ranges.front();
+    std::fill(offsets, offsets + w.slices + 1, 0u);
+    std::size_t kept = 0;
+    for (uint64_t done = 0; done < n; done += kBlockSize) {
+        const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
+        f(first + done, len, values.data());
+        to_keys(values.data(), len, keys.data());
+        for (std::size_t i = 0; i < len; ++i) {
+            const uint32_t key = keys[i];
+            uint32_t at = key - first_range.lo;
+            if (at < first_range.size) {
+                at += first_range.base;
+            } else {
+                std::size_t r = 1;
+                while (r < range_count && key - ranges[r].lo >= ranges[r].size) ++r;
+                if (r == range_count) {
+                    if (strays == nullptr) continue;
+                    if (strays->size() < kStraysPerChunk) strays->push_back(key);
+                    else strays_overflow = true;
+                    continue;
+                }
+                at = ranges[r].base + (key - ranges[r].lo);
             }
+            index[kept++] = at;
+            ++offsets[(at >> slice_shift) + 1];
         }
-        std::fill(offsets.begin(), offsets.end(), 0u);
-        for (std::size_t i = 0; i < kept; ++i) ++offsets[(index[i] >> slice_shift) + 1];
-        for (std::size_t s = 1; s <= slices; ++s) offsets[s] += offsets[s - 1];
-        std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-        for (std::size_t i = 0; i < kept; ++i) parted[fill[index[i] >> slice_shift]++] = index[i];
-        for (std::size_t s = 0; s < slices; ++s) {
-            if (offsets[s] == offsets[s + 1]) continue;
-            std::lock_guard lock(w.slice_locks[s]);
-            for (uint32_t i = offsets[s]; i < offsets[s + 1]; ++i) ++w.counts[parted[i]];
-        }
+    }
+    for (std::size_t s = 1; s <= w.slices; ++s) offsets[s] += offsets[s - 1];
+    for (std::size_t s = 0; s < w.slices; ++s) fill[s] = offsets[s];
+    for (std::size_t i = 0; i < kept; ++i) parted[fill[index[i] >> slice_shift]++] = index[i];
+}
+
+// Counts every chunk's outputs in the window, round by round (see above).
+void count_in_window(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, Window& w,
+                     std::vector<std::vector<uint32_t>>* strays, std::vector<uint8_t>& overflow) {
+    const auto chunks = static_cast<std::size_t>(chunk_count(count));
+    const std::size_t round = std::min(kRoundChunks, chunks);
+    std::vector<uint32_t> parted(round * kChunkSize);
+    std::vector<uint32_t> offsets(round * (w.slices + 1));
+    for (std::size_t from = 0; from < chunks; from += round) {
+        const std::size_t here = std::min(round, chunks - from);
+        parallel_for(here, [&](std::size_t k) {
+            const std::size_t c = from + k;
+            const uint64_t first = c * kChunkSize;
+            bool over = false;
+            partition_chunk(f, first, std::min(kChunkSize, count - first), w, parted.data() + k * kChunkSize,
+                            offsets.data() + k * (w.slices + 1), strays != nullptr ? &(*strays)[c] : nullptr, over);
+            overflow[c] = over;
+        });
+        parallel_for(w.slices, [&](std::size_t s) {
+            uint8_t* const counts = w.counts.data();
+            std::vector<uint32_t>& wraps = w.wraps[s];
+            for (std::size_t k = 0; k < here; ++k) {
+                const uint32_t* part = parted.data() + k * kChunkSize;
+                const uint32_t* off = offsets.data() + k * (w.slices + 1);
+                for (uint32_t i = off[s]; i < off[s + 1]; ++i)
+                    if (++counts[part[i]] == 0) wraps.push_back(part[i]);
+            }
+        });
     }
 }
 
-// Exact recount of a non-monotone f: counting passes over windows of the
-// binades it touched (see the header for the method and its memory bound).
-void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for,
-                     const std::array<uint64_t, kGroups>& touched, int window_binades, RunCounter& total) {
-    const auto chunks = static_cast<std::size_t>(chunk_count(count));
-    std::vector<int> touched_groups;
-    for (int g = 0; g < kGroups; ++g)
-        if (touched[static_cast<std::size_t>(g)] > 0) touched_groups.push_back(g);
-    const auto per_window = static_cast<std::size_t>(std::max(window_binades, 1));
-    WindowCounters w(std::min(per_window, touched_groups.size()));
-    for (std::size_t first_group = 0; first_group < touched_groups.size(); first_group += per_window) {
-        const std::size_t groups_here = std::min(per_window, touched_groups.size() - first_group);
-        w.slot.fill(-1);
-        for (std::size_t k = 0; k < groups_here; ++k)
-            w.slot[static_cast<std::size_t>(touched_groups[first_group + k])] = static_cast<int>(k);
-        std::fill(w.counts.begin(), w.counts.end(), 0u);
-        parallel_for(chunks, [&](std::size_t c) {
-            const uint64_t first = c * kChunkSize;
-            count_chunk_in_window(f, first, std::min(kChunkSize, count - first), w);
-        });
-        // A non-monotone f has two outputs at least, so no count reaches 2^32.
-        for (std::size_t k = 0; k < groups_here; ++k) {
-            const int g = touched_groups[first_group + k];
-            const auto lo = static_cast<uint32_t>(group_key_lo(g));
-            const uint64_t size = group_key_hi(g) - group_key_lo(g);
-            for (uint64_t i = 0; i < size; ++i) {
-                const uint32_t m = w.counts[(k << 23) + i];
-                if (m != 0) total.add(lo + static_cast<uint32_t>(i), m);
-            }
+// Adds counters [from, from + n) of a window range (all in binade g) to out,
+// key by key in increasing order: inside [a,b) and past the binade's first
+// float, straight into the binade's counts (ties go to the smaller key, as in
+// GroupCounts::merge); any other key through RunCounter::add.
+void add_counts(const Window& w, const Window::Range& r, uint32_t from, uint32_t n, int g,
+                const std::vector<uint32_t>& wraps, RunCounter& out) {
+    const SweepFrame& frame = *out.frame;
+    const uint64_t fast_lo = std::max<uint64_t>(group_key_lo(g) + 1, frame.key_a);
+    const uint64_t fast_hi = std::min<uint64_t>(group_key_hi(g), frame.key_b);
+    const uint64_t ceiling = frame.ideal_ceiling[static_cast<std::size_t>(g)];
+    const uint32_t flip = g >= 256 ? 0u : 1u;  // a negative key is ~bits
+    GroupCounts c;
+    uint64_t* const mins[2] = {&c.min_even, &c.min_odd};
+    uint64_t* const maxs[2] = {&c.max_even, &c.max_odd};
+    auto next_wrap = std::lower_bound(wraps.begin(), wraps.end(), r.base + from);
+    for (uint32_t i = from; i < from + n; ++i) {
+        const uint32_t at = r.base + i;
+        uint64_t m = w.counts[at];
+        for (; next_wrap != wraps.end() && *next_wrap == at; ++next_wrap) m += 256;
+        if (m == 0) continue;
+        const uint32_t key = r.lo + i;
+        if (key < fast_lo || key >= fast_hi) {
+            out.add(key, m);
+            continue;
         }
+        if (c.distinct == 0) c.lo_key = key;
+        c.hi_key = key;
+        ++c.distinct;
+        c.inputs += m;
+        const uint32_t odd = (key ^ flip) & 1u;
+        if (m < *mins[odd]) {
+            *mins[odd] = m;
+            c.min_key[odd] = key;
+        }
+        if (m > *maxs[odd]) {
+            *maxs[odd] = m;
+            c.max_key[odd] = key;
+        }
+        if (m >= ceiling) {
+            ++c.n_ge;
+            c.s_ge += m;
+        } else {
+            ++c.n_lt;
+            c.s_lt += m;
+        }
+    }
+    out.group_inputs_all[static_cast<std::size_t>(g)] += c.inputs;
+    out.groups[static_cast<std::size_t>(g)].merge(c);
+}
+
+// Adds the window's counts to total: pieces of 2^20 counters within a binade
+// in parallel, merged in key order.
+void add_window_counts(Window& w, const ParallelFor& parallel_for, RunCounter& total) {
+    std::vector<uint32_t> wraps;
+    for (auto& list : w.wraps) {
+        wraps.insert(wraps.end(), list.begin(), list.end());
+        std::vector<uint32_t>().swap(list);
+    }
+    std::sort(wraps.begin(), wraps.end());
+    struct Piece {
+        const Window::Range* range;
+        uint32_t from, n;
+        int group;
+    };
+    std::vector<Piece> pieces;
+    constexpr uint32_t kPiece = uint32_t{1} << 20;
+    for (const Window::Range& r : w.ranges) {
+        for (uint32_t i = 0; i < r.size;) {
+            const int g = group_of(r.lo + i);
+            const auto group_end = static_cast<uint32_t>(group_key_hi(g) - r.lo);
+            const uint32_t n = std::min({kPiece, r.size - i, group_end - i});
+            pieces.push_back({&r, i, n, g});
+            i += n;
+        }
+    }
+    std::vector<std::unique_ptr<RunCounter>> parts(pieces.size());
+    parallel_for(pieces.size(), [&](std::size_t p) {
+        parts[p] = std::make_unique<RunCounter>(*total.frame);
+        add_counts(w, *pieces[p].range, pieces[p].from, pieces[p].n, pieces[p].group, wraps, *parts[p]);
+    });
+    for (auto& part : parts) total.merge(*part);
+}
+
+// Exact recount of a non-monotone f with more inputs than the sort limit.
+// `mass` ranks the binades (inputs seen there, or a sample of them); `reach`
+// marks every binade an output may lie in. The first window takes the
+// window_binades binades of most mass; the outputs outside it are kept and
+// counted by sorting, unless there are too many: then the remaining binades
+// are counted in further windows (one more run of f each).
+void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for,
+                     const std::array<uint64_t, kGroups>& mass, const std::array<uint8_t, kGroups>& reach,
+                     int window_binades, RunCounter& total) {
+    const auto chunks = static_cast<std::size_t>(chunk_count(count));
+    std::vector<int> candidates;
+    for (int g = 0; g < kGroups; ++g)
+        if (mass[static_cast<std::size_t>(g)] > 0 || reach[static_cast<std::size_t>(g)]) candidates.push_back(g);
+    const auto per_window = static_cast<std::size_t>(std::max(window_binades, 1));
+    // The first window: most mass first, then by binade; no more binades than
+    // it takes to leave a quarter of the strays' room outside (a smaller
+    // window keeps its counters closer to the cores).
+    std::vector<int> by_mass = candidates;
+    std::stable_sort(by_mass.begin(), by_mass.end(), [&](int x, int y) {
+        return mass[static_cast<std::size_t>(x)] > mass[static_cast<std::size_t>(y)];
+    });
+    uint64_t mass_outside = 0;
+    for (const int g : by_mass) mass_outside += mass[static_cast<std::size_t>(g)];
+    const uint64_t mass_total = std::max<uint64_t>(mass_outside, 1);
+    std::size_t first_window = 0;
+    while (first_window < std::min(per_window, by_mass.size()) &&
+           static_cast<double>(mass_outside) / static_cast<double>(mass_total) * static_cast<double>(count) >
+               static_cast<double>(chunks * kStraysPerChunk / 4)) {
+        mass_outside -= mass[static_cast<std::size_t>(by_mass[first_window])];
+        ++first_window;
+    }
+    by_mass.resize(std::max<std::size_t>(first_window, 1));
+    std::sort(by_mass.begin(), by_mass.end());
+    std::vector<std::vector<uint32_t>> strays(chunks);
+    std::vector<uint8_t> overflow(chunks, 0);
+    {
+        Window w(by_mass);
+        count_in_window(f, count, parallel_for, w, &strays, overflow);
+        add_window_counts(w, parallel_for, total);
+    }
+    const bool overflowed = std::any_of(overflow.begin(), overflow.end(), [](uint8_t o) { return o != 0; });
+    if (!overflowed) {
+        std::vector<uint32_t> keys;
+        for (auto& s : strays) {
+            keys.insert(keys.end(), s.begin(), s.end());
+            std::vector<uint32_t>().swap(s);
+        }
+        std::sort(keys.begin(), keys.end());
+        for (std::size_t i = 0; i < keys.size();) {
+            std::size_t j = i + 1;
+            while (j < keys.size() && keys[j] == keys[i]) ++j;
+            total.add(keys[i], j - i);
+            i = j;
+        }
+        return;
+    }
+    std::vector<std::vector<uint32_t>>().swap(strays);
+    std::vector<int> rest;
+    std::set_difference(candidates.begin(), candidates.end(), by_mass.begin(), by_mass.end(), std::back_inserter(rest));
+    for (std::size_t from = 0; from < rest.size(); from += per_window) {
+        const std::vector<int> groups(rest.begin() + static_cast<std::ptrdiff_t>(from),
+                                      rest.begin() + static_cast<std::ptrdiff_t>(std::min(rest.size(), from + per_window)));
+        Window w(groups);
+        count_in_window(f, count, parallel_for, w, nullptr, overflow);
+        add_window_counts(w, parallel_for, total);
     }
 }
 
@@ -681,15 +1210,17 @@ SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, fl
     const SweepFrame frame = make_frame(count, a, b);
     RunCounter total(frame);
     const auto start = Clock::now();
-    const uint64_t steps_down = count_runs(f, count, parallel_for, total);
+    static const bool avx512 = have_avx512();
+    const uint64_t steps_down = count_runs(f, count, parallel_for, avx512 && !limits.portable, total);
     const double runs_seconds = since(start);
     const auto recount_start = Clock::now();
     if (steps_down > 0) {
         // Equal outputs may not be adjacent: recount exactly.
-        const std::array<uint64_t, kGroups> touched = total.group_inputs_all;
+        const std::array<uint64_t, kGroups> mass = total.group_inputs_all;
+        const std::array<uint8_t, kGroups> reach = total.reach;
         total = RunCounter(frame);
         if (count <= limits.sort_limit) recount_sorted(f, count, parallel_for, total);
-        else recount_windows(f, count, parallel_for, touched, limits.window_binades, total);
+        else recount_windows(f, count, parallel_for, mass, reach, limits.window_binades, total);
     }
     SweepSummary s = summarize(frame, total, count);
     s.non_monotone_steps = steps_down;

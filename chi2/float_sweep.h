@@ -15,14 +15,23 @@
 // monotone function that is the exact histogram in O(1) memory. If an output is
 // ever smaller than the one before (a non-monotone step), equal outputs may be
 // far apart, and the counts are redone exactly: by sorting all outputs when
-// there are at most 2^26 inputs, otherwise by counting passes over windows of
-// the binades the first pass touched, at most 32 binades (2^28 counters, 1 GiB)
-// a window. A pass partitions each block of 2^16 keys by their top bits within
-// the window (radix partitioning, in cache) and adds each part to its slice of
-// the shared counters under that slice's lock, so the increments stay within a
-// few MiB at a time instead of wandering over the window. Every figure is an
-// integer count, or computed at the end from integer counts, so results do not
-// depend on threads or on how the recount was done.
+// there are at most 2^26 inputs, otherwise by counting windows of binades. The
+// first pass stops counting runs in a chunk once it steps down (it only counts
+// the steps and notes where the outputs lie). The recount's first window takes
+// the 64 binades where most outputs lay, with a one-byte counter per float
+// (2^29 counters, 512 MiB; a counter that wraps records the wrap, at most
+// inputs / 256 records, 64 MiB); the outputs outside it are kept (at most 2^14
+// a chunk, 64 MiB) and counted by sorting. So a map whose outputs lie in 64
+// binades or in few floats beyond them (any map into [0,1) with outputs of at
+// least 2^-64, say) is recounted with one more run of f, within 1 GiB. If a
+// chunk has more outputs outside the first window, the remaining binades are
+// counted in further windows, one more run of f each. A pass partitions each
+// block of 2^18 keys by their counters' slice (radix partitioning; 2^20
+// counters, 1 MiB, a slice) and adds each part to its slice under that slice's
+// lock, so the increments stay within L2 at a time instead of wandering over
+// the window. Every figure is an integer count, or computed at the end from
+// integer counts, so results do not depend on threads or on how the recount
+// was done.
 #pragma once
 
 #include <cstddef>
@@ -109,7 +118,10 @@ struct SweepSummary {
 /// Tests lower them to reach the window recount on a reduced range.
 struct SweepLimits {
     uint64_t sort_limit = uint64_t{1} << 26;  ///< recount by sorting up to this many inputs (4 bytes each)
-    int window_binades = 32;                  ///< binades per counting window: 2^23 4-byte counters each
+    int window_binades = 64;                  ///< binades per counting window: 2^23 1-byte counters each
+    /// Take the portable loops even where the CPU has AVX-512 (tests check
+    /// that both give the same counts).
+    bool portable = false;
 };
 
 /// Sweeps f over inputs [0, count), count <= 2^32, against [a,b) (finite a < b).

@@ -29,6 +29,24 @@
 // (the reference's array; the sweep's own counters are 1 GiB). Far from the
 // target (<= 15 s, >= 4x); the baseline run of the old engine was stopped
 // unfinished under a load of ~20, so there is no before/after pair.
+//
+// Issue 16, the sweep engine (branch h-sweep), 2026-11-23, one sitting; "before"
+// is this benchmark built from 5a90fe1, run beside the new one; commands:
+//   build/test/tests/benchmarks/bench_exhaustive --benchmark_filter=MonotoneSweepVsRunLength
+//   build/test/tests/benchmarks/bench_exhaustive --benchmark_filter=NonMonotone
+// Monotone (min of 3): at load 1.3 (16:33 UTC) 197 ms vs 2.71 s, speedup 13.8;
+// the engine before, right after at load 1.2: 410 ms vs 2.82 s, speedup 6.9.
+// At load 4.0 (16:31, the other job on the second core): 410 ms vs 3.04 s,
+// 7.4, before 812 ms vs 2.94 s, 3.6 (two threads get one core: the run scan
+// does about 430 ms of work per 2^32 sweep on one core, of which ~180 ms is
+// the sampler writing its outputs). Target 15x: not reached (13.8 at best).
+// Non-monotone (one round): at load 1.2 (16:34) 16.7 s vs 76.5 s, speedup 4.6;
+// at load 4 falling to 2.5 (16:31) 33.7 s vs 75.5 s, speedup 2.2; the engine
+// before at load 8 (16:22, locked slices): 80.5 s vs 159 s. The sweep alone
+// (a small driver, same engine) peaks at 418 MiB RSS: 80 MiB of one-byte
+// counters for the ten binades with most outputs, 256 MiB of partitioned
+// indices, the rest scratch and the outputs outside the window; bound 1 GiB
+// (chi2/float_sweep.h). Target <= 15 s: not reached (16.7 s at best).
 #include <benchmark/benchmark.h>
 
 #include <sys/resource.h>

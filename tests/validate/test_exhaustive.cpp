@@ -181,7 +181,10 @@ TEST(ExhaustiveSweep, NonMonotoneFunctionsAreRecountedExactlyByHistogramWindows)
 
 // The window recount (radix-partitioned counting within the memory bound),
 // reached on a reduced range by lowering the limits: three binades a window and
-// seven, against the recount by sorting every output, field by field.
+// seven (further windows after too many outputs outside the first), twenty (the
+// few outputs outside the first window counted by sorting), against the
+// recount by sorting every output, field by field; and outputs produced
+// thousands of times each (one-byte counters that wrap).
 void expect_same_summary(const SweepSummary& x, const SweepSummary& y) {
     EXPECT_EQ(x.distinct, y.distinct);
     EXPECT_EQ(x.never_produced, y.never_produced);
@@ -212,10 +215,22 @@ TEST(ExhaustiveSweep, WindowRecountWithinItsMemoryBoundMatchesSorting) {
     const SweepSummary sorted = exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = count});
     ASSERT_TRUE(sorted.exact_fallback);
     EXPECT_GT(sorted.binades.size(), 5u);
-    for (const int window : {3, 7}) {
+    for (const int window : {3, 7, 20}) {
         SCOPED_TRACE(window);
         expect_same_summary(exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = 0, .window_binades = window}),
                             sorted);
+    }
+    const FloatBlockFn coarse = [](uint64_t first, std::size_t n, float* out) {
+        for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<float>(mix64(first + i) >> 54) * 0x1p-10f;
+    };
+    const SweepSummary coarse_sorted = exhaustive_sweep(coarse, count, 0.0f, 1.0f, parallel, {.sort_limit = count});
+    ASSERT_TRUE(coarse_sorted.exact_fallback);
+    EXPECT_GT(coarse_sorted.binade(1, -1)->most_multiplicity, 3000u);  // 1024 outputs, ~4096 times each
+    for (const int window : {2, 64}) {
+        SCOPED_TRACE(window);
+        expect_same_summary(
+            exhaustive_sweep(coarse, count, 0.0f, 1.0f, parallel, {.sort_limit = 0, .window_binades = window}),
+            coarse_sorted);
     }
 }
 
