@@ -1,89 +1,39 @@
-// Built with -fno-math-errno (validate/CMakeLists.txt), so that lanes::sqrt is
-// one vector square root: the lanes never take the root of a negative number.
+// The vectorised chi-square path's driver, and the portable build of its
+// lockstep loops. Built with -fno-math-errno (validate/CMakeLists.txt), so that
+// lanes::sqrt is a vector square root: the lanes never take the root of a
+// negative number.
 #include "validate/lane_sampling.h"
 
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 
-#include "validate/lane_cells.h"
-#include "sampling/lane_warps.h"
 #include "validate/check.h"
+#include "validate/lane_kernels.h"
 
-// Lane vectors are passed only between always_inline functions (sampling/lanes.h).
+// Lane vectors pass only between always_inline functions (sampling/lanes.h).
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace warpcheck {
-namespace {
 
-using lanes::F32;
-using lanes::I64;
-
-/// The lockstep loop of one group, for one warp's lane form: two sets of
-/// lanes::kWidth lanes per step, independent, so that one set's long
-/// latencies (divisions, square roots, the generators' multiply chains)
-/// overlap with the other's work.
-template <typename Kernel>
-WARPCHECK_LANE void run_group(const Kernel& warp, const LaneGroup& g) {
-    constexpr int W = lanes::kWidth;
-    lanes::Pcg32Lanes rng_a, rng_b;
-    std::memcpy(&rng_a.state, g.state, sizeof rng_a.state);
-    std::memcpy(&rng_a.inc, g.inc, sizeof rng_a.inc);
-    std::memcpy(&rng_b.state, g.state + W, sizeof rng_b.state);
-    std::memcpy(&rng_b.inc, g.inc + W, sizeof rng_b.inc);
-    const chi2::LanePlan& plan = *g.plan;
-    const bool all_lanes = std::all_of(g.samples, g.samples + kLaneGroupChunks, [&](uint32_t n) { return n == g.steps; });
-    const unsigned char* const zero = g.zero_cells;
-    uint64_t* const counts = g.counts;
-    alignas(64) int64_t cell[kLaneGroupChunks];
-    for (uint32_t i = 0; i < g.steps; ++i) {
-        // As draw_inputs: u.x from the first 64 bits, u.y from the next.
-        const F32 a0 = lanes::uniform_float_from_bits(rng_a.next_u64());
-        const F32 a1 = lanes::uniform_float_from_bits(rng_a.next_u64());
-        const F32 b0 = lanes::uniform_float_from_bits(rng_b.next_u64());
-        const F32 b1 = lanes::uniform_float_from_bits(rng_b.next_u64());
-        const lanes::Points pa = warp(a0, a1), pb = warp(b0, b1);
-        const I64 ca = lane_cells(plan, pa.x, pa.y, pa.z), cb = lane_cells(plan, pb.x, pb.y, pb.z);
-        std::memcpy(cell, &ca, sizeof ca);
-        std::memcpy(cell + W, &cb, sizeof cb);
-        int64_t any_unclassified = 0;
-        for (int l = 0; l < kLaneGroupChunks; ++l) any_unclassified |= cell[l];
-        if (all_lanes && !zero && any_unclassified >= 0) {
-            for (int l = 0; l < kLaneGroupChunks; ++l) ++counts[cell[l]];
-            continue;
-        }
-        for (int l = 0; l < kLaneGroupChunks; ++l) {
-            if (i >= g.samples[l]) continue;
-            const int64_t k = cell[l];
-            const lanes::Points& p = l < W ? pa : pb;
-            const int m = l % W;
-            if (k >= 0 && !(zero && zero[k])) ++counts[k];
-            else g.unclassified->push_back({p.x[m], p.y[m], p.z[m]});
-        }
+namespace lane_kernels {
+// The portable build of the lockstep loops: this file is compiled for the baseline target.
+#define WARPCHECK_DEFINE_GROUP_FN(name, Kernel) \
+    void name##_portable(const void* kernel, const LaneGroup& g) { \
+        run_group(*static_cast<const lanes::Kernel*>(kernel), g); \
     }
-}
-
-template <typename Kernel>
-struct Entry {
-    static constexpr Kernel kKernel{};
-    [[gnu::target("arch=x86-64-v4")]] static void avx512(const void* kernel, const LaneGroup& g) {
-        run_group(*static_cast<const Kernel*>(kernel), g);
-    }
-    static void portable(const void* kernel, const LaneGroup& g) { run_group(*static_cast<const Kernel*>(kernel), g); }
-    static const LaneSampler& sampler() {
-        static const LaneSampler s{&kKernel, &Entry::avx512, &Entry::portable};
-        return s;
-    }
-};
-
-}  // namespace
+WARPCHECK_LANE_FORMS(WARPCHECK_DEFINE_GROUP_FN)
+#undef WARPCHECK_DEFINE_GROUP_FN
+}  // namespace lane_kernels
 
 namespace builtin_lanes {
-const LaneSampler& uniform_disk_polar() { return Entry<lanes::UniformDiskPolarLanes>::sampler(); }
-const LaneSampler& uniform_disk_concentric() { return Entry<lanes::UniformDiskConcentricLanes>::sampler(); }
-const LaneSampler& cosine_hemisphere() { return Entry<lanes::CosineHemisphereLanes>::sampler(); }
-const LaneSampler& uniform_hemisphere() { return Entry<lanes::UniformHemisphereLanes>::sampler(); }
-const LaneSampler& uniform_sphere() { return Entry<lanes::UniformSphereLanes>::sampler(); }
+#define WARPCHECK_DEFINE_SAMPLER(name, Kernel)                                                      \
+    const LaneSampler& name() {                                                                    \
+        static constexpr lanes::Kernel kernel{};                                                    \
+        static const LaneSampler sampler{&kernel, &lane_kernels::name##_avx512, &lane_kernels::name##_portable}; \
+        return sampler;                                                                            \
+    }
+WARPCHECK_LANE_FORMS(WARPCHECK_DEFINE_SAMPLER)
+#undef WARPCHECK_DEFINE_SAMPLER
 }  // namespace builtin_lanes
 
 bool avx512_available() {
@@ -132,13 +82,16 @@ chi2::Histogram lane_histogram(const chi2::Binning& binning, uint64_t samples, s
     each(histograms, [&](std::size_t h) {
         chi2::Histogram& hist = part[h];
         hist.counts.assign(cells, 0);
-        std::vector<WarpOutput> unclassified;
+        // Room for every sample of a group, should none be classified.
+        std::vector<WarpOutput> unclassified(kLaneGroupChunks * chunk_size);
+        std::size_t unclassified_count = 0;
         for (uint64_t g = h; g < groups; g += histograms) {
             LaneGroup group;
             group.plan = &*plan;
             group.zero_cells = any_zero_cell ? zero_cells.data() : nullptr;
             group.counts = hist.counts.data();
-            group.unclassified = &unclassified;
+            group.unclassified = unclassified.data();
+            group.unclassified_count = &unclassified_count;
             for (int l = 0; l < kLaneGroupChunks; ++l) {
                 const uint64_t chunk = g * kLaneGroupChunks + static_cast<uint64_t>(l);
                 // A lane past the last chunk steps a copy of the first and counts nothing.
@@ -150,8 +103,7 @@ chi2::Histogram lane_histogram(const chi2::Binning& binning, uint64_t samples, s
                 group.steps = std::max(group.steps, group.samples[l]);
             }
             run(sampler.kernel, group);
-            binning.bin(std::span<const WarpOutput>(unclassified), hist, zero_cells);
-            unclassified.clear();
+            binning.bin(std::span<const WarpOutput>(unclassified.data(), unclassified_count), hist, zero_cells);
         }
     });
     chi2::Histogram total;

@@ -38,7 +38,9 @@ struct LaneGroup {
     uint32_t steps = 0;         ///< the largest of samples[]
     const unsigned char* zero_cells = nullptr;  ///< per cell, 1 where the density integrates to zero; or null
     uint64_t* counts = nullptr;                 ///< the histogram's cell counts, incremented
-    std::vector<WarpOutput>* unclassified = nullptr;  ///< samples left to Binning::bin
+    /// Samples left to Binning::bin: room for kLaneGroupChunks * steps, and how many were written.
+    WarpOutput* unclassified = nullptr;
+    std::size_t* unclassified_count = nullptr;
 };
 
 /// A warp's lane form, compiled for both paths. Built by lane_sampler<Kernel>().
