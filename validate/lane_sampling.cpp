@@ -37,10 +37,14 @@ WARPCHECK_LANE_FORMS(WARPCHECK_DEFINE_SAMPLER)
 }  // namespace builtin_lanes
 
 bool avx512_available() {
+#if !defined(__x86_64__)
+    return false;
+#else
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
            __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
            __builtin_cpu_supports("avx512vl");
+#endif
 }
 
 LanePath auto_lane_path() { return avx512_available() ? LanePath::Avx512 : LanePath::Portable; }
