@@ -1,4 +1,4 @@
-// Lane forms of the common spherical and disk warps: sixteen samples at once,
+// Lane forms of the common spherical and disk warps: eight samples at once,
 // each step the same IEEE operation as the scalar form in disk.h, hemisphere.h
 // and sphere.h, so they return the same bits (tests/sampling/lanes_test.cpp).
 // The scalar forms stay the readable definition; these feed the vectorised

@@ -1,4 +1,4 @@
-// Sixteen samples at once: the lane types of the vectorised chi-square path
+// Eight samples at once: the lane types of the vectorised chi-square path
 // (validate/lane_sampling.h) and the lane forms of the helpers the warps use.
 //
 // The types are GCC vector extensions (also understood by Clang). Code written
@@ -88,7 +88,7 @@ WARPCHECK_LANE SinCos sin_cos(F32 phi) {
     return {to_f32(s), to_f32(c)};
 }
 
-/// Sixteen PCG32 generators stepped together, lane l a copy of one Pcg32.
+/// Eight (kWidth) PCG32 generators stepped together, lane l a copy of one Pcg32.
 struct Pcg32Lanes {
     U64 state{}, inc{};
 

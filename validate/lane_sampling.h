@@ -1,8 +1,8 @@
-// The vectorised chi-square path: draw, warp and bin 16 samples at once.
+// The vectorised chi-square path: draw, warp and bin 24 samples at once (three sets of 8 lanes).
 //
 // The chi-square check draws its samples in chunks of 4,096, chunk c from its
-// own stream ctx.chunk_rng(c) (validate/check.h). Here 16 consecutive
-// chunks run in lockstep, one per lane: lane l is a copy of chunk 16 g + l's
+// own stream ctx.chunk_rng(c) (validate/check.h). Here 24 consecutive
+// chunks run in lockstep, one per lane: lane l is a copy of chunk 24 g + l's
 // Pcg32, its inputs are drawn as draw_inputs draws them, warped by the lane
 // form of the warp (sampling/lane_warps.h) and binned by lane_cells (validate/lane_cells.h). The
 // few samples the lanes do not classify (NaN, outside the domain, in a cell
@@ -27,8 +27,8 @@
 
 namespace warpcheck {
 
-/// Chunks run in lockstep: two sets of lanes::kWidth lanes.
-inline constexpr int kLaneGroupChunks = 2 * lanes::kWidth;
+/// Chunks run in lockstep: three sets of lanes::kWidth lanes.
+inline constexpr int kLaneGroupChunks = 3 * lanes::kWidth;
 
 /// One lockstep run: up to kLaneGroupChunks chunks, lane l drawing from (state[l], inc[l]).
 struct LaneGroup {

@@ -69,7 +69,7 @@ TEST(SinCos, BeyondItsRangeDefersToLibm) {
     EXPECT_TRUE(std::isnan(sin_cos(std::nanf("")).cos));
 }
 
-TEST(LanePcg32, StepsAsSixteenScalarGenerators) {
+TEST(LanePcg32, StepsAsScalarGenerators) {
     lanes::Pcg32Lanes v;
     std::vector<Pcg32> scalar;
     for (int l = 0; l < W; ++l) {

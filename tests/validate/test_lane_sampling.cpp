@@ -51,7 +51,7 @@ chi2::Histogram scalar_histogram(const WarpCase& warp, const chi2::Binning& binn
 }
 
 TEST(LaneSampling, EveryLaneCaseBuildsTheScalarHistogramOnEveryPath) {
-    // 300,007 samples: 74 chunks, the last one partial, in 5 groups of 16 chunks, the last one partial.
+    // 300,007 samples: 74 chunks, the last one partial, in 4 groups of 24 chunks, the last one partial.
     constexpr uint64_t kSamples = 300'007;
     RunOptions options;
     ThreadPool pool(2);

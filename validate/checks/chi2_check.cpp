@@ -131,7 +131,7 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
         warp.pdf(x, density);
     };
     if (warp.info().lanes && kind == InputKind::Uniform2D && binning.lane_plan()) {
-        // The same histogram, 16 samples at a time (validate/lane_sampling.h).
+        // The same histogram, 24 samples at a time (validate/lane_sampling.h).
         const chi2::SampleHistogram lanes = [&](std::span<const unsigned char> zero) {
             const auto chunk_rng = [&](uint64_t chunk) {
                 ctx.throw_if_cancelled();
