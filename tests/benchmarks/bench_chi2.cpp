@@ -18,9 +18,16 @@
 //   load 9.8:  check 518 ms on 2 threads, pbrt-style 1472 ms on one: speedup 2.84;
 //              draw+warp+bin 21.1 M samples/s on one thread, fused loop 10.8 M/s: 1.96
 //   load 14.3: check 884 ms, pbrt-style 3050 ms: 3.45; 9.8 vs 4.8 M/s: 2.04
+// With the vectorised path (validate/lane_sampling.h, three sets of 8 lanes),
+// 16:47-16:52 UTC, machine otherwise idle (load 0.4-1.3, this benchmark itself),
+// five runs of --benchmark_filter='Vs|PerCore' or 'PerCore/1':
+//   check 37.1-38.6 ms on 2 threads, pbrt-style 834-858 ms on one: speedup 22.2-22.8;
+//   draw+warp+bin 143-152 M samples/s on one thread (lanes, avx512; the
+//   machine's own speed drifts ~5% between runs), fused loop 16-17 M/s;
+//   the scalar chunk path (BM_DrawWarpBinPerCore/0) 28-31 M/s, the portable lane build 20-24 M/s.
+// A fourth set of lanes measured the same (143-146 M/s beside 143-145 for three).
 // Issue 16's targets: check <= 50 ms and >= 15x the pbrt-style procedure;
-// >= 150 M samples/s per core. Not reached: the batched, vectorised path is
-// still to be built.
+// >= 150 M samples/s per core.
 #include <cmath>
 #include <memory>
 #include <span>
