@@ -9,8 +9,10 @@
 // where the density integrates to zero) go to Binning::bin one by one. So the
 // histogram is the one the scalar path builds, count for count, for any
 // thread count and on either code path:
-//   - AVX-512 (x86-64-v4), chosen at run time where the processor has it;
-//   - portable: the same source compiled for the baseline target.
+//   - AVX-512 (x86-64-v4), which the chi-square check uses where the processor
+//     has it (elsewhere it keeps its scalar chunk path, the faster there);
+//   - portable: the same source compiled for the baseline target, which the
+//     tests hold to the same bits (LanePath::Portable).
 // tests/validate/lane_sampling_test.cpp holds both paths to the scalar one.
 #pragma once
 
