@@ -24,6 +24,11 @@ std::string count_of(uint64_t n, const char* noun) {
 
 }  // namespace
 
+std::size_t histogram_count(uint64_t work_items, std::size_t cells) {
+    const uint64_t cap = std::clamp<uint64_t>((uint64_t{1} << 22) / std::max<std::size_t>(cells, 1), 1, 64);
+    return static_cast<std::size_t>(std::max<uint64_t>(std::min(work_items, cap), 1));
+}
+
 Histogram sample_histogram(const Binning& binning, uint64_t samples, std::size_t chunk_size,
                            const SampleChunk& generate, std::span<const unsigned char> zero_cells,
                            const ParallelFor& parallel_for) {
@@ -31,10 +36,7 @@ Histogram sample_histogram(const Binning& binning, uint64_t samples, std::size_t
     if (!generate) throw std::invalid_argument("sample_histogram: no sampler");
     const std::size_t cells = binning.cell_count();
     const uint64_t chunks = (samples + chunk_size - 1) / chunk_size;
-    // Lanes: enough to keep any thread count busy, few enough that their
-    // histograms stay small (at most ~2^22 counters in all).
-    const uint64_t lane_cap = std::clamp<uint64_t>((uint64_t{1} << 22) / std::max<std::size_t>(cells, 1), 1, 64);
-    const auto lanes = static_cast<std::size_t>(std::min<uint64_t>(chunks, lane_cap));
+    const std::size_t lanes = histogram_count(chunks, cells);
     std::vector<Histogram> lane_hist(lanes);
     const ParallelFor& run = parallel_for ? parallel_for : ParallelFor(serial_for);
     run(lanes, [&](std::size_t lane) {

@@ -49,6 +49,12 @@ using SamplePoint = std::array<float, 3>;
 /// samples except possibly the last). Called from several threads at once.
 using SampleChunk = std::function<void(std::size_t chunk, std::span<SamplePoint> out)>;
 
+/// How many histograms a parallel sampling loop over `work_items` items keeps
+/// (each takes every n-th item; they are merged in order at the end): enough to
+/// keep any thread count busy, few enough that together they stay near 2^22
+/// counters. At least 1.
+std::size_t histogram_count(uint64_t work_items, std::size_t cells);
+
 /// Draws `samples` samples chunk by chunk and bins them. Chunks are spread
 /// over a fixed number of lanes, each with its own histogram, merged at the
 /// end; counts are integers, so the result is the same for any executor.

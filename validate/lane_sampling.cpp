@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "chi2/chi2_test.h"
 #include "validate/check.h"
 #include "validate/lane_kernels.h"
 
@@ -40,10 +41,13 @@ bool avx512_available() {
 #if !defined(__x86_64__)
     return false;
 #else
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
-           __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
-           __builtin_cpu_supports("avx512vl");
+    static const bool available = [] {  // asked by every chi-square check: once per process
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+               __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+               __builtin_cpu_supports("avx512vl");
+    }();
+    return available;
 #endif
 }
 
@@ -79,8 +83,7 @@ chi2::Histogram lane_histogram(const chi2::Binning& binning, uint64_t samples, s
     const uint64_t groups = (chunks + kLaneGroupChunks - 1) / kLaneGroupChunks;
     // Histograms as chi2::sample_histogram keeps them: a fixed number, each
     // taking every H-th group, merged in order (integer sums: any order agrees).
-    const uint64_t hist_cap = std::clamp<uint64_t>((uint64_t{1} << 22) / std::max<std::size_t>(cells, 1), 1, 64);
-    const auto histograms = static_cast<std::size_t>(std::max<uint64_t>(std::min(groups, hist_cap), 1));
+    const std::size_t histograms = chi2::histogram_count(groups, cells);
     std::vector<chi2::Histogram> part(histograms);
     const chi2::ParallelFor& each = parallel_for ? parallel_for : chi2::ParallelFor(chi2::serial_for);
     each(histograms, [&](std::size_t h) {

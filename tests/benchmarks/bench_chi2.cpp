@@ -83,12 +83,7 @@ void BM_Chi2SampleAndBin(benchmark::State& state) {
     Fixture f;
     const CheckContext ctx = f.context();
     const chi2::Binning binning(f.warp->domain());
-    const chi2::SampleChunk generate = [&](std::size_t chunk, std::span<chi2::SamplePoint> out) {
-        std::vector<WarpInput> inputs(out.size());
-        Pcg32 rng = ctx.chunk_rng(chunk);
-        draw_inputs(rng, f.warp->input_kind(), inputs);
-        f.warp->sample(inputs, out);
-    };
+    const chi2::SampleChunk generate = chi2_sample_chunks(*f.warp, ctx);
     for (auto _ : state) {
         chi2::Histogram h = chi2::sample_histogram(binning, kSamples, 4096, generate, {}, f.parallel());
         benchmark::DoNotOptimize(h.counts.data());
@@ -197,12 +192,7 @@ void BM_DrawWarpBinPerCore(benchmark::State& state) {
     Fixture f(1);
     const CheckContext ctx = f.context();
     const chi2::Binning binning(f.warp->domain());
-    const chi2::SampleChunk generate = [&](std::size_t chunk, std::span<chi2::SamplePoint> out) {
-        std::vector<WarpInput> inputs(out.size());
-        Pcg32 rng = ctx.chunk_rng(chunk);
-        draw_inputs(rng, f.warp->input_kind(), inputs);
-        f.warp->sample(inputs, out);
-    };
+    const chi2::SampleChunk generate = chi2_sample_chunks(*f.warp, ctx);
     const auto chunk_rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
     const int path = static_cast<int>(state.range(0));
     std::vector<uint64_t> counts;

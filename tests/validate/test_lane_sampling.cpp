@@ -41,13 +41,7 @@ void expect_equal(const chi2::Histogram& a, const chi2::Histogram& b, const std:
 
 chi2::Histogram scalar_histogram(const WarpCase& warp, const chi2::Binning& binning, uint64_t samples,
                                  std::span<const unsigned char> zero, const CheckContext& ctx) {
-    const chi2::SampleChunk generate = [&](std::size_t chunk, std::span<chi2::SamplePoint> out) {
-        std::vector<WarpInput> inputs(out.size());
-        Pcg32 rng = ctx.chunk_rng(chunk);
-        draw_inputs(rng, warp.input_kind(), inputs);
-        warp.sample(inputs, out);
-    };
-    return chi2::sample_histogram(binning, samples, 4096, generate, zero, ctx.executor());
+    return chi2::sample_histogram(binning, samples, 4096, chi2_sample_chunks(warp, ctx), zero, ctx.executor());
 }
 
 TEST(LaneSampling, EveryLaneCaseBuildsTheScalarHistogramOnEveryPath) {

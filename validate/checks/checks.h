@@ -3,6 +3,7 @@
 
 #include <memory>
 
+#include "chi2/chi2_test.h"
 #include "validate/check.h"
 
 namespace warpcheck {
@@ -22,6 +23,10 @@ std::unique_ptr<Check> make_binade_check();
 std::unique_ptr<Check> make_exhaustive_roundtrip_check();
 /// "chi2": Pearson chi-square test of samples against the pdf integrated over cells.
 std::unique_ptr<Check> make_chi2_check();
+/// The chi-square check's scalar sample source: chunk c drawn from
+/// ctx.chunk_rng(c) by draw_inputs and warped by WarpCase::sample (the
+/// histogram the lane path of validate/lane_sampling.h must match).
+chi2::SampleChunk chi2_sample_chunks(const WarpCase& warp, const CheckContext& ctx);
 /// "tabulated": for 1D warps and the monotone 1D views of a case (WarpCaseInfo::views),
 /// sample(u) and the density against the inversion method on a 65536-bucket
 /// PiecewiseConstant1D of the density, with bucket-derived tolerances.

@@ -118,13 +118,6 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
     chi2::Chi2Options options;
     options.resolution = binning.resolution();
     const InputKind kind = warp.input_kind();
-    const chi2::SampleChunk generate = [&](std::size_t chunk, std::span<chi2::SamplePoint> out) {
-        ctx.throw_if_cancelled();
-        std::vector<WarpInput> inputs(out.size());
-        Pcg32 rng = ctx.chunk_rng(chunk);
-        draw_inputs(rng, kind, inputs);
-        warp.sample(inputs, out);
-    };
     const chi2::BatchPdf pdf = [&](std::span<const chi2::DomainPoint> points, std::span<double> density) {
         std::vector<WarpOutput> x(points.size());
         for (std::size_t i = 0; i < points.size(); ++i) x[i] = to_warp_output(points[i]);
@@ -144,7 +137,8 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
         };
         return chi2::run_chi2_test(binning, ctx.options().samples, lanes, pdf, options, ctx.executor());
     }
-    return chi2::run_chi2_test(binning, ctx.options().samples, generate, pdf, options, ctx.executor());
+    return chi2::run_chi2_test(binning, ctx.options().samples, chi2_sample_chunks(warp, ctx), pdf, options,
+                               ctx.executor());
 }
 
 /// The judge part. The rules that need no significance level (NaN or outside
@@ -251,6 +245,16 @@ public:
 };
 
 }  // namespace
+
+chi2::SampleChunk chi2_sample_chunks(const WarpCase& warp, const CheckContext& ctx) {
+    return [&warp, &ctx](std::size_t chunk, std::span<chi2::SamplePoint> out) {
+        ctx.throw_if_cancelled();
+        std::vector<WarpInput> inputs(out.size());
+        Pcg32 rng = ctx.chunk_rng(chunk);
+        draw_inputs(rng, warp.input_kind(), inputs);
+        warp.sample(inputs, out);
+    };
+}
 
 std::unique_ptr<Check> make_chi2_check() { return std::make_unique<Chi2Check>(); }
 
