@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -925,15 +926,22 @@ void recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& pa
 
 // The window recount (see the header): one-byte counters over the key ranges
 // of a window's binades, filled by radix partitioning in rounds of
-// kRoundChunks chunks. First each chunk of the round turns its outputs into
-// counter indices split by the slice of the counters they fall in (a slice is
-// 1/256 of the window, at most 2 MiB: within L2); then each slice adds the
-// parts of every chunk of the round, so the increments of a slice stay in
-// cache, and no two threads touch one counter (no locks, no atomics). A
-// counter that wraps past 255 records the wrap in its slice's list: a count is
-// its counter plus 256 per recorded wrap, so the lists hold at most count / 256
-// entries.
-constexpr std::size_t kRoundChunks = 16;  // 16 chunks' indices: 256 MiB
+// kRoundChunks chunks. First each chunk of the round appends the counter
+// indices of its outputs to blocks of the slice they fall in (a slice is at
+// most 1/256 of the window, at most 2 MiB: within L2), in one pass: each slice
+// gathers 16 indices in a cache line of its own and writes them out whole with
+// a streaming store, so the round buffer is written once, without being read
+// first, and never goes through the cache. Then each slice adds the blocks of
+// every chunk of the round, so the increments of a slice stay in cache, and no
+// two threads touch one counter (no locks, no atomics). A counter that wraps
+// past 255 records the wrap in its slice's list: a count is its counter plus
+// 256 per recorded wrap, so the lists hold at most count / 256 entries.
+constexpr std::size_t kRoundChunks = 16;
+// Indices per block (4 KiB). A chunk of n inputs over S slices fills at most
+// n / kBlockEntries + S blocks (all but each slice's last are full): 17 MiB a
+// chunk for 257 slices, 272 MiB a round.
+constexpr uint32_t kBlockEntries = 1024;
+constexpr uint32_t kLineEntries = 16;  // indices per 64-byte line
 // Keys outside the first window kept per chunk for counting by sorting: at
 // most 2^24 (64 MiB) over 2^32 inputs. A chunk with more makes the recount
 // count the remaining binades in further windows instead.
@@ -967,52 +975,162 @@ struct Window {
     }
 };
 
+// 4 KiB-aligned storage (blocks and cache lines start at their own alignment).
+struct AlignedFree {
+    void operator()(uint32_t* p) const { std::free(p); }
+};
+using AlignedIndices = std::unique_ptr<uint32_t[], AlignedFree>;
+AlignedIndices aligned_indices(std::size_t n) {
+    const std::size_t bytes = (n * sizeof(uint32_t) + 4095) / 4096 * 4096;
+    auto* p = static_cast<uint32_t*>(std::aligned_alloc(4096, std::max<std::size_t>(bytes, 4096)));
+    if (p == nullptr) throw std::bad_alloc();
+    return AlignedIndices(p);
+}
+
+// Writes one full line of 16 indices (64-byte aligned at both ends): a
+// streaming store where there is one, so the line is not read first.
+inline void write_line(uint32_t* to, const uint32_t* from) {
+#if defined(__x86_64__)
+    auto* dst = reinterpret_cast<__m128i*>(to);
+    const auto* src = reinterpret_cast<const __m128i*>(from);
+    _mm_stream_si128(dst, _mm_load_si128(src));
+    _mm_stream_si128(dst + 1, _mm_load_si128(src + 1));
+    _mm_stream_si128(dst + 2, _mm_load_si128(src + 2));
+    _mm_stream_si128(dst + 3, _mm_load_si128(src + 3));
+#else
+    std::memcpy(to, from, kLineEntries * sizeof(uint32_t));
+#endif
+}
+
+// One chunk's part of a round: its blocks, which slice each holds and how
+// full it is, and after partitioning, its blocks grouped by slice.
+struct ChunkBlocks {
+    uint32_t* entries = nullptr;          // capacity blocks of kBlockEntries
+    std::vector<uint32_t> slice_of, fill;  // per block
+    std::vector<uint32_t> by_slice, slice_start;  // blocks of slice s: by_slice[slice_start[s] .. slice_start[s + 1])
+    uint32_t used = 0;
+
+    // Groups the blocks by slice (in block order within a slice).
+    void group(std::size_t slices) {
+        slice_start.assign(slices + 1, 0);
+        for (uint32_t b = 0; b < used; ++b) ++slice_start[slice_of[b] + 1];
+        for (std::size_t s = 1; s <= slices; ++s) slice_start[s] += slice_start[s - 1];
+        by_slice.resize(used);
+        std::vector<uint32_t> at(slice_start.begin(), slice_start.end() - 1);
+        for (uint32_t b = 0; b < used; ++b) by_slice[at[slice_of[b]]++] = b;
+    }
+};
+
+// Appends counter indices to a chunk's blocks, by slice, through a line per
+// slice (see above).
+class SlicePartitioner {
+public:
+    SlicePartitioner(const Window& w, ChunkBlocks& out) : shift_(w.slice_shift), slices_(w.slices), out_(out) {
+        thread_local AlignedIndices lines;
+        thread_local std::size_t line_slices = 0;
+        if (line_slices < slices_) {
+            lines = aligned_indices(slices_ * kLineEntries);
+            line_slices = slices_;
+        }
+        lines_ = lines.get();
+        thread_local std::vector<uint32_t> in_line, block, in_block;
+        in_line.assign(slices_, 0);
+        block.assign(slices_, kNoBlock);
+        in_block.assign(slices_, 0);
+        in_line_ = in_line.data();
+        block_ = block.data();
+        in_block_ = in_block.data();
+        out_.used = 0;
+    }
+
+    void add(uint32_t at) {
+        const uint32_t s = at >> shift_;
+        uint32_t* const line = lines_ + s * kLineEntries;
+        const uint32_t n = in_line_[s];
+        line[n] = at;
+        if (n + 1 < kLineEntries) {
+            in_line_[s] = n + 1;
+            return;
+        }
+        in_line_[s] = 0;
+        write_line(room(s, kLineEntries), line);
+    }
+
+    // Writes out the lines' remainders; the blocks are complete afterwards.
+    void finish() {
+        for (uint32_t s = 0; s < slices_; ++s) {
+            const uint32_t n = in_line_[s];
+            if (n > 0) std::copy_n(lines_ + s * kLineEntries, n, room(s, n));
+        }
+#if defined(__x86_64__)
+        _mm_sfence();  // streaming stores are weakly ordered: complete them before the chunk is done
+#endif
+        out_.group(slices_);
+    }
+
+private:
+    static constexpr uint32_t kNoBlock = std::numeric_limits<uint32_t>::max();
+
+    // Where slice s's next n indices go (n <= kLineEntries; full lines keep
+    // their alignment, since only the last write of a slice is partial).
+    uint32_t* room(uint32_t s, uint32_t n) {
+        uint32_t b = block_[s];
+        if (b == kNoBlock || in_block_[s] == kBlockEntries) {
+            b = out_.used++;
+            block_[s] = b;
+            in_block_[s] = 0;
+            out_.slice_of[b] = s;
+        }
+        uint32_t* const to = out_.entries + std::size_t{b} * kBlockEntries + in_block_[s];
+        in_block_[s] += n;
+        out_.fill[b] = in_block_[s];
+        return to;
+    }
+
+    const int shift_;
+    const uint32_t slices_;
+    ChunkBlocks& out_;
+    uint32_t* lines_ = nullptr;
+    uint32_t *in_line_ = nullptr, *block_ = nullptr, *in_block_ = nullptr;
+};
+
 // One chunk of a round: the counter indices of its outputs that fall in the
-// window, split by slice into parted (offsets[s] .. offsets[s + 1]); with
-// `strays`, keeps the other outputs there (up to kStraysPerChunk; beyond, sets
-// strays_overflow).
-void partition_chunk(const FloatBlockFn& f, uint64_t first, uint64_t n, const Window& w, uint32_t* parted,
-                     uint32_t* offsets, std::vector<uint32_t>* strays, bool& strays_overflow) {
-    const int slice_shift = w.slice_shift;
+// window, into its blocks by slice; with `strays`, keeps the other outputs
+// there (up to kStraysPerChunk; beyond, sets strays_overflow).
+void partition_chunk(const FloatBlockFn& f, uint64_t first, uint64_t n, const Window& w, ChunkBlocks& blocks,
+                     std::vector<uint32_t>* strays, bool& strays_overflow) {
     // Scratch reused by the thread across chunks (no page faults per chunk).
     thread_local std::vector<float> values;
-    thread_local std::vector<uint32_t> keys, index, fill;
+    thread_local std::vector<uint32_t> keys;
     values.resize(kBlockSize);
     keys.resize(kBlockSize);
-    index.resize(kChunkSize);
-    fill.resize(w.slices);
     const Window::Range* const ranges = w.ranges.data();
     const std::size_t range_count = w.ranges.size();
     const Window::Range first_range = w.ranges.front();
-    std::fill(offsets, offsets + w.slices + 1, 0u);
-    std::size_t kept = 0;
+    SlicePartitioner parts(w, blocks);
     for (uint64_t done = 0; done < n; done += kBlockSize) {
         const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
         f(first + done, len, values.data());
+        const uint32_t* const k = keys.data();
         to_keys(values.data(), len, keys.data());
         for (std::size_t i = 0; i < len; ++i) {
-            const uint32_t key = keys[i];
+            const uint32_t key = k[i];
             uint32_t at = key - first_range.lo;
             if (at < first_range.size) {
-                at += first_range.base;
-            } else {
-                std::size_t r = 1;
-                while (r < range_count && key - ranges[r].lo >= ranges[r].size) ++r;
-                if (r == range_count) {
-                    if (strays == nullptr) continue;
-                    if (strays->size() < kStraysPerChunk) strays->push_back(key);
-                    else strays_overflow = true;
-                    continue;
-                }
-                at = ranges[r].base + (key - ranges[r].lo);
+                parts.add(at + first_range.base);
+                continue;
             }
-            index[kept++] = at;
-            ++offsets[(at >> slice_shift) + 1];
+            std::size_t r = 1;
+            while (r < range_count && key - ranges[r].lo >= ranges[r].size) ++r;
+            if (r < range_count) {
+                parts.add(ranges[r].base + (key - ranges[r].lo));
+            } else if (strays != nullptr) {
+                if (strays->size() < kStraysPerChunk) strays->push_back(key);
+                else strays_overflow = true;
+            }
         }
     }
-    for (std::size_t s = 1; s <= w.slices; ++s) offsets[s] += offsets[s - 1];
-    for (std::size_t s = 0; s < w.slices; ++s) fill[s] = offsets[s];
-    for (std::size_t i = 0; i < kept; ++i) parted[fill[index[i] >> slice_shift]++] = index[i];
+    parts.finish();
 }
 
 // Counts every chunk's outputs in the window, round by round (see above).
@@ -1020,26 +1138,35 @@ void count_in_window(const FloatBlockFn& f, uint64_t count, const ParallelFor& p
                      std::vector<std::vector<uint32_t>>* strays, std::vector<uint8_t>& overflow) {
     const auto chunks = static_cast<std::size_t>(chunk_count(count));
     const std::size_t round = std::min(kRoundChunks, chunks);
-    std::vector<uint32_t> parted(round * kChunkSize);
-    std::vector<uint32_t> offsets(round * (w.slices + 1));
+    const std::size_t capacity = kChunkSize / kBlockEntries + w.slices;  // blocks a chunk may fill
+    const AlignedIndices entries = aligned_indices(round * capacity * kBlockEntries);
+    std::vector<ChunkBlocks> blocks(round);
+    for (std::size_t k = 0; k < round; ++k) {
+        blocks[k].entries = entries.get() + k * capacity * kBlockEntries;
+        blocks[k].slice_of.resize(capacity);
+        blocks[k].fill.resize(capacity);
+    }
     for (std::size_t from = 0; from < chunks; from += round) {
         const std::size_t here = std::min(round, chunks - from);
         parallel_for(here, [&](std::size_t k) {
             const std::size_t c = from + k;
             const uint64_t first = c * kChunkSize;
             bool over = false;
-            partition_chunk(f, first, std::min(kChunkSize, count - first), w, parted.data() + k * kChunkSize,
-                            offsets.data() + k * (w.slices + 1), strays != nullptr ? &(*strays)[c] : nullptr, over);
+            partition_chunk(f, first, std::min(kChunkSize, count - first), w, blocks[k],
+                            strays != nullptr ? &(*strays)[c] : nullptr, over);
             overflow[c] = over;
         });
         parallel_for(w.slices, [&](std::size_t s) {
             uint8_t* const counts = w.counts.data();
             std::vector<uint32_t>& wraps = w.wraps[s];
             for (std::size_t k = 0; k < here; ++k) {
-                const uint32_t* part = parted.data() + k * kChunkSize;
-                const uint32_t* off = offsets.data() + k * (w.slices + 1);
-                for (uint32_t i = off[s]; i < off[s + 1]; ++i)
-                    if (++counts[part[i]] == 0) wraps.push_back(part[i]);
+                const ChunkBlocks& cb = blocks[k];
+                for (uint32_t j = cb.slice_start[s]; j < cb.slice_start[s + 1]; ++j) {
+                    const uint32_t b = cb.by_slice[j];
+                    const uint32_t* const part = cb.entries + std::size_t{b} * kBlockEntries;
+                    for (uint32_t i = 0; i < cb.fill[b]; ++i)
+                        if (++counts[part[i]] == 0) wraps.push_back(part[i]);
+                }
             }
         });
     }

@@ -25,11 +25,13 @@
 // binades or in few floats beyond them (any map into [0,1) with outputs of at
 // least 2^-64, say) is recounted with one more run of f, within 1 GiB. If a
 // chunk has more outputs outside the first window, the remaining binades are
-// counted in further windows, one more run of f each. A pass partitions each
-// block of 2^18 keys by their counters' slice (radix partitioning; 2^20
-// counters, 1 MiB, a slice) and adds each part to its slice under that slice's
-// lock, so the increments stay within L2 at a time instead of wandering over
-// the window. Every figure is an integer count, or computed at the end from
+// counted in further windows, one more run of f each. A window pass works in
+// rounds of 16 chunks: each chunk appends its outputs' counter indices to
+// blocks by the slice of counters they fall in (radix partitioning; at most
+// 257 slices of at most 2 MiB, written through a cache line per slice with
+// streaming stores; 272 MiB a round), then each slice adds the blocks of the
+// round on one thread, so the increments stay within L2 and need no locks.
+// Every figure is an integer count, or computed at the end from
 // integer counts, so results do not depend on threads or on how the recount
 // was done.
 #pragma once
