@@ -1,4 +1,5 @@
 #include "chi2/float_sweep.h"
+#include "chi2/run_borders.h"
 
 #include <algorithm>
 #include <array>
@@ -258,60 +259,18 @@ __attribute__((target("avx512f"))) inline __m512i float_keys_avx512(__m512i bits
                                  _mm512_set1_epi32(-1));
 }
 
-// x must be 64-byte aligned. Most groups of 16 outputs hold no border in a
-// monotone sweep (runs are hundreds long): four groups cost four loads, four
-// lane shifts and compares and one predictable branch; the compresses run only
-// where borders are.
-__attribute__((target("avx512f,popcnt"))) std::size_t borders_avx512(const float* x, std::size_t n, uint32_t base,
-                                                                     uint32_t* positions, uint32_t* bits) {
-    const __m512i lanes = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    std::size_t count = 0;
-    __m512i index = _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(base)), lanes);  // of x[i]
-    const __m512i sixteen = _mm512_set1_epi32(16), sixty_four = _mm512_set1_epi32(64);
-    const auto emit = [&](__mmask16 m, __m512i v, __m512i at, std::size_t i) __attribute__((target("avx512f,popcnt"))) {
-        const auto mask = static_cast<unsigned>(m);
-        if ((mask & (mask - 1)) == 0) {
-            // One border (runs of 16 and more): two scalar stores.
-            const auto j = static_cast<uint32_t>(i) + static_cast<uint32_t>(std::countr_zero(mask));
-            positions[count] = base + j;
-            bits[count] = float_to_bits(x[j]);
-            ++count;
-            return;
-        }
-        // Compress in a register and store all 16 lanes: the store form of
-        // vpcompressd is slow on some cores.
-        _mm512_storeu_si512(positions + count, _mm512_maskz_compress_epi32(m, at));
-        _mm512_storeu_si512(bits + count, _mm512_maskz_compress_epi32(m, v));
-        count += static_cast<std::size_t>(std::popcount(mask));
-    };
+// x must be 64-byte aligned (the kernel is chi2/run_borders.h).
+__attribute__((target(WARPCHECK_BORDERS_TARGET))) std::size_t borders_avx512(const float* x, std::size_t n,
+                                                                             uint32_t base, uint32_t* positions,
+                                                                             uint32_t* bits) {
+    detail::BorderList out{positions, bits};
     for (std::size_t i = 0; i < n; i += 64) {
-        // No border among these 64 outputs iff all of them equal x[i - 1]:
-        // three bitwise ops and one mask test, no lane shifts.
         const __m512i previous = _mm512_set1_epi32(static_cast<int>(float_to_bits(x[i - 1])));
-        const __m512i v0 = _mm512_load_si512(x + i), v1 = _mm512_load_si512(x + i + 16);
-        const __m512i v2 = _mm512_load_si512(x + i + 32), v3 = _mm512_load_si512(x + i + 48);
-        const __m512i d01 = _mm512_ternarylogic_epi32(v0, v1, previous, 0x7e);  // (v0 ^ p) | (v1 ^ p)
-        const __m512i d23 = _mm512_ternarylogic_epi32(v2, v3, previous, 0x7e);
-        const __m512i any = _mm512_or_si512(d01, d23);
-        if (_mm512_test_epi32_mask(any, any) == 0) {
-            index = _mm512_add_epi32(index, sixty_four);
-            continue;
-        }
-        // Each lane against the one before it: [previous[15], v[0..14]].
-        const __mmask16 m0 = _mm512_cmpneq_epu32_mask(v0, _mm512_maskz_alignr_epi32(0xffff, v0, previous, 15));
-        const __mmask16 m1 = _mm512_cmpneq_epu32_mask(v1, _mm512_maskz_alignr_epi32(0xffff, v1, v0, 15));
-        const __mmask16 m2 = _mm512_cmpneq_epu32_mask(v2, _mm512_maskz_alignr_epi32(0xffff, v2, v1, 15));
-        const __mmask16 m3 = _mm512_cmpneq_epu32_mask(v3, _mm512_maskz_alignr_epi32(0xffff, v3, v2, 15));
-        if (m0) emit(m0, v0, index, i);
-        index = _mm512_add_epi32(index, sixteen);
-        if (m1) emit(m1, v1, index, i + 16);
-        index = _mm512_add_epi32(index, sixteen);
-        if (m2) emit(m2, v2, index, i + 32);
-        index = _mm512_add_epi32(index, sixteen);
-        if (m3) emit(m3, v3, index, i + 48);
-        index = _mm512_add_epi32(index, sixteen);
+        detail::append_borders_64(_mm512_load_si512(x + i), _mm512_load_si512(x + i + 16),
+                                  _mm512_load_si512(x + i + 32), _mm512_load_si512(x + i + 48), previous,
+                                  base + static_cast<uint32_t>(i), out);
     }
-    return count;
+    return out.count;
 }
 
 // Entries 1..count hold the bits of each border's output: turns them into keys
@@ -436,7 +395,9 @@ class ChunkScanner {
 public:
     ChunkScanner(const SweepFrame& frame, RunCounter& out, bool avx512) : frame_(frame), out_(out), avx512_(avx512) {}
 
-    ChunkEnds scan(const FloatBlockFn& f, uint64_t first, uint64_t n) {
+    // f on the chunk's inputs [first, first + n); `fused`, if not empty, is f
+    // fused with the border scan (FloatBordersFn).
+    ChunkEnds scan(const FloatBlockFn& f, const FloatBordersFn& fused, uint64_t first, uint64_t n) {
         // values[-1] holds the last value of the previous block. Border lists:
         // entry 0 is the run in progress (its start and key), then the borders.
         // Outputs at a 64-byte boundary (the border scan loads whole cache lines).
@@ -445,29 +406,36 @@ public:
         values += (64 - reinterpret_cast<std::uintptr_t>(values) % 64) % 64 / sizeof(float);
         std::vector<uint32_t> positions(kBlockSize + 32), keys(kBlockSize + 32);
         ChunkEnds ends;
+        // The chunk's first output starts the first run.
+        f(first, 1, values);
+        uint32_t last_bits = float_to_bits(values[0]);  // of the last output evaluated
+        positions[0] = 0;
+        keys[0] = float_key(values[0]);
         for (uint64_t done = 0; done < n;) {
             const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
-            f(first + done, len, values);
-            const std::size_t padded = (len + 63) / 64 * 64;
-            for (std::size_t i = len; i < padded; ++i) values[i] = values[len - 1];  // no borders in the padding
-            if (done == 0) {
-                values[-1] = values[0];
-                positions[0] = 0;
-                keys[0] = float_key(values[0]);
+            std::size_t count = 0;
+            if (fused && ends.steps_down == 0) {
+                count = fused(first + done, len, last_bits, static_cast<uint32_t>(done), positions.data() + 1,
+                              keys.data() + 1, last_bits);
+            } else {
+                f(first + done, len, values);
+                values[-1] = bits_to_float(last_bits);
+                last_bits = float_to_bits(values[len - 1]);
+                const std::size_t padded = (len + 63) / 64 * 64;
+                for (std::size_t i = len; i < padded; ++i) values[i] = values[len - 1];  // no borders in the padding
+                if (ends.steps_down > 0) {
+                    // Non-monotone: the counts will be redone; keep only the
+                    // steps down, the keys' reach and a sample of their binades.
+                    uint32_t lo = keys[0], hi = keys[0];
+                    ends.steps_down += block_steps_only(values, padded, keys[0], lo, hi);
+                    for (int g = group_of(lo); g <= group_of(hi); ++g) out_.reach[static_cast<std::size_t>(g)] = 1;
+                    positions[0] = static_cast<uint32_t>(done + len - 1);  // the tail: one output, not a run
+                    done += len;
+                    continue;
+                }
+                count = block_borders(values, padded, static_cast<uint32_t>(done), positions.data() + 1,
+                                      keys.data() + 1);
             }
-            if (ends.steps_down > 0) {
-                // Non-monotone: the counts will be redone; keep only the steps
-                // down, the keys' reach and a sample of their binades.
-                uint32_t lo = keys[0], hi = keys[0];
-                ends.steps_down += block_steps_only(values, padded, keys[0], lo, hi);
-                for (int g = group_of(lo); g <= group_of(hi); ++g) out_.reach[static_cast<std::size_t>(g)] = 1;
-                positions[0] = static_cast<uint32_t>(done + len - 1);  // the tail: one output, not a run
-                values[-1] = values[len - 1];
-                done += len;
-                continue;
-            }
-            std::size_t count = block_borders(values, padded, static_cast<uint32_t>(done), positions.data() + 1,
-                                              keys.data() + 1);
             bool equal = false;
             // Dropping a border between equal keys leaves the steps down as they are.
             ends.steps_down += block_keys_and_steps_down(keys.data(), count, equal);
@@ -485,7 +453,6 @@ public:
             else note_reach(keys.data(), count);
             positions[0] = positions[count];
             keys[0] = keys[count];
-            values[-1] = values[len - 1];
             done += len;
         }
         flush();
@@ -861,8 +828,8 @@ uint64_t chunk_count(uint64_t count) { return (count + kChunkSize - 1) / kChunkS
 
 // Pass 1: runs of equal outputs, chunk by chunk, then the runs that cross chunk
 // borders in chunk order. Returns the steps down (0: the counts are exact).
-uint64_t count_runs(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, bool avx512,
-                    RunCounter& total) {
+uint64_t count_runs(const FloatBlockFn& f, const FloatBordersFn& fused, uint64_t count,
+                    const ParallelFor& parallel_for, bool avx512, RunCounter& total) {
     const SweepFrame& frame = *total.frame;
     const auto chunks = static_cast<std::size_t>(chunk_count(count));
     std::vector<ChunkEnds> ends(chunks);
@@ -870,7 +837,7 @@ uint64_t count_runs(const FloatBlockFn& f, uint64_t count, const ParallelFor& pa
     parallel_for(chunks, [&](std::size_t c) {
         auto local = std::make_unique<RunCounter>(frame);
         const uint64_t first = c * kChunkSize;
-        ends[c] = ChunkScanner(frame, *local, avx512).scan(f, first, std::min(kChunkSize, count - first));
+        ends[c] = ChunkScanner(frame, *local, avx512).scan(f, fused, first, std::min(kChunkSize, count - first));
         std::lock_guard lock(total_mutex);
         total.merge(*local);
     });
@@ -1327,6 +1294,11 @@ void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& p
 
 SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, float b,
                               const ParallelFor& parallel_for, const SweepLimits& limits) {
+    return exhaustive_sweep(f, FloatBordersFn{}, count, a, b, parallel_for, limits);
+}
+
+SweepSummary exhaustive_sweep(const FloatBlockFn& f, const FloatBordersFn& borders, uint64_t count, float a, float b,
+                              const ParallelFor& parallel_for, const SweepLimits& limits) {
     if (!(std::isfinite(a) && std::isfinite(b) && a < b))
         throw std::invalid_argument("exhaustive_sweep: needs finite a < b");
     if (count == 0 || count > (uint64_t{1} << 32))
@@ -1338,7 +1310,8 @@ SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, fl
     RunCounter total(frame);
     const auto start = Clock::now();
     static const bool avx512 = have_avx512();
-    const uint64_t steps_down = count_runs(f, count, parallel_for, avx512 && !limits.portable, total);
+    const uint64_t steps_down = count_runs(f, limits.portable ? FloatBordersFn{} : borders, count, parallel_for,
+                                        avx512 && !limits.portable, total);
     const double runs_seconds = since(start);
     const auto recount_start = Clock::now();
     if (steps_down > 0) {

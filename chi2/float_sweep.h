@@ -49,6 +49,17 @@ namespace warpcheck::chi2 {
 /// out[i] = f(first + i) for i in [0, n).
 using FloatBlockFn = std::function<void(uint64_t first, std::size_t n, float* out)>;
 
+/// Optionally, the same f fused with the first pass's run scan, so that a
+/// monotone sweep need not store its outputs (validate/exhaustive_sweep.h
+/// builds one for an inlined sampler): evaluates f(first + j) for j in [0, n)
+/// and, for every j whose output's bits differ from those of the output before
+/// it (for j = 0: `previous`), in increasing order, writes base + j to
+/// positions and the bits to bits (both need n + 16 entries); sets `last` to
+/// the bits of f(first + n - 1) and returns how many it wrote. It must agree
+/// with the FloatBlockFn it is given with.
+using FloatBordersFn = std::function<std::size_t(uint64_t first, std::size_t n, uint32_t previous, uint32_t base,
+                                                 uint32_t* positions, uint32_t* bits, uint32_t& last)>;
+
 /// Counts for one binade of the interval.
 struct BinadeCount {
     int sign = 1;        ///< +1 or -1
@@ -128,6 +139,9 @@ struct SweepLimits {
 
 /// Sweeps f over inputs [0, count), count <= 2^32, against [a,b) (finite a < b).
 SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, float b,
+                              const ParallelFor& parallel_for, const SweepLimits& limits = {});
+/// The same, with f's fused run scan (empty: none) for the first pass.
+SweepSummary exhaustive_sweep(const FloatBlockFn& f, const FloatBordersFn& borders, uint64_t count, float a, float b,
                               const ParallelFor& parallel_for, const SweepLimits& limits = {});
 
 }  // namespace warpcheck::chi2

@@ -3,6 +3,7 @@
 // vectorised block loop that turns a sampler into a chi2::FloatBlockFn.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <utility>
 
 #include "chi2/float_sweep.h"
+#include "chi2/run_borders.h"
 #include "validate/check.h"
 #include "validate/warp_case.h"
 
@@ -20,6 +22,7 @@ namespace warpcheck {
 using chi2::BinadeCount;
 using chi2::exhaustive_sweep;
 using chi2::FloatBlockFn;
+using chi2::FloatBordersFn;
 using chi2::OutsideValue;
 using chi2::ParallelFor;
 using chi2::SweepSummary;
@@ -31,6 +34,8 @@ public:
     virtual ~SweepableCase() = default;
     /// out[i] = sample(input number first + i) of the grid.
     virtual FloatBlockFn sweep_fn() const = 0;
+    /// sweep_fn fused with the sweep's run scan, or empty (chi2::FloatBordersFn).
+    virtual FloatBordersFn sweep_borders_fn() const { return {}; }
     /// Size of the grid: 2^32 for 32-bit inputs, 2^24 for t = k 2^-24.
     virtual uint64_t sweep_inputs() const = 0;
     /// One line: which inputs, e.g. "all 2^32 inputs" or "t = k 2^-24, k < 2^24".
@@ -47,9 +52,9 @@ public:
 class SweepableWarpCase final : public WarpCase, public SweepableCase {
 public:
     SweepableWarpCase(std::unique_ptr<WarpCase> inner, FloatBlockFn fn, uint64_t inputs, std::string grid,
-                      bool monotone)
-        : WarpCase(inner->info()), inner_(std::move(inner)), fn_(std::move(fn)), inputs_(inputs),
-          grid_(std::move(grid)), monotone_(monotone) {}
+                      bool monotone, FloatBordersFn borders = {})
+        : WarpCase(inner->info()), inner_(std::move(inner)), fn_(std::move(fn)), borders_(std::move(borders)),
+          inputs_(inputs), grid_(std::move(grid)), monotone_(monotone) {}
 
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override { inner_->sample(in, out); }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override { inner_->pdf(x, out); }
@@ -57,6 +62,7 @@ public:
     bool has_inverse() const override { return inner_->has_inverse(); }
 
     FloatBlockFn sweep_fn() const override { return fn_; }
+    FloatBordersFn sweep_borders_fn() const override { return borders_; }
     uint64_t sweep_inputs() const override { return inputs_; }
     std::string sweep_grid() const override { return grid_; }
     bool claims_monotone() const override { return monotone_; }
@@ -64,6 +70,7 @@ public:
 private:
     std::unique_ptr<WarpCase> inner_;
     FloatBlockFn fn_;
+    FloatBordersFn borders_;
     uint64_t inputs_;
     std::string grid_;
     bool monotone_;
@@ -104,6 +111,42 @@ __attribute__((target("avx2"))) void u32_block_avx2(const F& f, uint64_t first, 
     for (uint32_t i = 0; i < count; ++i) out[i] = f(base + i);
 }
 #endif
+// The sampler fused with the run scan (chi2::FloatBordersFn): 64 outputs at a
+// time go from the sampler's vector loop to the border kernel
+// (chi2/run_borders.h) through a small buffer that stays in L1, instead of
+// through a block in memory read back by a second loop.
+#if defined(__x86_64__) && defined(__GNUC__)
+template <typename F>
+__attribute__((target(WARPCHECK_BORDERS_TARGET))) std::size_t u32_borders_avx512(const F& f, uint64_t first,
+                                                                                   std::size_t n, uint32_t previous,
+                                                                                   uint32_t base, uint32_t* positions,
+                                                                                   uint32_t* bits, uint32_t& last) {
+    chi2::detail::BorderList out{positions, bits};
+    const auto u = static_cast<uint32_t>(first);
+    const auto count = static_cast<uint32_t>(n);
+    alignas(64) float v[64];  // stays in registers
+    __m512i before = _mm512_set1_epi32(static_cast<int>(previous));
+    const auto scan = [&](uint32_t i) __attribute__((target(WARPCHECK_BORDERS_TARGET))) {
+        const __m512i v0 = _mm512_load_si512(v), v1 = _mm512_load_si512(v + 16);
+        const __m512i v2 = _mm512_load_si512(v + 32), v3 = _mm512_load_si512(v + 48);
+        chi2::detail::append_borders_64(v0, v1, v2, v3, before, base + i, out);
+        before = chi2::detail::last_lane(v3);
+    };
+    uint32_t i = 0;
+    for (; count - i >= 64; i += 64) {
+        for (uint32_t k = 0; k < 64; ++k) v[k] = f(u + i + k);
+        scan(i);
+    }
+    if (i < count) {
+        // The rest, padded with its last output (no borders in the padding).
+        const uint32_t rest = count - i;
+        for (uint32_t k = 0; k < 64; ++k) v[k] = f(u + i + (k < rest ? k : rest - 1));
+        scan(i);
+    }
+    last = static_cast<uint32_t>(_mm512_cvtsi512_si32(before));
+    return out.count;
+}
+#endif
 template <typename F>
 void u32_block_baseline(const F& f, uint64_t first, std::size_t n, float* out) {
     const auto base = static_cast<uint32_t>(first);
@@ -126,6 +169,24 @@ FloatBlockFn u32_block_fn(F f) {
         return [f](uint64_t first, std::size_t n, float* out) { detail::u32_block_avx2(f, first, n, out); };
 #endif
     return [f](uint64_t first, std::size_t n, float* out) { detail::u32_block_baseline(f, first, n, out); };
+}
+
+/// The FloatBordersFn of `f(uint32_t) -> float` (see u32_block_fn): fused
+/// with the run scan where the CPU has AVX-512, empty elsewhere (the sweep
+/// then scans the blocks of u32_block_fn).
+template <typename F>
+FloatBordersFn u32_borders_fn(F f) {
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("popcnt"))
+        return [f](uint64_t first, std::size_t n, uint32_t previous, uint32_t base, uint32_t* positions,
+                   uint32_t* bits, uint32_t& last) {
+            return detail::u32_borders_avx512(f, first, n, previous, base, positions, bits, last);
+        };
+#endif
+    (void)f;
+    return {};
 }
 
 /// A FloatBlockFn evaluating a 64-bit sampler `f(uint64_t) -> float` on the

@@ -69,7 +69,8 @@ std::unique_ptr<WarpCase> make_u32_float_case(WarpCaseInfo info, Monotone monoto
     auto call = [sample](uint32_t u) -> float { return sample(u); };
     auto inner = make_warp_case(std::move(info), call, std::move(pdf), std::move(invert)...);
     return std::make_unique<SweepableWarpCase>(std::move(inner), u32_block_fn(call), uint64_t{1} << 32,
-                                               "all 2^32 inputs", monotone == Monotone::Claimed);
+                                               "all 2^32 inputs", monotone == Monotone::Claimed,
+                                               u32_borders_fn(call));
 }
 
 /// A case for a u64 -> float sampler, as make_u32_float_case (info.input is set

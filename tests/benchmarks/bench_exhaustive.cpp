@@ -79,19 +79,28 @@ void BM_ExhaustiveSweepMul32(benchmark::State& state) {
     const warpcheck::ParallelFor parallel_for = [&pool](std::size_t n, const std::function<void(std::size_t)>& body) {
         pool.parallel_for(n, body);
     };
-    const auto fn = warpcheck::u32_block_fn([](uint32_t u) { return warpcheck::UnitFloatMul{}.sample(u); });
+    const auto sample = [](uint32_t u) { return warpcheck::UnitFloatMul{}.sample(u); };
+    const auto fn = warpcheck::u32_block_fn(sample);
+    const auto borders = state.range(1) ? warpcheck::u32_borders_fn(sample) : warpcheck::FloatBordersFn{};
     uint64_t distinct = 0;
     for (auto _ : state) {
-        const warpcheck::SweepSummary s = warpcheck::exhaustive_sweep(fn, uint64_t{1} << 32, 0.0f, 1.0f, parallel_for);
+        const warpcheck::SweepSummary s =
+            warpcheck::exhaustive_sweep(fn, borders, uint64_t{1} << 32, 0.0f, 1.0f, parallel_for);
         distinct = s.distinct;
         benchmark::DoNotOptimize(distinct);
     }
     state.counters["distinct"] = static_cast<double>(distinct);
     state.counters["threads"] = threads;
+    state.counters["fused"] = static_cast<double>(state.range(1) != 0 && borders);
     state.counters["peak_rss_MiB"] = peak_rss_mib();
     state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * (int64_t{1} << 32));
 }
-BENCHMARK(BM_ExhaustiveSweepMul32)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+// Arguments: threads, and whether the sampler is fused with the run scan.
+BENCHMARK(BM_ExhaustiveSweepMul32)
+    ->ArgsProduct({{1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3);
 
 warpcheck::ParallelFor pool_for(warpcheck::ThreadPool& pool) {
     return [&pool](std::size_t n, const std::function<void(std::size_t)>& body) { pool.parallel_for(n, body); };
@@ -119,11 +128,17 @@ uint64_t run_length_loop(const F& f, std::vector<uint64_t>& per_binade) {
 
 void BM_MonotoneSweepVsRunLength(benchmark::State& state) {
     warpcheck::ThreadPool pool(2);
-    const auto fn = warpcheck::u32_block_fn([](uint32_t u) { return warpcheck::UnitFloatMul{}.sample(u); });
+    const auto sample = [](uint32_t u) { return warpcheck::UnitFloatMul{}.sample(u); };
+    const auto fn = warpcheck::u32_block_fn(sample);
+    const auto borders = warpcheck::u32_borders_fn(sample);
     std::vector<uint64_t> per_binade;
     uint64_t distinct = 0, reference_distinct = 0;
     warpcheck::bench::run_paired(
-        state, [&] { distinct = warpcheck::exhaustive_sweep(fn, uint64_t{1} << 32, 0.0f, 1.0f, pool_for(pool)).distinct; },
+        state,
+        [&] {
+            distinct =
+                warpcheck::exhaustive_sweep(fn, borders, uint64_t{1} << 32, 0.0f, 1.0f, pool_for(pool)).distinct;
+        },
         [&] { reference_distinct = run_length_loop([](uint32_t u) { return warpcheck::UnitFloatMul{}.sample(u); }, per_binade); });
     if (distinct != reference_distinct) state.SkipWithError("sweep and reference disagree on distinct outputs");
     state.counters["distinct"] = static_cast<double>(distinct);

@@ -11,6 +11,7 @@
 #include <bit>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "sampling/hash.h"
@@ -138,6 +139,16 @@ protected:
         return exhaustive_sweep(block, count, a, b, parallel_, limits);
     }
 
+    // The same sweep with the sampler fused with the run scan
+    // (u32_borders_fn), where the CPU has it; otherwise empty (no sweep).
+    std::optional<SweepSummary> run_fused(const std::function<float(uint64_t)>& f, uint64_t count, float a,
+                                          float b) {
+        const auto sample = [&f](uint32_t u) { return f(u); };
+        const FloatBordersFn borders = u32_borders_fn(sample);
+        if (!borders) return std::nullopt;
+        return exhaustive_sweep(u32_block_fn(sample), borders, count, a, b, parallel_);
+    }
+
     ThreadPool pool_{2};
     ParallelFor parallel_ = [this](std::size_t n, const std::function<void(std::size_t)>& body) {
         pool_.parallel_for(n, body);
@@ -151,6 +162,7 @@ TEST_F(SweepEnginePaths, RunScanMatchesThePortableScanAndTheSortedRecount) {
         const SweepSummary portable = run(c.f, c.count, c.a, c.b, false, {.portable = true});
         EXPECT_FALSE(fast.exact_fallback);
         expect_same_summary(fast, portable);
+        if (const auto fused = run_fused(c.f, c.count, c.a, c.b)) expect_same_summary(*fused, portable);
         // Backwards: the same outputs as often, counted by sorting them all.
         const SweepSummary sorted = run(c.f, c.count, c.a, c.b, true, {});
         EXPECT_EQ(sorted.exact_fallback, c.name != "constant");
@@ -166,6 +178,26 @@ TEST_F(SweepEnginePaths, NonMonotoneStepsAreCountedAlikeOnBothScans) {
     const SweepSummary portable = run(scrambled, kCount, 0.0f, 1.0f, false, {.portable = true});
     EXPECT_TRUE(fast.exact_fallback);
     expect_same_summary(fast, portable);
+    if (const auto fused = run_fused(scrambled, kCount, 0.0f, 1.0f)) expect_same_summary(*fused, portable);
+}
+
+// The fused scan must find every border, wherever it falls: one output that
+// differs from its neighbours at each position of a group of 64 (and of the
+// padded tail), and a step down and back up within one group.
+TEST_F(SweepEnginePaths, FusedScanFindsABorderAtEveryLaneOfAGroup) {
+    const auto sample = [](uint32_t) { return 0.0f; };
+    if (!u32_borders_fn(sample)) GTEST_SKIP() << "no AVX-512 on this CPU: the fused scan is not used";
+    for (uint64_t at = 0; at < 200; ++at) {
+        SCOPED_TRACE(at);
+        // 0.25 everywhere but 0.5 at input `at` (none from 197 on).
+        const auto f = [at](uint64_t i) { return i == at ? 0.5f : 0.25f; };
+        const auto fused = run_fused(f, 197, 0.0f, 1.0f);
+        ASSERT_TRUE(fused.has_value());
+        const SweepSummary portable = run(f, 197, 0.0f, 1.0f, false, {.portable = true});
+        expect_same_summary(*fused, portable);
+        EXPECT_EQ(fused->outside_distinct + fused->distinct_inside, at < 197 ? 2u : 1u);
+        EXPECT_EQ(fused->non_monotone_steps, at < 196 ? 1u : 0u);  // 0.5 -> 0.25 after it
+    }
 }
 
 }  // namespace

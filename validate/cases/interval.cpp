@@ -34,9 +34,9 @@ std::unique_ptr<WarpCase> unit_float_32_case(std::string family, std::string des
                                  .domain = chi2::Domain::interval(0.0, 1.0),
                                  .exact_inverse = true},
                                 warp);
-    return std::make_unique<SweepableWarpCase>(std::move(inner),
-                                               u32_block_fn([warp](uint32_t u) { return warp.sample(u); }),
-                                               uint64_t{1} << 32, "all 2^32 inputs", true);
+    const auto sample = [warp](uint32_t u) { return warp.sample(u); };
+    return std::make_unique<SweepableWarpCase>(std::move(inner), u32_block_fn(sample), uint64_t{1} << 32,
+                                               "all 2^32 inputs", true, u32_borders_fn(sample));
 }
 
 // A [0,1) sampler of 64 bits, whose inverse returns the first input exactly.

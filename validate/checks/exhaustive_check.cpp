@@ -323,7 +323,8 @@ public:
         sw.a = static_cast<float>(warp.domain().a());
         sw.b = static_cast<float>(warp.domain().b());
         sw.max_float_bias = ctx.options().max_float_bias;
-        const SweepSummary s = exhaustive_sweep(fn, sw.inputs, sw.a, sw.b, ctx.executor());
+        const FloatBordersFn borders = sweepable ? sweepable->sweep_borders_fn() : FloatBordersFn{};
+        const SweepSummary s = exhaustive_sweep(fn, borders, sw.inputs, sw.a, sw.b, ctx.executor());
         CheckResult r = judge(s, sw);
         add_evidence(r, s, sw.grid);
         add_bias_table(r, biased_floats(s));
