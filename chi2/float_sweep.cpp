@@ -833,14 +833,27 @@ uint64_t count_runs(const FloatBlockFn& f, const FloatBordersFn& fused, uint64_t
     const SweepFrame& frame = *total.frame;
     const auto chunks = static_cast<std::size_t>(chunk_count(count));
     std::vector<ChunkEnds> ends(chunks);
-    std::mutex total_mutex;
+    // Counters that a chunk takes and gives back (as many as chunks run at
+    // once), merged at the end: merging is order-free (sums, minima and maxima,
+    // ties to the smaller key), so which chunks shared a counter does not show.
+    std::mutex idle_mutex;
+    std::vector<std::unique_ptr<RunCounter>> idle;
     parallel_for(chunks, [&](std::size_t c) {
-        auto local = std::make_unique<RunCounter>(frame);
+        std::unique_ptr<RunCounter> local;
+        {
+            std::lock_guard lock(idle_mutex);
+            if (!idle.empty()) {
+                local = std::move(idle.back());
+                idle.pop_back();
+            }
+        }
+        if (!local) local = std::make_unique<RunCounter>(frame);
         const uint64_t first = c * kChunkSize;
         ends[c] = ChunkScanner(frame, *local, avx512).scan(f, fused, first, std::min(kChunkSize, count - first));
-        std::lock_guard lock(total_mutex);
-        total.merge(*local);
+        std::lock_guard lock(idle_mutex);
+        idle.push_back(std::move(local));
     });
+    for (const auto& local : idle) total.merge(*local);
     uint64_t steps_down = 0;
     bool have_carry = false;
     Run carry;
