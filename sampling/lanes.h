@@ -19,6 +19,10 @@
 #include "sampling/math.h"
 #include "sampling/pcg32.h"
 
+#ifdef __AVX512F__
+#include <immintrin.h>
+#endif
+
 // GCC notes that passing 64-byte vectors changes the ABI without AVX-512; these
 // functions are always inlined and never cross a translation unit.
 #pragma GCC diagnostic push
@@ -92,17 +96,32 @@ WARPCHECK_LANE SinCos sin_cos(F32 phi) {
 struct Pcg32Lanes {
     U64 state{}, inc{};
 
-    WARPCHECK_LANE U32 next_u32() {
+    /// One step of each lane's generator, done in its 64-bit lane: the output
+    /// in the low 32 bits (and again in the high 32). No narrowing to 32-bit
+    /// lanes and back, which costs shuffles: the xorshifted value, copied into
+    /// both halves, is rotated as a 64-bit word, whose low half is then the
+    /// 32-bit rotation (a single vprorvq on AVX-512).
+    WARPCHECK_LANE U64 step() {
         const U64 old = state;
         state = old * Pcg32::kMultiplier + inc;
-        const U32 xorshifted = __builtin_convertvector(((old >> 18u) ^ old) >> 27u, U32);
-        const U32 rot = __builtin_convertvector(old >> 59u, U32);
-        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
+        const U64 xorshifted = ((old >> 18u) ^ old) >> 27u;  // in the low 32 bits
+        const U64 doubled = (xorshifted << 32u) | (xorshifted & 0xffffffffu);
+        const U64 rot = old >> 59u;
+#ifdef __AVX512F__
+        // GCC does not see the rotation in the shifts below on vectors. (The
+        // maskz form: the plain one starts from an undefined vector, which GCC
+        // 12 warns about.)
+        return std::bit_cast<U64>(
+            _mm512_maskz_rorv_epi64(0xff, std::bit_cast<__m512i>(doubled), std::bit_cast<__m512i>(rot)));
+#else
+        return (doubled >> rot) | (doubled << ((64u - rot) & 63u));
+#endif
     }
+    WARPCHECK_LANE U32 next_u32() { return __builtin_convertvector(step() & 0xffffffffu, U32); }
     /// Pcg32::next_u64: the first draw is the high half.
     WARPCHECK_LANE U64 next_u64() {
-        const U64 hi = __builtin_convertvector(next_u32(), U64);
-        return (hi << 32u) | __builtin_convertvector(next_u32(), U64);
+        const U64 hi = step();
+        return (hi << 32u) | (step() & 0xffffffffu);
     }
 };
 
