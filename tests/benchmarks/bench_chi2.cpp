@@ -25,6 +25,12 @@
 //   draw+warp+bin 143-152 M samples/s on one thread (lanes, avx512; the
 //   machine's own speed drifts ~5% between runs), fused loop 16-17 M/s;
 //   the scalar chunk path (BM_DrawWarpBinPerCore/0) 28-31 M/s, the portable lane build 20-24 M/s.
+// Second stop, 18:45-18:46 UTC, machine otherwise idle (load ~1, this
+// benchmark itself), after Pcg32Lanes kept each step in its 64-bit lane
+// (vprorvq instead of narrowing and widening): check 35.2 ms (min of 3) on 2
+// threads vs pbrt-style 888 ms on one, speedup 25.2; draw+warp+bin 165-167 M
+// samples/s on one thread (three runs; 151-152 M/s just before), fused loop
+// 15.6 M/s; the scalar chunk path 27.2 M/s, the portable lane build 19.9 M/s.
 // A fourth set of lanes measured the same (143-146 M/s beside 143-145 for three).
 // Then with the unclassified-sample buffer left uninitialised (it was zeroed,
 // 1.2 MB per histogram), 17:19 UTC, load 1.7, three runs: check 38.0-38.3 ms,
