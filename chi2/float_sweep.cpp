@@ -38,13 +38,11 @@ struct ChunkEnds {
     uint64_t steps_down = 0;
 };
 
-// Which code the run scan takes: AVX-512 where the CPU has it, unless a test
-// asks for the portable loops (SweepLimits::portable). Both give the same counts.
+// Which code the run scan takes: AVX-512 where the CPU has every instruction
+// set the border kernel is built for, unless a test asks for the portable loops
+// (SweepLimits::portable). Both give the same counts.
 #if defined(__x86_64__) && defined(__GNUC__)
-bool have_avx512() {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx512f");
-}
+bool have_avx512() { return detail::borders_kernel_supported(); }
 #else
 bool have_avx512() { return false; }
 #endif

@@ -28,9 +28,10 @@
 // counted in further windows, one more run of f each. A window pass works in
 // rounds of 16 chunks: each chunk appends its outputs' counter indices to
 // blocks by the slice of counters they fall in (radix partitioning; at most
-// 257 slices of at most 2 MiB, written through a cache line per slice with
-// streaming stores; 272 MiB a round), then each slice adds the blocks of the
-// round on one thread, so the increments stay within L2 and need no locks.
+// 257 slices, each a power of two of at least 2^16 counters: at most 2 MiB for
+// the default window of 64 binades; written through a cache line per slice
+// with streaming stores; 272 MiB a round), then each slice adds the blocks of
+// the round on one thread, so the increments stay within L2 and need no locks.
 // Every figure is an integer count, or computed at the end from
 // integer counts, so results do not depend on threads or on how the recount
 // was done.

@@ -18,6 +18,16 @@
 
 namespace warpcheck::chi2::detail {
 
+/// Whether this processor has every instruction set of WARPCHECK_BORDERS_TARGET
+/// (AVX-512F alone is not enough: GCC may use BW mask instructions in the
+/// kernel, which a Knights Landing lacks). Every caller of the kernel checks it.
+inline bool borders_kernel_supported() {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+           __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+           __builtin_cpu_supports("popcnt");
+}
+
 /// Where borders go: position and output bits of each, count so far. Both
 /// arrays need 16 entries of room past the last border.
 struct BorderList {
@@ -29,8 +39,8 @@ struct BorderList {
 /// Appends the borders among 32 consecutive outputs v0, v1 (position `at`
 /// for v0's lane 0), where `previous` holds the bits of the output before
 /// them in lane 15: each lane is compared with the one before it. One branch,
-/// on whether there is a single border (runs of 32 and more), which follows the
-/// run length, not where the borders fall.
+/// on whether there is at most one border (runs of 32 and more), which follows
+/// the run length, not where the borders fall. With none, it appends nothing.
 __attribute__((target(WARPCHECK_BORDERS_TARGET), always_inline)) inline void append_borders_32(
     __m512i v0, __m512i v1, __m512i previous, uint32_t at, BorderList& out) {
     // [previous[15], v0[0..14]] and [v0[15], v1[0..14]]. (The maskz forms: the
@@ -40,11 +50,12 @@ __attribute__((target(WARPCHECK_BORDERS_TARGET), always_inline)) inline void app
     const uint32_t mask = static_cast<uint32_t>(m0) | static_cast<uint32_t>(m1) << 16;
     if ((mask & (mask - 1)) == 0) {
         // One border, at lane j: every lane from j on holds its output, the
-        // last one too (v1[15], which the caller broadcasts anyway).
+        // last one too (v1[15], which the caller broadcasts anyway). No border:
+        // the entry written is not counted.
         out.positions[out.count] = at + static_cast<uint32_t>(std::countr_zero(mask));
         out.bits[out.count] = static_cast<uint32_t>(
             _mm512_cvtsi512_si32(_mm512_maskz_permutexvar_epi32(0xffff, _mm512_set1_epi32(15), v1)));
-        ++out.count;
+        out.count += mask != 0;
         return;
     }
     // Compress in a register and store all 16 lanes (the store form of

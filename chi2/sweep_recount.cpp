@@ -30,8 +30,9 @@ void radix_sort(std::vector<uint32_t>& keys) {
 // The window recount (see chi2/float_sweep.h): one-byte counters over the key ranges
 // of a window's binades, filled by radix partitioning in rounds of
 // kRoundChunks chunks. First each chunk of the round appends the counter
-// indices of its outputs to blocks of the slice they fall in (a slice is at
-// most 1/256 of the window, at most 2 MiB: within L2), in one pass: each slice
+// indices of its outputs to blocks of the slice they fall in (the smallest
+// power of two of at least 2^16 counters that makes at most 257 slices: at
+// most 2 MiB, within L2, for windows of at most 64 binades), in one pass: each slice
 // gathers 16 indices in a cache line of its own and writes them out whole with
 // a streaming store, so the round buffer is written once, without being read
 // first, and never goes through the cache. Then each slice adds the blocks of

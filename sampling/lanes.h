@@ -104,11 +104,16 @@ struct Pcg32Lanes {
     WARPCHECK_LANE U64 step() {
         const U64 old = state;
         state = old * Pcg32::kMultiplier + inc;
-        const U64 xorshifted = ((old >> 18u) ^ old) >> 27u;  // in the low 32 bits
+        // Pcg32's xorshifted output is the low 32 bits of this (37 bits wide:
+        // the top 5 must not reach the high half, hence the mask below).
+        const U64 xorshifted = ((old >> 18u) ^ old) >> 27u;
         const U64 doubled = (xorshifted << 32u) | (xorshifted & 0xffffffffu);
         const U64 rot = old >> 59u;
 #ifdef __AVX512F__
-        // GCC does not see the rotation in the shifts below on vectors. (The
+        // GCC does not see the rotation in the shifts below on vectors. Both
+        // branches give the same bits; the function is always inlined, so the
+        // two definitions never meet (the ctest lane_avx512_object_is_isolated
+        // checks that the AVX-512 object defines nothing shared). (The
         // maskz form: the plain one starts from an undefined vector, which GCC
         // 12 warns about.)
         return std::bit_cast<U64>(

@@ -8,6 +8,7 @@
 // last chunk.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <functional>
@@ -181,14 +182,28 @@ TEST_F(SweepEnginePaths, NonMonotoneStepsAreCountedAlikeOnBothScans) {
     if (const auto fused = run_fused(scrambled, kCount, 0.0f, 1.0f)) expect_same_summary(*fused, portable);
 }
 
-// The fused scan must find every border, wherever it falls: one output that
-// differs from its neighbours at each position of a group of 64 (and of the
-// padded tail), and a step down and back up within one group.
+// The fused scan must find every border, wherever it falls: at each position
+// of a group of 64 (and of the padded tail), a monotone step, whose runs the
+// fused scan counts itself (checked against the portable scan, field by
+// field), and one output above its neighbours, a step up and down.
 TEST_F(SweepEnginePaths, FusedScanFindsABorderAtEveryLaneOfAGroup) {
     const auto sample = [](uint32_t) { return 0.0f; };
     if (!u32_borders_fn(sample)) GTEST_SKIP() << "no AVX-512 on this CPU: the fused scan is not used";
     for (uint64_t at = 0; at < 200; ++at) {
         SCOPED_TRACE(at);
+        // 0.25 before input `at`, 0.5 from it on: two runs of lengths at and 197 - at.
+        const auto step = [at](uint64_t i) { return i >= at ? 0.5f : 0.25f; };
+        const auto fused_step = run_fused(step, 197, 0.0f, 1.0f);
+        ASSERT_TRUE(fused_step.has_value());
+        const SweepSummary portable_step = run(step, 197, 0.0f, 1.0f, false, {.portable = true});
+        expect_same_summary(*fused_step, portable_step);
+        EXPECT_FALSE(fused_step->exact_fallback);
+        const BinadeCount* half = fused_step->binade(1, -1);
+        ASSERT_NE(half, nullptr);
+        EXPECT_EQ(half->edge_multiplicity, at < 197 ? 197 - at : 0u);  // 0.5 is the binade's first float
+        const BinadeCount* quarter = fused_step->binade(1, -2);
+        ASSERT_NE(quarter, nullptr);
+        EXPECT_EQ(quarter->edge_multiplicity, std::min<uint64_t>(at, 197));  // and 0.25 of its own
         // 0.25 everywhere but 0.5 at input `at` (none from 197 on).
         const auto f = [at](uint64_t i) { return i == at ? 0.5f : 0.25f; };
         const auto fused = run_fused(f, 197, 0.0f, 1.0f);
