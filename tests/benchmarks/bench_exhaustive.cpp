@@ -180,13 +180,18 @@ uint64_t counter_array_loop() {
     return distinct;
 }
 
-void BM_NonMonotoneSweepVsCounters(benchmark::State& state) {
-    warpcheck::ThreadPool pool(2);
-    // The sampler as an external program registers it (validate/external.h).
+// hashed_unit's block function, from the case an external program registers
+// (validate/external.h).
+warpcheck::FloatBlockFn hashed_unit_sweep_fn() {
     const auto warp = warpcheck::make_u32_float_case(
         {.family = "hashed_unit", .domain = warpcheck::chi2::Domain::interval(0, 1)}, warpcheck::Monotone::NotClaimed,
         [](uint32_t u) { return hashed_unit(u); }, [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; });
-    const auto fn = dynamic_cast<const warpcheck::SweepableCase&>(*warp).sweep_fn();
+    return dynamic_cast<const warpcheck::SweepableCase&>(*warp).sweep_fn();
+}
+
+void BM_NonMonotoneSweepVsCounters(benchmark::State& state) {
+    warpcheck::ThreadPool pool(2);
+    const warpcheck::FloatBlockFn fn = hashed_unit_sweep_fn();
     uint64_t distinct = 0, reference_distinct = 0;
     warpcheck::bench::run_paired(
         state, [&] { distinct = warpcheck::exhaustive_sweep(fn, uint64_t{1} << 32, 0.0f, 1.0f, pool_for(pool)).distinct; },
@@ -201,10 +206,7 @@ void BM_NonMonotoneSweepVsCounters(benchmark::State& state) {
 // wall times: runs_s (the run-counting pass) and recount_s (the exact recount).
 void BM_NonMonotoneSweepAlone(benchmark::State& state) {
     warpcheck::ThreadPool pool(2);
-    const auto warp = warpcheck::make_u32_float_case(
-        {.family = "hashed_unit", .domain = warpcheck::chi2::Domain::interval(0, 1)}, warpcheck::Monotone::NotClaimed,
-        [](uint32_t u) { return hashed_unit(u); }, [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; });
-    const auto fn = dynamic_cast<const warpcheck::SweepableCase&>(*warp).sweep_fn();
+    const warpcheck::FloatBlockFn fn = hashed_unit_sweep_fn();
     warpcheck::SweepSummary s;
     for (auto _ : state) {
         const double seconds = warpcheck::bench::seconds_of(
