@@ -28,6 +28,11 @@ struct RunOptions {
     double alpha = 0.01;           ///< family-wise significance level (Šidák-corrected per test)
     bool exhaustive = false;       ///< run the heavy optional sweeps too
     bool include_flawed = false;   ///< also run the cases marked as known flaws (they are expected to fail)
+    /// --strict: the allowances for float resolution that correct float code
+    /// needs (the pdf's own float rounding in the normalisation, an inverse
+    /// that returns exactly 1 for u within a float of 1, ...) are not granted:
+    /// each such result fails instead of passing with its count and size.
+    bool strict = false;
     /// CPU seconds one check may use before it is reported as an error and its
     /// worker process killed (a sampler that never terminates must not hang the
     /// run); in an in-process run, wall seconds after which it is asked to stop.

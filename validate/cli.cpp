@@ -165,6 +165,9 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
     app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
     app.add_flag("--include-flawed", o.run.include_flawed,
                  "Also run the cases that demonstrate known flaws (e.g. u * 2^-32 reaching 1.0); they fail");
+    app.add_flag("--strict", o.run.strict,
+                 "Grant no float-resolution allowance: a pdf whose float rounding moves its integral, or an inverse "
+                 "that returns 1 for u within a float of 1, fails instead of passing with its size and count");
 }
 
 void add_run_options(CLI::App& app, CliOptions& o) {
