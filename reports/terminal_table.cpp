@@ -125,6 +125,12 @@ std::string fit_middle(const std::string& text, std::size_t columns) {
 
 std::string family_of(const std::string& case_name) { return case_name.substr(0, case_name.find('[')); }
 
+bool several_families(const RunResult& run) {
+    return std::any_of(run.results.begin(), run.results.end(), [&](const CheckResult& r) {
+        return family_of(r.case_name) != family_of(run.results.front().case_name);
+    });
+}
+
 }  // namespace
 
 RowMargin row_margin(const CheckResult& r) {
@@ -277,7 +283,8 @@ void print_table(const RunResult& run, std::ostream& out, const TableStyle& styl
                                        [&](const CheckResult& r) { return shown(r, style); });
     if (any_shown) print_rows(run, out, style);
     else if (style.failures_only) print_no_failures(run, out);
-    if (style.families && (any_shown || !style.failures_only)) print_family_summary(run, out, style.failures_only);
+    if (style.families && (any_shown || !style.failures_only) && several_families(run))
+        print_family_summary(run, out, style.failures_only);
     if (style.weakest > 0 && !style.failures_only) print_weakest(run, out, style.weakest, style.width);
     print_failures(run, out);
     if (style.timings) print_timings(run, out);

@@ -145,6 +145,18 @@ TEST(TerminalTable, FamilySummaryCountsVerdicts) {
     EXPECT_THAT(failures.str(), Not(HasSubstr("uniform_float_interval")));
 }
 
+TEST(TerminalTable, NoFamilySummaryForOneFamily) {
+    RunResult run;
+    run.results = {statistical("power[n=2]", 0.5, 1e-3), statistical("power[n=3]", 0.5, 1e-3)};
+    std::ostringstream out;
+    print_table(run, out);
+    EXPECT_THAT(out.str(), Not(HasSubstr("By family")));
+    run.results.push_back(statistical("cone[a=1]", 0.5, 1e-3));
+    std::ostringstream two;
+    print_table(run, two);
+    EXPECT_THAT(two.str(), HasSubstr("By family"));
+}
+
 TEST(TerminalTable, FailuresOnlyOnAnAllPassRunSaysSo) {
     std::ostringstream out;
     TableStyle style;
