@@ -48,6 +48,16 @@ void keep_largest(RowMargin& m, double fraction, const std::string& figure) {
     }
 }
 
+/// The margin cell of a row: a row that did not pass shows its margin only
+/// when that is what failed it (past its limit), so that a row failed for
+/// another reason (an inverse outside [0,1)) does not read as "within".
+std::string margin_cell(const CheckResult& r) {
+    const RowMargin m = row_margin(r);
+    if (r.verdict == Verdict::Pass) return margin_text(m);
+    const bool past = (m.p_over_level && !(*m.p_over_level >= 1.0)) || (m.of_tolerance && *m.of_tolerance > 1.0);
+    return past ? margin_text(m) : "";
+}
+
 struct Widths {
     std::size_t check = 5, case_name = 4, margin = 6, key = 0;  ///< key 0: no limit
 };
@@ -59,7 +69,7 @@ Widths column_widths(const RunResult& run, const TableStyle& style) {
         if (!shown(r, style)) continue;
         w.check = std::max(w.check, display_width(r.check_name));
         longest_case = std::max(longest_case, display_width(r.case_name));
-        w.margin = std::max(w.margin, margin_text(row_margin(r)).size());
+        w.margin = std::max(w.margin, margin_cell(r).size());
     }
     w.case_name = std::min<std::size_t>(longest_case, 64);
     if (style.width == 0) return w;
@@ -82,7 +92,7 @@ void print_rows(const RunResult& run, std::ostream& out, const TableStyle& style
         const std::string key = printable(r.summary);
         out << fmt::format("{}  {:<{}}  {}{}  {:<{}}  {}\n", verdict_cell(r.verdict, style.color), r.check_name,
                            w.check, name, std::string(w.case_name - std::min(w.case_name, display_width(name)), ' '),
-                           margin_text(row_margin(r)), w.margin, w.key ? fit_columns(key, w.key) : key);
+                           margin_cell(r), w.margin, w.key ? fit_columns(key, w.key) : key);
     }
 }
 

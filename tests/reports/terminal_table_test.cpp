@@ -112,6 +112,22 @@ TEST(TerminalTable, MarginOfEachKindOfLimit) {
     EXPECT_EQ(margin_text(row_margin(nan_p)), "NaNx level");
 }
 
+// A row that failed for another reason than its margin shows none: "0.25 of
+// tol" beside a FAIL would read as if the error were the cause.
+TEST(TerminalTable, FailedRowShowsOnlyAMarginPastItsLimit) {
+    RunResult run;
+    run.results = {result("lerp[a=1]", "roundtrip", Verdict::Fail, "max |du| 5.96e-08",
+                          {{"max_error", 5.96e-08}, {"tolerance", 1.52587890625e-05}}),
+                   result("lerp[a=2]", "roundtrip", Verdict::Fail, "max |du| 0.5",
+                          {{"max_error", 0.5}, {"tolerance", 1.52587890625e-05}}),
+                   statistical("power_wrong[n=2]", 1e-30, 7.28e-05)};
+    std::ostringstream out;
+    print_table(run, out);
+    EXPECT_THAT(out.str(), Not(HasSubstr("of tol  max |du| 5.96e-08")));
+    EXPECT_THAT(out.str(), HasSubstr("3.3e4 of tol    max |du| 0.5"));
+    EXPECT_THAT(out.str(), HasSubstr("1.4e-26x level  chi2"));
+}
+
 TEST(TerminalTable, WeakestPassesAreListed) {
     std::ostringstream out;
     print_table(long_run(), out);
