@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <numeric>
 #include <optional>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -178,14 +179,19 @@ std::vector<std::string> closest_names(std::string_view typed, const std::vector
                                        bool substring, std::size_t limit) {
     const std::size_t allowed = std::max<std::size_t>(1, typed.size() / 3);
     std::size_t best = allowed + 1;
-    std::vector<std::string> names;
+    std::vector<std::pair<std::size_t, std::string>> near;  // (whole-name distance, name) at the best distance
     for (const std::string& c : candidates) {
         const std::size_t d = substring ? substring_edit_distance(typed, c) : edit_distance(typed, c);
         if (d > best) continue;
-        if (d < best) names.clear();
+        if (d < best) near.clear();
         best = d;
-        if (names.size() < limit && std::find(names.begin(), names.end(), c) == names.end()) names.push_back(c);
+        if (std::none_of(near.begin(), near.end(), [&](const auto& n) { return n.second == c; }))
+            near.emplace_back(edit_distance(typed, c), c);
     }
+    // Of the candidates as close as any, those nearest as whole names first.
+    std::stable_sort(near.begin(), near.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < near.size() && i < limit; ++i) names.push_back(near[i].second);
     return names;
 }
 

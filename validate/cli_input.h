@@ -56,9 +56,10 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 std::size_t substring_edit_distance(std::string_view pattern, std::string_view text);
 
 /// The candidates closest to `typed` (at most `limit`, all at the smallest
-/// distance found), or none when even the closest is more than a third of
-/// `typed` away (at least 1 edit is always allowed). With `substring`, a
-/// candidate's distance is substring_edit_distance (patterns that match parts).
+/// distance found, those nearest as whole names first), or none when even the
+/// closest is more than a third of `typed` away (at least 1 edit is always
+/// allowed). With `substring`, a candidate's distance is
+/// substring_edit_distance (patterns that match parts).
 std::vector<std::string> closest_names(std::string_view typed, const std::vector<std::string>& candidates,
                                        bool substring = false, std::size_t limit = 3);
 

@@ -95,6 +95,15 @@ BREAK_REGISTRATION=1 "$b/awkward_registration_test" --gtest_filter='warpcheck/Aw
   > "$work/broken_filter.txt" 2>&1 || status=$?
 [ "$status" -ne 0 ] && grep -q "no test was selected, and the suite warpcheck/Awkward could not be built" "$work/broken_filter.txt" ||
   { cat "$work/broken_filter.txt"; fail "a broken suite whose filter selects nothing passed"; }
+# A program built on warpcheck::main says its own name in its messages.
+status=0
+BREAK_REGISTRATION=1 "$b/validate_awkward" --all > "$work/broken_main.txt" 2>&1 || status=$?
+[ "$status" -eq 2 ] && grep -q "^validate_awkward: could not register the warps: the lobe table could not be read" \
+  "$work/broken_main.txt" || { cat "$work/broken_main.txt"; fail "validate_awkward does not say its own name"; }
+status=0
+"$b/validate_power_warps" --filter powr > "$work/typo.txt" 2>&1 || status=$?
+[ "$status" -eq 2 ] && grep -q "^validate_power_warps: no warp case matches 'powr' (did you mean 'power'" "$work/typo.txt" ||
+  { cat "$work/typo.txt"; fail "validate_power_warps does not suggest 'power' under its own name"; }
 
 # A wrong warp added: the gtest binary fails, with the complete failure text.
 status=0

@@ -88,7 +88,10 @@ TEST(CliInput, Suggestions) {
     EXPECT_TRUE(closest_names("--bogus", options).empty()) << "nothing near enough: no suggestion";
     const std::vector<std::string> families = {"uniform_hemisphere", "cosine_hemisphere", "uniform_cone"};
     EXPECT_EQ(closest_names("hemisphre", families, true),
-              (std::vector<std::string>{"uniform_hemisphere", "cosine_hemisphere"}));
+              (std::vector<std::string>{"cosine_hemisphere", "uniform_hemisphere"}));
+    EXPECT_EQ(closest_names("powr", {"power_no_inverse", "power"}, true),
+              (std::vector<std::string>{"power", "power_no_inverse"}))
+        << "equally close as substrings: the nearer whole name first";
     EXPECT_EQ(closest_names("unifrom_cone", families, true), std::vector<std::string>{"uniform_cone"});
     EXPECT_EQ(did_you_mean({}), "");
     EXPECT_EQ(did_you_mean({"a"}), " (did you mean 'a'?)");
