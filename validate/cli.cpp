@@ -190,7 +190,7 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
         ->each([&o](const std::string& spec) { o.shard_spec = spec; });
     app.add_option("--merge", o.merge_paths,
                    "Combine the --json files of the shards of one run into its table and reports, then exit")
-        ->type_name("FILE...")
+        ->type_name("FILE")
         ->expected(1, -1);
     app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
     app.add_flag("--include-flawed", o.run.include_flawed,
