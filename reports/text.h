@@ -1,7 +1,8 @@
-// Text helpers shared by the HTML, SVG and JUnit writers: escaping for markup
-// and compact formatting of numbers for people.
+// Text helpers shared by the writers: escaping for markup, compact formatting
+// of numbers for people, and fitting text into terminal columns.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -30,5 +31,19 @@ std::string format_probability(double p);
 
 /// A duration: "850 ms", "3.2 s", "4 min 12 s".
 std::string format_seconds(double seconds);
+
+/// A duration as a clock, whole seconds: "0:07", "3:05", "1:02:03"; "--:--" if not finite or negative.
+std::string format_clock(double seconds);
+
+/// The columns `text` takes on a terminal, each UTF-8 character counted as one.
+std::size_t display_width(std::string_view text);
+
+/// `text` cut to at most `columns` columns (as display_width counts them), never
+/// inside a UTF-8 sequence; a cut is marked by "…" in the last column.
+std::string fit_columns(std::string_view text, std::size_t columns);
+
+/// `text` with control characters (C0 and DEL; tab included) as '?', so that a
+/// case name or message cannot move the cursor or recolour a terminal.
+std::string printable(std::string_view text);
 
 }  // namespace warpcheck

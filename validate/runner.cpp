@@ -172,7 +172,7 @@ std::vector<CheckResult> run_jobs_in_process(const std::vector<Job>& jobs, const
             results[i] = std::move(r);
             running[i].reset();
             ++done;
-            if (progress) progress(done, n, jobs[i].check->name() + " " + jobs[i].warp->name());
+            if (progress) progress({done, n, jobs[i].check->name(), jobs[i].warp->name(), &results[i]});
             changed.notify_all();
         }
     };

@@ -79,8 +79,14 @@ struct Parameter {
     double value = 0.0;
 };
 
+/// A parameter's value in a case name: the shortest decimal that reads back as
+/// the value; for a value that is exactly a float (a float parameter stored as
+/// a double), the float's shortest decimal when that is shorter: 0.3f gives
+/// "0.3", not "0.30000001192092896".
+std::string parameter_value(double value);
+
 /// Name and parameters, e.g. family "uniform_cone", {cos_theta_max: 0.3}
-/// -> "uniform_cone[cos_theta_max=0.3]".
+/// -> "uniform_cone[cos_theta_max=0.3]" (values as parameter_value writes them).
 std::string case_name(const std::string& family, const std::vector<Parameter>& params);
 
 /// A monotone one-dimensional view of a warp, for the "tabulated" check (a case

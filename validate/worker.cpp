@@ -262,7 +262,8 @@ private:
             over_budget_ += over_budget;
             ++done_;
             if (progress_)
-                progress_(done_, jobs_.size(), jobs_[it->job].check->name() + " " + jobs_[it->job].warp->name());
+                progress_({done_, jobs_.size(), jobs_[it->job].check->name(), jobs_[it->job].warp->name(),
+                           &results_[it->job]});
             it = running_.erase(it);
         }
     }
