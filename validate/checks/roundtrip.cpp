@@ -86,7 +86,8 @@ constexpr double kSeamLines = 8.0;            // lines u_k = c where a warp may 
 constexpr double kPolesPerAxis = 2.0;         // float poles a flat axis may have (top and bottom of a sphere)
 constexpr double kBoundTail = 1e-9;           // chance that a correct warp exceeds a count bound
 constexpr double kCellFactor = 4.0;           // float cells of x an inverse's error may span (see the top)
-constexpr float kTopTwoFloats = 0x1.fffffcp-1f;  // the smaller of the two largest floats below 1
+constexpr double kEdgeFloats = 2.0;              // floats below 1 whose inverse may round up to 1 (see the top)
+constexpr float kTopTwoFloats = 0x1.fffffcp-1f;  // the smaller of the kEdgeFloats largest floats below 1
 
 /// How one input's trip ended.
 enum class Outcome {
@@ -506,6 +507,7 @@ void add_figures(CheckResult& r, const Stats& s, const Rule& rule) {
                       {"float_pole_max_strip", s.max_strip},
                       {"count_bound_false_failure_probability", kBoundTail},
                       {"rounded_to_one", static_cast<double>(s.rounded_to_one.count)},
+                      {"rounded_to_one_edge_floats", kEdgeFloats},
                       {"max_rounded_to_one_gap", s.rounded_to_one.max_error},
                       {"strict", rule.strict ? 1.0 : 0.0}});
 }
