@@ -27,9 +27,12 @@ inline float azimuth(float x, float y) {
 /// vertex (1,0) (u.x -> 0) x is rounded to a float of 1 - sqrt(u.x), and u.y =
 /// y / (1 - x) inherits that rounding, amplified by 1 / sqrt(u.x). The wrong
 /// twin adds `offset` to u.y where 1 - x < `near` (near the vertex only, or
-/// everywhere for near = 1).
-inline std::unique_ptr<WarpCase> triangle(const std::string& name, float offset = 0.0f, float near = 1.0f) {
+/// everywhere for near = 1). `tolerance`: the case's round-trip tolerance (a
+/// warp without trigonometry may state one tighter than the default 2^-16).
+inline std::unique_ptr<WarpCase> triangle(const std::string& name, float offset = 0.0f, float near = 1.0f,
+                                          double tolerance = 0x1p-16) {
     WarpCaseInfo info{name, {}, "uniform triangle by sqrt", InputKind::Uniform2D, chi2::Domain::unit_square()};
+    info.roundtrip_tolerance = tolerance;
     return make_warp_case(
         info,
         [](Point2f u) {

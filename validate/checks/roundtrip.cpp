@@ -145,6 +145,7 @@ struct Stats {
     uint64_t other_edges = 0;  ///< other preimages and poles among edge inputs (degenerate)
     Excused other_random;      ///< other preimages among random inputs
     Excused resolution{.by_cells = true};
+    uint64_t resolution_random = 0;  ///< of them, random inputs
     Excused pole_random;       ///< random inputs on a float pole
     Excused rounded_to_one{.by_cells = true};
     double max_strip = 0.0;    ///< widest strip of inputs rounded onto a pole
@@ -164,6 +165,7 @@ struct Stats {
         other_edges += o.other_edges;
         other_random.merge(o.other_random);
         resolution.merge(o.resolution);
+        resolution_random += o.resolution_random;
         pole_random.merge(o.pole_random);
         rounded_to_one.merge(o.rounded_to_one);
         max_strip = max_nan_wins(max_strip, o.max_strip);
@@ -350,7 +352,10 @@ bool count_excused(Stats& s, Trip& trip, bool edge, uint64_t index) {
                 s.other_random.add(std::move(trip), index);
             }
             return true;
-        case Outcome::Resolution: s.resolution.add(std::move(trip), index); return true;
+        case Outcome::Resolution:
+            s.resolution_random += !edge;
+            s.resolution.add(std::move(trip), index);
+            return true;
         case Outcome::RoundedToOne: s.rounded_to_one.add(std::move(trip), index); return true;
         default: return false;
     }
@@ -500,7 +505,8 @@ void add_figures(CheckResult& r, const Stats& s, const Rule& rule) {
                  {"inputs", static_cast<double>(s.count)}};
     if (rule.bits()) return;
     r.figures.insert(r.figures.end(),
-                     {{"max_resolution_limited_cells", s.resolution.max_cells},
+                     {{"resolution_limited_random_inputs", static_cast<double>(s.resolution_random)},
+                      {"max_resolution_limited_cells", s.resolution.max_cells},
                       {"resolution_cell_factor", kCellFactor},
                       {"float_pole_random_inputs", static_cast<double>(s.pole_random.count)},
                       {"float_pole_bound", static_cast<double>(pole_bound(s))},
