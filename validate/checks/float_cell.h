@@ -19,7 +19,7 @@ double float_spacing(float x);
 /// x = sample(u)'s float cell, seen from u.
 struct FloatCell {
     /// jacobian[k][j] = d x_k / d u_j, a finite difference of sample() at u;
-    /// 0 where x_k does not move measurably (kMeasuredSpacings of its floats)
+    /// 0 where x_k does not move measurably (by 32 of its floats, float_cell.cpp)
     /// over any step along u_j up to a quarter of the input range.
     std::array<std::array<double, 2>, 3> jacobian{};
     /// The u-extent of x's float cell along each input axis: the float spacing
