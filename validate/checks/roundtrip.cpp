@@ -445,8 +445,8 @@ void excuse_reasons(std::vector<std::string>& why, const Stats& s, const Rule& r
                                   "exceeds it with probability {:.0e}): sample ignores it on a set of positive measure",
                                   s.pole_random.count, s.random_count, poles, kCellFactor, kPolesPerAxis, kBoundTail));
     if (rule.strict && s.rounded_to_one.count > 0)
-        why.push_back(fmt::format("{} inputs: invert(x) == 1.0 for u at the edge of 1 (u rounded to 1, up to {:.3g} "
-                                  "below it): passes by default, fails under --strict",
+        why.push_back(fmt::format("{} inputs: invert(x) == 1.0 for u at the edge of 1 (u rounded to 1; largest "
+                                  "|du| {:.3g}): passes by default, fails under --strict",
                                   s.rounded_to_one.count, s.rounded_to_one.max_error));
 }
 
@@ -514,7 +514,7 @@ void add_figures(CheckResult& r, const Stats& s, const Rule& rule) {
                       {"count_bound_false_failure_probability", kBoundTail},
                       {"rounded_to_one", static_cast<double>(s.rounded_to_one.count)},
                       {"rounded_to_one_edge_floats", kEdgeFloats},
-                      {"max_rounded_to_one_gap", s.rounded_to_one.max_error},
+                      {"max_rounded_to_one_error", s.rounded_to_one.max_error},
                       {"strict", rule.strict ? 1.0 : 0.0}});
 }
 
