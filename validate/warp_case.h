@@ -94,8 +94,10 @@ std::string case_name(const std::string& family, const std::vector<Parameter>& p
 /// coordinate of the output that depends on one input coordinate only, and
 /// monotonically, with its marginal density. The check tabulates the density
 /// into a PiecewiseConstant1D and compares the warp with the table's inversion
-/// method, sample by sample. A 1D warp on an interval is its own view and needs
-/// none; a 1D warp on an unbounded line needs one to say where to truncate
+/// method, sample by sample. A declared view is a claim that the coordinate is
+/// monotone in its input. A 1D warp on an interval is its own view and needs
+/// none (whether it is monotone is then measured, or declared with
+/// WarpCaseInfo::inversion); a 1D warp on an unbounded line needs one to say where to truncate
 /// (`lo`, `hi`) and how much probability lies beyond each end (`lower_tail_mass`
 /// below lo, `tail_mass` above hi, from the case's own CDF).
 struct MonotoneMarginal {
@@ -110,6 +112,16 @@ struct MonotoneMarginal {
     std::function<double(const WarpOutput&)> coordinate;
     /// Its marginal density on [lo, hi]; empty: the warp's own pdf (1D warps only).
     std::function<double(double)> pdf;
+};
+
+/// Whether a case's sample is the inversion method of its density (monotone in
+/// u), which the tabulated check compares it with.
+enum class Inversion {
+    Measure,  ///< declared views are claims; a 1D warp without views is measured on a grid of inputs
+    Claimed,  ///< the 1D warp's sample is monotone in u: compared without measuring (and failed where it is not)
+    /// Not an inversion sampler (an alias table, a mixture chosen by u): the
+    /// tabulated check does not apply (chi2 and unbinned test the distribution).
+    NotInversion,
 };
 
 /// Built with designated initialisers, e.g. {.family = "uniform_cone", .params = ...,
@@ -135,6 +147,9 @@ struct WarpCaseInfo {
     /// needs its own label (results name the view by it). Empty: a 1D warp on
     /// an interval is its own view; other cases have none.
     std::vector<MonotoneMarginal> views{};
+    /// Whether sample is the inversion method (Inversion): by default measured
+    /// where no view claims it.
+    Inversion inversion = Inversion::Measure;
     /// Discrete cases only: the number of categories; sample returns an index
     /// of 0 .. categories - 1 and the pdf is a pmf over them. A discrete case
     /// leaves `domain` unset (0 here means a continuous case).
