@@ -254,6 +254,7 @@ struct RunInfo {
     double family_alpha = 0.01;     ///< family-wise significance level asked for
     double per_test_alpha = 0.01;   ///< Šidák-corrected level applied to each statistical test
     int statistical_tests = 0;      ///< how many tests the correction covers
+    bool strict = false;            ///< --strict: no float-resolution allowance was granted
     double wall_seconds = 0.0;
     std::string compiler;
     std::string machine;
@@ -280,6 +281,7 @@ void fields(V& v, T& i) {
     v("family_alpha", i.family_alpha);
     v("per_test_alpha", i.per_test_alpha);
     v("statistical_tests", i.statistical_tests);
+    v("strict", i.strict);
     v("wall_seconds", i.wall_seconds);
     v("compiler", i.compiler);
     v("machine", i.machine);

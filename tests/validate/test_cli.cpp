@@ -170,6 +170,17 @@ TEST(CliOutputs, DashIsStandardOutput) {
     EXPECT_EQ(r.output.rfind("{", 0), 0u) << "only the JSON on stdout: " << r.output.substr(0, 200);
 }
 
+// The run's settings are in its JSON, --strict among them.
+TEST(CliOutputs, JsonRecordsStrict) {
+    for (const char* strict : {"", "--strict "}) {
+        const auto r = testing::run_command("{ " + std::string(WARPCHECK_VALIDATE_EXE) + " " + kQuickRun + strict +
+                                            "--json - 2>/dev/null; }");
+        ASSERT_EQ(r.status, 0) << r.output;
+        EXPECT_NE(r.output.find(*strict ? "\"strict\":true" : "\"strict\":false"), std::string::npos)
+            << strict << r.output.substr(0, 400);
+    }
+}
+
 TEST(Cli, HelpAndVersionExitZero) {
     EXPECT_EQ(run_validate("--help").status, 0);
     const auto v = run_validate("--version");
