@@ -214,6 +214,10 @@ struct CheckResult {
     /// (validate --timings); the rest of `seconds` is judging and evidence.
     std::vector<PhaseTime> phases;
     std::string rerun_command;     ///< the one command that reruns just this case and check
+    /// Set by `validate` on the rows it writes: a digest of this row, all but
+    /// its timings, and of its run's digest, which --merge checks
+    /// (validate/run_digest.h). Empty where none was made.
+    std::string digest;
 
     std::optional<double> figure(std::string_view name) const {
         for (const auto& f : figures)
@@ -242,6 +246,7 @@ void fields(V& v, T& r) {
     v("rerun_command", r.rerun_command);
     v("plots", r.plots);
     v("tables", r.tables);
+    v("digest", r.digest);
 }
 
 /// What a whole run was: settings, environment and totals.
@@ -255,6 +260,9 @@ struct RunInfo {
     double per_test_alpha = 0.01;   ///< Šidák-corrected level applied to each statistical test
     int statistical_tests = 0;      ///< how many tests the correction covers
     bool strict = false;            ///< --strict: no float-resolution allowance was granted
+    /// --max-float-bias: the factor past which an exhaustive sweep's float
+    /// counts fail; 0: bias is only reported.
+    double max_float_bias = 0.0;
     double wall_seconds = 0.0;
     std::string compiler;
     std::string machine;
@@ -268,6 +276,10 @@ struct RunInfo {
     unsigned shard_count = 0;
     /// The (case, check) jobs of the whole run, all shards together.
     uint64_t run_jobs = 0;
+    /// Set by `validate`: a digest of the settings that decide the figures and
+    /// verdicts and of the whole run's job list, the same in every shard of one
+    /// run, which --merge checks (validate/run_digest.h). Empty where none was made.
+    std::string digest;
 };
 
 /// The JSON document writes tool_version as its tool.version, the rest as its "run".
@@ -282,11 +294,13 @@ void fields(V& v, T& i) {
     v("per_test_alpha", i.per_test_alpha);
     v("statistical_tests", i.statistical_tests);
     v("strict", i.strict);
+    v("max_float_bias", i.max_float_bias);
     v("wall_seconds", i.wall_seconds);
     v("compiler", i.compiler);
     v("machine", i.machine);
     v("started_at", i.started_at);
     v("abandoned_checks", i.abandoned_checks);
+    v("digest", i.digest);
     v.optional_group("shard", i.shard_count > 0, [&](auto& g) {
         g("index", i.shard_index);
         g("count", i.shard_count);
