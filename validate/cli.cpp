@@ -12,8 +12,8 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -24,13 +24,13 @@
 
 #include "chi2/multiple_testing.h"
 #include "reports/atomic_file.h"
-#include "reports/json_input.h"
 #include "reports/outputs.h"
 #include "reports/render.h"
 #include "reports/progress.h"
 #include "reports/terminal_table.h"
 #include "validate/cli_input.h"
 #include "validate/merge.h"
+#include "validate/run_digest.h"
 #include "validate/runner.h"
 #include "warpcheck/version.h"
 
@@ -78,10 +78,17 @@ std::vector<Output> requested_outputs(const CliOptions& o) {
     return outputs;
 }
 
+/// Whether `a` and `b` both exist and are one file (through links, hard links too).
+bool same_file(const std::string& a, const std::string& b) {
+    struct stat sa {}, sb {};
+    return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev &&
+           sa.st_ino == sb.st_ino;
+}
+
 // Every output is probed before the run, so that a typo does not cost a whole
 // run: '-' (standard output) at most once, each path writable, no two outputs
-// landing in the same file. Returns the problem, or empty.
-std::string output_problem(const std::vector<Output>& outputs) {
+// landing in the same file, none of them a file to merge. Returns the problem, or empty.
+std::string output_problem(const std::vector<Output>& outputs, const std::vector<std::string>& inputs) {
     std::set<std::string> targets;
     int to_stdout = 0;
     for (const Output& out : outputs) {
@@ -93,6 +100,10 @@ std::string output_problem(const std::vector<Output>& outputs) {
             return fmt::format("cannot write '{}' ({}): {}", *out.path, out.option, why);
         if (!targets.insert(resolved_output_path(*out.path)).second)
             return fmt::format("'{}' ({}) is the same file as another output", *out.path, out.option);
+        for (const std::string& input : inputs)
+            if (same_file(*out.path, input))
+                return fmt::format("'{}' ({}) is the file to merge '{}': the merge would overwrite it", *out.path,
+                                   out.option, input);
     }
     return {};
 }
@@ -380,19 +391,13 @@ int run_merge(const CliOptions& o, const std::vector<Output>& outputs, const std
     std::vector<ShardFile> shards;
     RunResult merged;
     try {
-        for (const std::string& path : o.merge_paths) {
-            std::ifstream in(path, std::ios::binary);
-            std::ostringstream text;
-            if (!(in && text << in.rdbuf())) throw MergeError(fmt::format("{}: cannot be read", path));
-            try {
-                shards.push_back({path, parse_json_results(text.str())});
-            } catch (const JsonInputError& e) {
-                throw MergeError(fmt::format("{}: {}", path, e.what()));
-            }
-        }
+        for (const std::string& path : o.merge_paths) shards.push_back(read_shard_file(path));
         merged = merge_shards(shards);
     } catch (const MergeError& e) {
         std::cerr << o.program_name << ": --merge: " << e.what() << "\n";
+        return kExitUsage;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "validate: --merge: out of memory reading the shards\n";
         return kExitUsage;
     }
     merged.info.command_line = command;
@@ -429,6 +434,9 @@ int run_selection(const CliOptions& o, const Registry& registry, const std::vect
         run.info.shard_count = o.shard.count;
         run.info.run_jobs = all_jobs.size();
     }
+    std::vector<JobName> whole_run;
+    for (const Job& job : all_jobs) whole_run.push_back({job.warp->name(), job.check->name()});
+    seal_run(run, whole_run);
     return present(run, o, outputs);
 }
 
@@ -497,7 +505,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     if (const auto done = parse(app, o, argc, argv)) return *done;
     const std::vector<Output> outputs = requested_outputs(o);
     std::string problem = selection_problem(o, registry);
-    if (problem.empty()) problem = output_problem(outputs);
+    if (problem.empty()) problem = output_problem(outputs, o.merge_paths);
     if (!problem.empty()) {
         std::cerr << o.program_name << ": " << problem << "\n";
         return kExitUsage;

@@ -202,6 +202,8 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
     run.info.seed = options.seed;
     run.info.threads = threads;
     run.info.samples = options.samples;
+    run.info.strict = options.strict;
+    run.info.max_float_bias = options.max_float_bias;
     run.info.compiler = WARPCHECK_COMPILER;
     run.info.machine = machine_description();
     run.info.started_at = utc_now();
