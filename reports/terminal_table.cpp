@@ -17,7 +17,43 @@ std::string verdict_cell(Verdict v, bool color) {
     return fmt::format("\033[{}m{}\033[0m", code, text);
 }
 
+// The length of the valid UTF-8 sequence at the start of `text` that is not a
+// control character, or 0.
+std::size_t printable_sequence(std::string_view text) {
+    const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+    const unsigned char lead = byte(0);
+    if (lead >= 0x20 && lead < 0x7F) return 1;
+    const std::size_t length = lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
+                               : lead >= 0xF0 && lead <= 0xF4                 ? 4
+                                                                              : 0;
+    if (length == 0 || text.size() < length) return 0;
+    for (std::size_t i = 1; i < length; ++i)
+        if ((byte(i) & 0xC0) != 0x80) return 0;
+    if (lead == 0xC2 && byte(1) < 0xA0) return 0;             // U+0080..U+009F: C1 controls (CSI is U+009B)
+    if (lead == 0xE0 && byte(1) < 0xA0) return 0;             // overlong
+    if (lead == 0xED && byte(1) >= 0xA0) return 0;            // UTF-16 surrogates
+    if (lead == 0xF0 && byte(1) < 0x90) return 0;             // overlong
+    if (lead == 0xF4 && byte(1) >= 0x90) return 0;            // beyond U+10FFFF
+    return length;
+}
+
 }  // namespace
+
+std::string terminal_text(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    while (!text.empty()) {
+        std::size_t n = printable_sequence(text);
+        if (n > 0) {
+            out.append(text.substr(0, n));
+        } else {
+            n = 1;
+            out += fmt::format("\\x{:02x}", static_cast<unsigned char>(text.front()));
+        }
+        text.remove_prefix(n);
+    }
+    return out;
+}
 
 void print_summary(const RunResult& run, std::ostream& out) {
     const auto& i = run.info;
@@ -56,23 +92,24 @@ void print_timings(const RunResult& run, std::ostream& out, std::size_t slowest)
     for (const CheckResult* r : rows) {
         std::string parts;
         for (const PhaseTime& p : r->phases) parts += fmt::format("{}{} {:.3f} s", parts.empty() ? "" : ", ", p.phase, p.seconds);
-        out << fmt::format("  {:>9.3f} s  {} {}{}\n", r->seconds, r->check_name, r->case_name,
-                           parts.empty() ? "" : "  (" + parts + ")");
+        out << fmt::format("  {:>9.3f} s  {} {}{}\n", r->seconds, terminal_text(r->check_name),
+                           terminal_text(r->case_name), parts.empty() ? "" : "  (" + terminal_text(parts) + ")");
     }
 }
 
 void print_table(const RunResult& run, std::ostream& out, const TableStyle& style) {
     std::size_t case_width = 4, check_width = 5;
     for (const auto& r : run.results) {
-        case_width = std::max(case_width, r.case_name.size());
-        check_width = std::max(check_width, r.check_name.size());
+        case_width = std::max(case_width, terminal_text(r.case_name).size());
+        check_width = std::max(check_width, terminal_text(r.check_name).size());
     }
     case_width = std::min<std::size_t>(case_width, 64);
     out << fmt::format("{:<5}  {:<{}}  {:<{}}  {}\n", "", "check", check_width, "case", case_width, "key figure");
     for (const auto& r : run.results) {
         if (style.failures_only && (r.verdict == Verdict::Pass || r.verdict == Verdict::NotApplicable)) continue;
-        out << fmt::format("{}  {:<{}}  {:<{}}  {}\n", verdict_cell(r.verdict, style.color), r.check_name, check_width,
-                           r.case_name, case_width, r.summary);
+        out << fmt::format("{}  {:<{}}  {:<{}}  {}\n", verdict_cell(r.verdict, style.color),
+                           terminal_text(r.check_name), check_width, terminal_text(r.case_name), case_width,
+                           terminal_text(r.summary));
     }
     bool header = false;
     for (const auto& r : run.results) {
@@ -81,8 +118,9 @@ void print_table(const RunResult& run, std::ostream& out, const TableStyle& styl
             out << "\nWhat failed, and how to rerun it:\n";
             header = true;
         }
-        out << fmt::format("  {} {} {}: {}\n    rerun: {}\n", to_string(r.verdict), r.check_name, r.case_name,
-                           r.message, r.rerun_command);
+        out << fmt::format("  {} {} {}: {}\n    rerun: {}\n", to_string(r.verdict), terminal_text(r.check_name),
+                           terminal_text(r.case_name), terminal_text(r.message),
+                           terminal_text(r.rerun_command));
     }
     if (style.timings) print_timings(run, out);
     out << "\n";

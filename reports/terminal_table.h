@@ -2,6 +2,8 @@
 #pragma once
 
 #include <iosfwd>
+#include <string>
+#include <string_view>
 
 #include "reports/result.h"
 
@@ -13,7 +15,15 @@ struct TableStyle {
     bool timings = false;       ///< after the table, where the run's time went (print_timings)
 };
 
-/// Prints the table, then the summary line and the rerun command of each failure.
+/// `text` safe to print on a terminal: every byte that a terminal could take as
+/// a control (C0 controls and DEL, UTF-8-encoded C1 controls, bytes that are not
+/// valid UTF-8) becomes a visible \xNN escape, so that a case name or a message
+/// can neither move the cursor nor fake a row ('\n' and '\t' included). Other
+/// text, UTF-8 included, is unchanged.
+std::string terminal_text(std::string_view text);
+
+/// Prints the table, then the summary line and the rerun command of each
+/// failure; names, key figures and messages pass through terminal_text.
 void print_table(const RunResult& run, std::ostream& out, const TableStyle& style = {});
 
 /// Where the time went: seconds per check name over all cases, then the
