@@ -126,11 +126,15 @@ std::string output_path_problem(const std::string& path) {
 }
 
 void remove_temporary_files_on_signals() {
-    for (int sig : {SIGINT, SIGTERM}) {
-        struct sigaction action {};
+    // Every signal whose default action ends the process and that a user or a
+    // terminal sends: Ctrl-C, kill, a closed terminal, Ctrl-\. One that is
+    // ignored (nohup, a background job of a script) stays ignored.
+    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+        struct sigaction action {}, previous {};
         action.sa_handler = remove_temporary_and_reraise;
         sigemptyset(&action.sa_mask);
-        sigaction(sig, &action, nullptr);
+        if (sigaction(sig, &action, &previous) == 0 && previous.sa_handler == SIG_IGN)
+            sigaction(sig, &previous, nullptr);
     }
 }
 

@@ -11,6 +11,7 @@
 #include <cstdio>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <new>
@@ -53,7 +54,8 @@ struct CliOptions {
     std::vector<std::string> checks;
     std::string report_path, json_path, junit_path;
     bool no_isolation = false;
-    uint64_t memory_limit_mib = 8192;
+    uint64_t memory_limit_mib = 0;
+    bool memory_limit_set = false;
     bool list_jobs = false;
     std::optional<std::string> shard_spec;
     Shard shard;
@@ -62,10 +64,13 @@ struct CliOptions {
 
 struct Output {
     const char* option;
-    const std::string* path;
+    const std::string* path;  ///< as given, for messages
     std::string (*render)(const RunResult&);
     const char* what;               ///< for "... written to PATH"
     bool only_on_failure = false;  ///< --report-on-failure: written only when a check failed or errored
+    /// Where the file goes: the path made absolute when the command starts, so
+    /// that a warp's chdir() in an in-process run does not move it.
+    std::string target{};
 };
 
 std::vector<Output> requested_outputs(const CliOptions& o) {
@@ -74,7 +79,12 @@ std::vector<Output> requested_outputs(const CliOptions& o) {
                               Output{"--report-on-failure", &o.report_on_failure_path, render_html, "HTML report", true},
                               Output{"--json", &o.json_path, render_json, "JSON results"},
                               Output{"--junit", &o.junit_path, render_junit, "JUnit XML"}})
-        if (!out.path->empty()) outputs.push_back(out);
+        if (!out.path->empty()) {
+            std::error_code ec;
+            const std::filesystem::path absolute = std::filesystem::absolute(*out.path, ec);
+            outputs.push_back(out);
+            outputs.back().target = *out.path == "-" || ec ? *out.path : absolute.string();
+        }
     return outputs;
 }
 
@@ -120,7 +130,7 @@ bool write_outputs(const std::vector<Output>& outputs, const RunResult& run, con
                 std::cout << out.render(run) << std::flush;
                 continue;
             }
-            write_file_atomically(*out.path, out.render(run));
+            write_file_atomically(out.target, out.render(run));
             notes << out.what << " written to " << *out.path << "\n";
         } catch (const std::exception& e) {
             std::cerr << program << ": " << out.option << ": " << e.what() << "\n";
@@ -166,18 +176,22 @@ CLI::Validator real_in(double min, double max, std::string unit = "") {
 
 void list_cases(const Registry& registry, const std::vector<Job>& jobs, std::ostream& out) {
     out << "Checks:\n";
-    for (const auto& c : registry.checks()) out << fmt::format("  {:<22} {}\n", c->name(), c->description());
+    for (const auto& c : registry.checks())
+        out << fmt::format("  {:<22} {}\n", terminal_text(c->name()), terminal_text(c->description()));
     out << "\nWarp cases (with the checks that apply):\n";
     const WarpCase* current = nullptr;
     for (const Job& job : jobs) {
         if (job.warp != current) {
             current = job.warp;
             const std::string flaw = registry.known_flaw(*current);
-            out << fmt::format("  {}\n      {}\n", current->name(), current->info().description);
-            if (!flaw.empty()) out << fmt::format("      known flaw (runs with --include-flawed): {}\n", flaw);
+            out << fmt::format("  {}\n      {}\n", terminal_text(current->name()),
+                               terminal_text(current->info().description));
+            if (!flaw.empty())
+                out << fmt::format("      known flaw (runs with --include-flawed): {}\n", terminal_text(flaw));
             out << "      checks:";
         }
-        out << " " << job.check->name() << (job.not_applicable.empty() ? "" : " (n/a: " + job.not_applicable + ")");
+        out << " " << terminal_text(job.check->name())
+            << (job.not_applicable.empty() ? "" : " (n/a: " + terminal_text(job.not_applicable) + ")");
         if (&job == &jobs.back() || (&job + 1)->warp != current) out << "\n";
     }
 }
@@ -188,7 +202,10 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
     app.add_option("--filter", o.filters,
                    "Run the cases whose name contains PATTERN (or matches it as a glob with * and ?; "
                    "a full case name selects exactly that case). Repeatable.")
-        ->type_name("PATTERN");
+        ->type_name("PATTERN")
+        // One pattern per --filter, taken whole: CLI11 would otherwise split a
+        // value in brackets at its commas ('[a=1,b=3]' as '[a=1' and 'b=3]').
+        ->allow_extra_args(false);
     app.add_option("--check", o.checks, "Run only this check (repeatable); see --list for names")->type_name("NAME");
     app.add_flag("--list", o.list, "List the checks and the warp cases (those selected by --filter), then exit");
     app.add_flag("--list-jobs", o.list_jobs,
@@ -251,13 +268,17 @@ void add_run_options(CLI::App& app, CliOptions& o) {
         ->each([&o](const std::string&) { o.run.time_budget_set = true; });
     app.add_flag("--no-isolation", o.no_isolation,
                  "Run the checks in this process instead of one worker process per check (for debuggers): a "
-                 "crash, exit() or endless loop in a warp then takes the whole run down");
+                 "crash or endless loop in a warp then takes the whole run down, and a warp's exit() ends it with "
+                 "status 1 and a message naming the check, without reports");
     app.add_option("--memory-limit", o.memory_limit_mib,
-                   fmt::format("Address space in MiB each check's worker may use, 0 (no limit) to {}; a check over "
-                               "it is an error. Not applied under AddressSanitizer", format_count(kMaxMemoryMib)))
+                   fmt::format("Address space in MiB that the run's worker processes may use together, 0 (no limit) "
+                               "to {}: the workers that run at once share it equally, and a check over its share is "
+                               "an error. Default: the machine's physical memory, at most 8192 MiB per worker. Not "
+                               "applied under AddressSanitizer",
+                               format_count(kMaxMemoryMib)))
         ->type_name("MIB")
         ->transform(count_in(0, kMaxMemoryMib, " (MiB)"))
-        ->capture_default_str();
+        ->each([&o](const std::string&) { o.memory_limit_set = true; });
     app.add_option("--max-float-bias", o.run.max_float_bias,
                    "Fail an exhaustive sweep when a float's count is off its ideal by more than this factor, 1 to 1e6")
         ->type_name("R")
@@ -334,7 +355,7 @@ std::string selection_problem(CliOptions& o, const Registry& registry) {
         const auto shard = parse_shard(*o.shard_spec);
         if (!shard)
             return fmt::format("--shard: '{}' is not a shard: give I/N, part I of N with 1 <= I <= N (e.g. 2/4)",
-                               *o.shard_spec);
+                               terminal_text(*o.shard_spec));
         o.shard = *shard;
     }
     for (const auto& name : o.checks)
@@ -346,6 +367,50 @@ std::string selection_problem(CliOptions& o, const Registry& registry) {
     }
     return {};
 }
+
+/// Whether all that was written to standard output got there; if not, says
+/// so on standard error. A pipe whose reader left early (`| head`) is the
+/// reader's choice, not an error: the exit status then still says what the
+/// checks said.
+bool stdout_written(const std::string& program, const char* what) {
+    errno = 0;
+    std::cout.flush();
+    const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+    const int error = errno;
+    struct stat out_stat {};
+    const bool to_pipe = fstat(STDOUT_FILENO, &out_stat) == 0 && S_ISFIFO(out_stat.st_mode);
+    if (!failed || to_pipe) return true;
+    std::cerr << program << ": could not write " << what << " to standard output"
+              << (error ? std::string(": ") + std::strerror(error) : std::string()) << "\n";
+    return false;
+}
+
+/// For an in-process run: what warps print to standard output goes to standard
+/// error while the checks run, so that standard output carries only the tool's
+/// own (a `--json -` stays parseable). Isolated runs capture it per job.
+class StdoutToStderr {
+public:
+    StdoutToStderr() {
+        std::cout.flush();
+        std::fflush(stdout);
+        saved_ = ::dup(STDOUT_FILENO);
+        if (saved_ >= 0) ::dup2(STDERR_FILENO, STDOUT_FILENO);
+    }
+    ~StdoutToStderr() {
+        std::cout.flush();
+        std::fflush(stdout);
+        if (saved_ < 0) return;
+        ::dup2(saved_, STDOUT_FILENO);
+        ::close(saved_);
+        std::cout.clear();  // a warp's failed write was not the tool's
+        std::clearerr(stdout);
+    }
+    StdoutToStderr(const StdoutToStderr&) = delete;
+    StdoutToStderr& operator=(const StdoutToStderr&) = delete;
+
+private:
+    int saved_ = -1;
+};
 
 /// The table's look: colour and width follow the terminal it goes to, if any.
 TableStyle table_style(const CliOptions& o, int fd) {
@@ -367,16 +432,8 @@ int present(const RunResult& run, const CliOptions& o, const std::vector<Output>
         std::any_of(outputs.begin(), outputs.end(), [](const Output& out) { return *out.path == "-"; });
     std::ostream& table = report_to_stdout ? std::cerr : std::cout;
     print_table(run, table, table_style(o, report_to_stdout ? STDERR_FILENO : STDOUT_FILENO));
-    if (!write_outputs(outputs, run, o.program_name, table)) return kExitUsage;
-    // A pipe whose reader left early (`| head`) is the reader's choice, not an
-    // error: the exit status then still says what the checks said.
-    std::cout.flush();
-    struct stat out_stat {};
-    const bool to_pipe = fstat(STDOUT_FILENO, &out_stat) == 0 && S_ISFIFO(out_stat.st_mode);
-    if (!to_pipe && (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout))) {
-        std::cerr << o.program_name << ": could not write the table to standard output\n";
+    if (!write_outputs(outputs, run, o.program_name, table) || !stdout_written(o.program_name, "the table"))
         return kExitUsage;
-    }
     return run.all_passed() ? kExitPass : kExitFail;
 }
 
@@ -410,8 +467,9 @@ int run_selection(const CliOptions& o, const Registry& registry, const std::vect
     const std::vector<Job> all_jobs = select_jobs(registry, o.filters, o.checks, o.run);
     const std::vector<Job> jobs = shard_jobs(all_jobs, o.shard);
     if (o.list_jobs) {
-        for (const Job& job : jobs) std::cout << job.check->name() << '\t' << job.warp->name() << '\n';
-        return kExitPass;
+        for (const Job& job : jobs)
+            std::cout << terminal_text(job.check->name()) << '\t' << terminal_text(job.warp->name()) << '\n';
+        return stdout_written(o.program_name, "the job list") ? kExitPass : kExitUsage;
     }
     if (all_jobs.empty()) {
         std::cerr << o.program_name << ": the selected checks apply to none of the selected cases\n";
@@ -421,12 +479,16 @@ int run_selection(const CliOptions& o, const Registry& registry, const std::vect
     options.family_tests = statistical_tests(all_jobs);  // a shard is judged as part of the whole run
     Isolation isolation;
     isolation.enabled = !o.no_isolation;
-    isolation.memory_limit = o.memory_limit_mib << 20;
+    if (o.memory_limit_set) isolation.memory_budget = o.memory_limit_mib << 20;
     ProgressDisplay::Options progress;
     progress.mode = progress_mode(o.progress, isatty(STDERR_FILENO) == 1).value_or(ProgressMode::Off);
     progress.level = chi2::sidak_level(options.alpha, *options.family_tests);
     progress.program = o.program_name;
-    RunResult run = run_jobs(jobs, options, stderr_progress(std::move(progress)), isolation);
+    RunResult run = [&] {
+        std::optional<StdoutToStderr> warps_print_to_stderr;
+        if (o.no_isolation) warps_print_to_stderr.emplace();
+        return run_jobs(jobs, options, stderr_progress(std::move(progress)), isolation);
+    }();
     run.info.command_line = command;
     run.info.tool_version = WARPCHECK_VERSION;
     if (o.shard_spec) {
@@ -488,6 +550,9 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     // A reader that closes early (`validate --all | head`) must not kill the run
     // before the reports are written; a failed write to stdout is reported below.
     std::signal(SIGPIPE, SIG_IGN);
+    // A report over the file size limit (ulimit -f) is a write error with a
+    // message, not a death that leaves the temporary file behind.
+    std::signal(SIGXFSZ, SIG_IGN);
     remove_temporary_files_on_signals();
     CliOptions o;
     if (argc > 0 && argv[0] && *argv[0]) {
@@ -515,7 +580,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         RunOptions everything = o.run;  // list the known-flawed cases too, marked
         everything.include_flawed = true;
         list_cases(registry, select_jobs(registry, o.filters, o.checks, everything), std::cout);
-        return kExitPass;
+        return stdout_written(o.program_name, "the list") ? kExitPass : kExitUsage;
     }
     return run_selection(o, registry, outputs, command_line(argc, argv));
 }
