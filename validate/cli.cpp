@@ -26,6 +26,7 @@
 #include "chi2/multiple_testing.h"
 #include "reports/atomic_file.h"
 #include "reports/outputs.h"
+#include "reports/text.h"
 #include "reports/render.h"
 #include "reports/progress.h"
 #include "reports/terminal_table.h"

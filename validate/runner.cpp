@@ -21,6 +21,7 @@
 
 #include "chi2/multiple_testing.h"
 #include "reports/terminal_table.h"
+#include "reports/text.h"
 #include "warpcheck/version.h"
 
 namespace warpcheck {

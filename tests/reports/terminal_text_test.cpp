@@ -6,6 +6,7 @@
 #include <string>
 
 #include "reports/terminal_table.h"
+#include "reports/text.h"
 
 namespace warpcheck {
 namespace {

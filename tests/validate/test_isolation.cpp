@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "reports/terminal_table.h"
+#include "reports/text.h"
 #include "sampling/hemisphere.h"
 #include "validate/checks/checks.h"
 #include "validate/result_codec.h"
