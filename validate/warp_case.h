@@ -129,6 +129,12 @@ struct WarpCaseInfo {
     /// needs its own label (results name the view by it). Empty: a 1D warp on
     /// an interval is its own view; other cases have none.
     std::vector<MonotoneMarginal> views{};
+    /// The measure (length, area, solid angle) of the set where the density is
+    /// positive, when that is less than the domain's: a tabulated sampler with
+    /// empty buckets, an environment map with empty rows. 0: not declared.
+    /// inverse_pdf_mean tests E[1/pdf], which is this measure, against it
+    /// (undeclared: one-sided, against the domain's measure).
+    double support_measure = 0.0;
     /// Discrete cases only: the number of categories; sample returns an index
     /// of 0 .. categories - 1 and the pdf is a pmf over them. A discrete case
     /// leaves `domain` unset (0 here means a continuous case).
