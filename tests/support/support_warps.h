@@ -121,7 +121,8 @@ struct PbrtTable2D {
 inline std::vector<float> striped_table(std::size_t nu, std::size_t nv) {
     std::vector<float> f(nu * nv, 0.0f);
     for (std::size_t v = 0; v < nv; v += 2)
-        for (std::size_t u = 0; u < nu; ++u) f[v * nu + u] = u % 4 == 3 ? 0.0f : 1.0f + static_cast<float>((u * 7 + v) % 5);
+        for (std::size_t u = 0; u < nu; ++u)
+            f[v * nu + u] = u % 4 == 3 ? 0.0f : 1.0f + static_cast<float>((u * 7 + v) % 5);
     return f;
 }
 

@@ -84,7 +84,8 @@ TEST(ExhaustiveReach, MonotoneSamplersKeepTheOneInputRule) {
     const auto stop_short = [](uint64_t i) { return std::fmin(static_cast<float>(i) * 0x1p-22f, 1.0f - 0x1p-21f); };
     const CheckResult monotone = exhaustive(*grid_case("grid_short", 22, true, stop_short));
     EXPECT_EQ(monotone.verdict, Verdict::Fail);
-    EXPECT_EQ(*monotone.figure("mass_outside_reach"), 0x1p-21 - 0x1p-24);  // 1.75 inputs: [1 - 2^-21, 1 - 2^-21 + 2^-24) is reached
+    // 1.75 inputs' worth: [1 - 2^-21, 1 - 2^-21 + 2^-24) is reached.
+    EXPECT_EQ(*monotone.figure("mass_outside_reach"), 0x1p-21 - 0x1p-24);
     EXPECT_EQ(*monotone.figure("reach_allowance"), 0x1p-22);
     const CheckResult reported = exhaustive(*grid_case("grid_short_unclaimed", 22, false, stop_short));
     EXPECT_EQ(reported.verdict, Verdict::Pass) << reported.message;

@@ -228,8 +228,8 @@ TEST(InversePdfMean, EmptyBucketPassesOneSidedWithoutADeclaration) {
 TEST(InversePdfMean, ReturnedPdfOffByAFactorFails) {
     for (uint64_t seed : kSeeds) {
         for (float scale : {0.98f, 1.02f}) {
-            const CheckResult r = run_check(*make_inverse_pdf_mean_check(), *bucket_table("bucket_table_off", 3.5, scale),
-                                            200'000, 2, seed);
+            const CheckResult r = run_check(*make_inverse_pdf_mean_check(),
+                                            *bucket_table("bucket_table_off", 3.5, scale), 200'000, 2, seed);
             EXPECT_EQ(r.verdict, Verdict::Fail) << scale << ": " << r.summary;
         }
         const CheckResult low = run_check(*make_inverse_pdf_mean_check(), *bucket_table("bucket_table_low", 0.0, 0.85f),
