@@ -122,15 +122,16 @@ bool classify(Stats& s, const chi2::Domain& domain, uint64_t index, const Exampl
     return false;
 }
 
-/// The probe's step in each coordinate: the float spacing at the domain's
-/// extent (or at the coordinate itself, where that is larger: unbounded lines).
+/// The probe's step in each coordinate: the float spacing just below the
+/// domain's extent, the largest a coordinate inside it has (or at the
+/// coordinate itself, where that is larger: unbounded lines).
 std::array<float, 3> probe_steps(const chi2::Domain& domain, const WarpOutput& x) {
     const chi2::Domain::Slack slack = domain.slack();
     const double extent[3] = {slack.x, slack.y, slack.x};  // a direction's z has the x slack (unit scale)
     std::array<float, 3> step{};
     for (std::size_t k = 0; k < 3; ++k) {
         const float scale = std::max(std::abs(x[k]), static_cast<float>(extent[k] / chi2::kDomainTolerance));
-        step[k] = next_float_up(scale) - scale;
+        step[k] = scale - next_float_down(scale);
     }
     return step;
 }
