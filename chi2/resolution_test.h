@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -26,20 +27,33 @@ inline constexpr int kResolutionDigits = 20;
 inline constexpr int kMaxResolutionDigits = 52;
 
 /// How many values have each digit set, for a fixed number of digits;
-/// mergeable (integer sums: the same counts in any order).
-struct DigitCounts {
+/// mergeable (integer sums: the same counts in any order). The values' top
+/// `digits` bits are counted in tables of 11 bits each (two increments per
+/// value for 20 digits, instead of one per digit), and the digits' counts
+/// are read off the tables.
+class DigitCounts {
+public:
     explicit DigitCounts(int digits = kResolutionDigits);
-    int digits;
-    uint64_t n = 0;
-    std::array<uint64_t, kMaxResolutionDigits> ones{};
 
+    int digits() const { return digits_; }
+    uint64_t n() const { return n_; }
     /// Adds u, which must lie in [0, 1) (the caller rejects the rest).
     void add(double u) {
-        const auto q = static_cast<uint64_t>(u * static_cast<double>(uint64_t{1} << digits));  // exact scaling
-        ++n;
-        for (int k = 0; k < digits; ++k) ones[static_cast<std::size_t>(k)] += (q >> (digits - 1 - k)) & 1u;
+        const auto q = static_cast<uint64_t>(u * scale_);  // exact scaling; q < 2^digits
+        ++n_;
+        for (std::size_t t = 0; t < tables_.size(); ++t) ++tables_[t][(q >> (t * kTableBits)) & kTableMask];
     }
+    /// How many values have digit k (1 .. digits(), the bit of weight 2^-k) set.
+    uint64_t ones(int k) const;
     void merge(const DigitCounts& other);
+
+private:
+    static constexpr int kTableBits = 11;
+    static constexpr uint64_t kTableMask = (uint64_t{1} << kTableBits) - 1;
+    int digits_;
+    double scale_;  ///< 2^digits
+    uint64_t n_ = 0;
+    std::vector<std::array<uint64_t, std::size_t{1} << kTableBits>> tables_;
 };
 
 struct ResolutionTest {

@@ -69,11 +69,19 @@ TEST(ResolutionTest, DigitsAreCountedExactly) {
     c.add(1.0 - 0x1p-24);        // all twenty digits
     c.add(0x1p-20);              // digit 20 only
     c.add(0x1p-20 - 0x1p-40);    // below 2^-20: no digit of the twenty
-    EXPECT_EQ(c.n, 5u);
-    EXPECT_EQ(c.ones[0], 2u);
-    for (std::size_t k = 1; k < 19; ++k) EXPECT_EQ(c.ones[k], 1u) << k;
-    EXPECT_EQ(c.ones[19], 2u);
-    EXPECT_EQ(c.ones[20], 0u);
+    EXPECT_EQ(c.n(), 5u);
+    EXPECT_EQ(c.ones(1), 2u);
+    for (int k = 2; k < 20; ++k) EXPECT_EQ(c.ones(k), 1u) << k;
+    EXPECT_EQ(c.ones(20), 2u);
+    EXPECT_THROW(c.ones(21), std::out_of_range);
+    // 52 digits, in five tables: the last digit of a double's 2^-52 grid.
+    DigitCounts fine(52);
+    fine.add(0x1p-52);
+    fine.add(0.5 + 0x1p-30);
+    EXPECT_EQ(fine.ones(52), 1u);
+    EXPECT_EQ(fine.ones(30), 1u);
+    EXPECT_EQ(fine.ones(1), 1u);
+    EXPECT_EQ(fine.ones(2), 0u);
 }
 
 TEST(ResolutionTest, MergedCountsEqualTheWhole) {
@@ -84,8 +92,8 @@ TEST(ResolutionTest, MergedCountsEqualTheWhole) {
         (i < 4000 ? a : b).add(u[i]);
     }
     a.merge(b);
-    EXPECT_EQ(a.n, whole.n);
-    EXPECT_EQ(a.ones, whole.ones);
+    EXPECT_EQ(a.n(), whole.n());
+    for (int k = 1; k <= kResolutionDigits; ++k) EXPECT_EQ(a.ones(k), whole.ones(k)) << k;
     EXPECT_EQ(resolution_test(a).p_value, resolution_test(whole).p_value);
     EXPECT_THROW(a.merge(DigitCounts(12)), std::invalid_argument);
     EXPECT_THROW(DigitCounts(0), std::invalid_argument);

@@ -135,7 +135,7 @@ Strays count_binades(const WarpCase& warp, const CheckContext& ctx, uint64_t sam
     for (std::size_t k = 0; k < cells.size(); ++k) index[cells[k].key] = k;
     auto chunks = map_input_chunks<Counts>(ctx, warp.input_kind(), samples, false, [&](std::size_t, auto inputs) {
         Counts c{std::vector<uint64_t>(cells.size(), 0), std::vector<uint64_t>(cells.size(), 0), 0, 0,
-                 chi2::DigitCounts(digits.digits)};
+                 chi2::DigitCounts(digits.digits())};
         std::vector<WarpOutput> x(inputs.size());
         warp.sample(inputs, x);
         for (const WarpOutput& o : x) {
