@@ -158,6 +158,12 @@ struct WarpCaseInfo {
     /// Whether sample is the inversion method (Inversion): by default measured
     /// where no view claims it.
     Inversion inversion = Inversion::Measure;
+    /// The measure (length, area, solid angle) of the set where the density is
+    /// positive, when that is less than the domain's: a tabulated sampler with
+    /// empty buckets, an environment map with empty rows. 0: not declared.
+    /// inverse_pdf_mean tests E[1/pdf], which is this measure, against it
+    /// (undeclared: one-sided, against the domain's measure).
+    double support_measure = 0.0;
     /// Discrete cases only: the number of categories; sample returns an index
     /// of 0 .. categories - 1 and the pdf is a pmf over them. A discrete case
     /// leaves `domain` unset (0 here means a continuous case).
