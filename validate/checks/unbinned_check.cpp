@@ -91,9 +91,12 @@ struct TableSpec {
     double target_scale = 0.03;
 };
 /// A CDF whose error is carried into the test is tabulated again like this to
-/// check its error (check_cdf_error): twice the strips, a quarter of the
-/// cubature's allowance, half the refinement target.
-constexpr TableSpec kCheckTable{2 * kStrips, kCdfAccuracyFraction / 4.0, 0.015};
+/// check its error (check_cdf_error): about twice the strips (2 x 1021, 1021
+/// prime: no edge but the ends and the middle is an edge of the first table,
+/// so an error tied to where the cubature's nodes fall, such as a jump along
+/// the cells' diagonals, does not repeat), a quarter of the cubature's
+/// allowance, half the refinement target.
+constexpr TableSpec kCheckTable{2 * 1021, kCdfAccuracyFraction / 4.0, 0.015};
 
 using Tabulate = std::function<chi2::MarginalCdf(const TableSpec&)>;
 using BandOf = std::function<chi2::ParameterBand(const WarpOutput&)>;
@@ -295,8 +298,8 @@ double largest_difference(const chi2::MarginalCdf& a, const chi2::MarginalCdf& b
 /// (a jump through the cubature's nodes can make it do so): the marginal is
 /// tabulated again (kCheckTable) and the finer table is used, with the larger
 /// of its own error and the largest difference d between the two tables. If
-/// the finer table at least halves the true error (twice the strips halve an
-/// interpolation error at a jump and quarter it elsewhere; the cubature's
+/// the finer table at least halves the true error (about twice the strips halve
+/// an interpolation error at a jump and quarter it elsewhere; the cubature's
 /// allowance is a quarter), |err2| <= |err1| / 2 and |err1| <= d + |err2| give
 /// |err2| <= d: a stated error that is itself wrong is replaced by a measured
 /// one. Costs one finer tabulation, only for such marginals.
