@@ -121,15 +121,22 @@ TEST(LocalResidual, CatchesAOneCellExcessThatPearsonMisses) {
 }
 
 TEST(UnbinnedCheck, SameFiguresForAnyThreadCount) {
-    const auto warp = cosine_claiming_power(0.0);
+    // An ordinary case and one tested against float bands (a tiny cone).
+    const auto cone = make_warp_case(
+        {"tiny_cone", {}, "", InputKind::Uniform2D, chi2::Domain::spherical_cap(0.99999)},
+        [](Point2f u) { return UniformCone(0.99999f).sample(u); }, [](Vector3f v) { return UniformCone(0.99999f).pdf(v); });
+    const auto cosine = cosine_claiming_power(0.0);
     const auto check = make_unbinned_check();
-    const CheckResult one = run_check(*check, *warp, 3, 1);
-    const CheckResult four = run_check(*check, *warp, 3, 4);
-    ASSERT_EQ(one.figures.size(), four.figures.size());
-    for (std::size_t i = 0; i < one.figures.size(); ++i) {
-        EXPECT_EQ(one.figures[i].name, four.figures[i].name);
-        EXPECT_EQ(std::bit_cast<uint64_t>(one.figures[i].value), std::bit_cast<uint64_t>(four.figures[i].value))
-            << one.figures[i].name;
+    for (const WarpCase* warp : {cosine.get(), cone.get()}) {
+        const CheckResult one = run_check(*check, *warp, 3, 1);
+        const CheckResult four = run_check(*check, *warp, 3, 4);
+        ASSERT_EQ(one.figures.size(), four.figures.size());
+        for (std::size_t i = 0; i < one.figures.size(); ++i) {
+            EXPECT_EQ(one.figures[i].name, four.figures[i].name);
+            EXPECT_EQ(std::bit_cast<uint64_t>(one.figures[i].value), std::bit_cast<uint64_t>(four.figures[i].value))
+                << one.figures[i].name;
+        }
+        EXPECT_EQ(one.summary, four.summary);
     }
 }
 
