@@ -36,7 +36,9 @@ FloatResolution::FloatResolution(const Binning& binning, int axis, int steps)
     if (axis < 0 || axis >= binning.parameter_dimension())
         throw std::invalid_argument("FloatResolution: no such parameter");
     const Domain& d = binning.domain();
-    if (d.azimuthal()) {
+    if (d.is<Triangle>()) {
+        kind_ = Kind::Probed;
+    } else if (d.azimuthal()) {
         kind_ = axis == 0 ? Kind::Azimuth : d.is<Disk>() ? Kind::RadiusSquared : Kind::Coordinate;
         coordinate_ = 2;  // z = cos theta of spherical caps
     } else {
@@ -55,6 +57,7 @@ double FloatResolution::value(const std::array<float, 3>& p) const {
     switch (kind_) {
         case Kind::Azimuth: return x == 0.0 && y == 0.0 ? std::nan("") : exact_phi(x, y);
         case Kind::RadiusSquared: return x * x + y * y;
+        case Kind::Probed: return binning_.parameters_of({x, y, 0.0})[static_cast<std::size_t>(axis_)];
         case Kind::Coordinate: break;
     }
     return of_coordinate(p[static_cast<std::size_t>(coordinate_)]);
@@ -78,6 +81,7 @@ ParameterBand FloatResolution::band(const std::array<float, 3>& p) const {
             b.hi = b.value + h;
             return b;
         }
+        case Kind::Probed: return probed_band(p);
         case Kind::Coordinate: break;
     }
     const float c = p[static_cast<std::size_t>(coordinate_)];
@@ -90,11 +94,32 @@ ParameterBand FloatResolution::band(const std::array<float, 3>& p) const {
     return b;
 }
 
+/// The parameter's range over the 8 points with x and y each moved by
+/// -steps, 0 or +steps floats: to first order the map is linear over so small
+/// a box, so its extremes are at the box's corners and edges' midpoints.
+ParameterBand FloatResolution::probed_band(const std::array<float, 3>& p) const {
+    ParameterBand b;
+    b.value = value(p);
+    b.lo = b.hi = b.value;
+    for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy) {
+            const std::array<float, 3> q = {step_floats(p[0], dx * steps_), step_floats(p[1], dy * steps_), p[2]};
+            const double v = value(q);
+            if (std::isnan(v)) continue;
+            b.lo = std::min(b.lo, v);
+            b.hi = std::max(b.hi, v);
+        }
+    return b;
+}
+
 double FloatResolution::half_width_at(double t) const {
     const double s = static_cast<double>(steps_);
     switch (kind_) {
         case Kind::Azimuth: return s * 0x1p-23;
         case Kind::RadiusSquared: return 2.0 * s * 0x1p-23 * t;
+        // Unbounded over the other parameter (a triangle's t near its first
+        // vertex): no model, so every sample's band is probed.
+        case Kind::Probed: return kInf;
         case Kind::Coordinate: break;
     }
     const double x = mapped_ ? binning_.point_at(t, 0.5)[0] : t;
@@ -121,6 +146,7 @@ std::string FloatResolution::describe() const {
     switch (kind_) {
         case Kind::Azimuth: return "phi within " + n + " 2^-23";
         case Kind::RadiusSquared: return "r^2 within " + n + " 2^-22 of itself";
+        case Kind::Probed: return "x and y each within " + n + " float steps, probed";
         case Kind::Coordinate: break;
     }
     return n + (steps_ == 1 ? " float step of " : " float steps of ") + "xyz"[coordinate_];

@@ -60,14 +60,17 @@ public:
     /// whose parameter is t, to float rounding): the larger side.
     double half_width_at(double t) const;
     /// Which float coordinate the parameter is a monotone map of (0, 1, 2), or
-    /// -1 when it combines two (phi, r^2).
+    /// -1 when it combines two (phi, r^2, a triangle's parameters).
     int coordinate() const { return kind_ == Kind::Coordinate ? coordinate_ : -1; }
     int steps() const { return steps_; }
     /// How the band is set, for a result's text: e.g. "2 float steps of z".
     std::string describe() const;
 
 private:
-    enum class Kind { Coordinate, Azimuth, RadiusSquared };
+    /// Probed: a parameter that mixes both coordinates through a map with no
+    /// closed-form band (a triangle's (s, t)); its band is probed per point.
+    enum class Kind { Coordinate, Azimuth, RadiusSquared, Probed };
+    ParameterBand probed_band(const std::array<float, 3>& p) const;
     double of_coordinate(float c) const;
 
     Binning binning_;

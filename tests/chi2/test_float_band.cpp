@@ -60,6 +60,38 @@ TEST(FloatResolution, OneCoordinateParametersAreTheirFloatNeighbours) {
     EXPECT_THROW(FloatResolution(box, 0, 0), std::invalid_argument);
 }
 
+// A triangle's parameters (s, t) mix x and y: the value is the binning's own
+// parameter of the point (not a coordinate; reading x as s made the unbinned
+// check fail a correct triangle at KS 0.22), and the band holds every move of
+// both floats within the steps, including near the first vertex where t's
+// band widens without bound (so no model replaces the per-sample bands).
+TEST(FloatResolution, TriangleParametersAreProbedOverBothCoordinates) {
+    const Binning tri(Domain::triangle({0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}), {4, 4});
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int axis = 0; axis < 2; ++axis) {
+        const FloatResolution r(tri, axis, 2);
+        EXPECT_EQ(r.coordinate(), -1);
+        EXPECT_EQ(r.half_width_at(0.5), std::numeric_limits<double>::infinity());
+        for (int i = 0; i < 2000; ++i) {
+            float x = u(rng), y = u(rng);
+            if (x + y >= 1.0f) x = 1.0f - x, y = 1.0f - y;
+            if (i < 10) x = std::ldexp(x, -20), y = std::ldexp(y, -20);  // next to the vertex at the origin
+            const ParameterBand b = r.band({x, y, 0.0f});
+            ASSERT_EQ(b.value, tri.parameters_of({x, y, 0.0})[static_cast<std::size_t>(axis)]);
+            for (int dx = -2; dx <= 2; ++dx)
+                for (int dy = -2; dy <= 2; ++dy) {
+                    const float mx = steps_from(x, std::abs(dx), dx < 0 ? -kInf : kInf);
+                    const float my = steps_from(y, std::abs(dy), dy < 0 ? -kInf : kInf);
+                    const double v = tri.parameters_of({mx, my, 0.0})[static_cast<std::size_t>(axis)];
+                    // First order: allow the band's own width times 1e-6 for curvature.
+                    const double slack = 1e-6 * (b.hi - b.lo);
+                    EXPECT_TRUE(v >= b.lo - slack && v <= b.hi + slack) << axis << " " << x << " " << y;
+                }
+        }
+    }
+}
+
 TEST(FloatResolution, BandEndsAreTheFloatsThatNextafterReaches) {
     // Random bit patterns of every sign and scale, zeros, subnormals and the
     // largest float: the ends are nextafter's, step by step.
