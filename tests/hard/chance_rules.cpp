@@ -58,7 +58,7 @@ float uniform_pdf(float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; }
 constexpr std::array<uint64_t, 2> kDefaultU32Keys{1, 2};
 
 /// The keys of hash_u32: HARD_WARPS_U32_HASH_KEYS, a comma-separated list
-/// (empty: none, as the sanitizer builds run it); unset: kDefaultU32Keys.
+/// (empty: none, and no twin); unset: kDefaultU32Keys.
 std::vector<uint64_t> u32_hash_keys() {
     const char* text = std::getenv("HARD_WARPS_U32_HASH_KEYS");
     if (!text) return {kDefaultU32Keys.begin(), kDefaultU32Keys.end()};

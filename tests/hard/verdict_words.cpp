@@ -1,7 +1,7 @@
 // Class 8 of issue 22: verdict words.
 //
-// - nan_everywhere_1d, nan_everywhere_sphere: warps that return NaN for every
-//   input. Wrong, and plainly so: every check that runs must say FAIL (the
+// - nan_everywhere_1d (sample, pdf and inverse), nan_everywhere_sphere (the
+//   samples, beside a valid pdf): warps that return NaN for every input. Wrong, and plainly so: every check that runs must say FAIL (the
 //   warp ran and its output is wrong), never ERROR (which says the check could
 //   not run: today three rows were ERRORs blaming a discontinuous density).
 // - Rows that test nothing must say n/a, and passing rows must not show NaN
@@ -32,11 +32,14 @@ using warpcheck::InputKind;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
+// Everything NaN: sample, pdf and inverse (a warp whose parameters went NaN).
 struct NanInterval {
     float sample(float) const { return kNaN; }
-    float pdf(float x) const { return x >= 0 && x <= 1 ? 1.0f : 0.0f; }
-    float invert(float x) const { return x; }
+    float pdf(float) const { return kNaN; }
+    float invert(float) const { return kNaN; }
 };
+
+// Only the samples NaN, beside a valid density.
 
 struct NanSphere {
     Vector3f sample(Point2f) const { return {kNaN, kNaN, kNaN}; }
@@ -63,7 +66,7 @@ void register_nan_free_rows(warpcheck::Registry& registry) {
 
 void register_verdict_words(warpcheck::Registry& registry) {
     registry.add_case(warpcheck::make_warp_case({.family = "nan_everywhere_1d",
-                                                 .description = "returns NaN for every input; pdf 1 on [0,1]",
+                                                 .description = "sample, pdf and inverse return NaN for every input",
                                                  .input = InputKind::Uniform1D,
                                                  .domain = Domain::interval(0, 1)},
                                                 NanInterval{}));
