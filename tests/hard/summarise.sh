@@ -1,29 +1,36 @@
 #!/usr/bin/env bash
 # Summarises hard_warps tables (the output of `hard_warps ... --color never`,
-# one file per seed) as markdown rows: for each (case, check) that did not pass
-# on some seed, the verdicts with their seed counts and the first message
-# (cut to 300 characters). Used for tests/hard/BASELINE.md:
+# one file per seed) as markdown rows: each (case, check) with a row that did
+# not pass on some seed, or passed saying what run_hard.sh forbids (tested
+# nothing; a NaN figure), with the number of seeds and the first message (cut
+# to 300 characters). Used for tests/hard/BASELINE.md:
 #   for k in $(seq 1 10); do hard_warps --all --seed $k --color never > seed$k.txt; done
 #   tests/hard/summarise.sh seed*.txt
 # Usage: summarise.sh TABLE...
 set -euo pipefail
 rows=$(awk -v files=$# '
-  FNR == 1 { ++file }
-  /^(FAIL|ERROR) / { key = $3 " | " $2; count[key, $1]++; keys[key] = 1 }
+  function note(key, text) { count[key]++; if (!(key in message)) message[key] = substr(text, 1, 300) }
+  /^(FAIL|ERROR) / { seen[$3 "|" $2 "|" $1] = 1 }
+  /^pass / {
+    summary = $0; sub(/^pass +[^ ]+ +[^ ]+ +/, "", summary)
+    if (summary ~ /^not applicable/) note($3 "|" $2 "|pass, tested nothing", summary)
+    else if (tolower(summary) ~ /(^|[^a-z])nan([^a-z]|$)/) note($3 "|" $2 "|pass, NaN figure", summary)
+  }
   /^  (FAIL|ERROR) / {
-    line = $0; sub(/^  (FAIL|ERROR) /, "", line)
-    split(line, parts, ": "); check = parts[1]; sub(/ .*/, "", check)
-    name = parts[1]; sub(/^[^ ]+ /, "", name)
-    key = name " | " check
-    if (!(key in message)) { m = substr(line, length(parts[1]) + 3); message[key] = substr(m, 1, 300) }
+    line = $0; sub(/^  /, "", line)
+    verdict = line; sub(/ .*/, "", verdict)
+    check = line; sub(/^[^ ]+ /, "", check); sub(/ .*/, "", check)
+    name = line; sub(/^[^ ]+ [^ ]+ /, "", name); sub(/: .*/, "", name)
+    text = line; sub(/^[^:]*: /, "", text)
+    if ((name "|" check "|" verdict) in seen) note(name "|" check "|" verdict, text)
   }
   END {
-    for (k in keys) {
-      split(k, kc, " [|] ")
-      gsub(/[|]/, "\\|", message[k])
-      printf "| %s | %s | %d/%d | %d/%d | %s |\n", kc[1], kc[2], count[k, "FAIL"], files, count[k, "ERROR"], files, message[k]
+    for (k in count) {
+      split(k, f, "|")
+      m = message[k]; gsub(/[|]/, "\\|", m)
+      printf "| %s | %s | %s | %d/%d | %s |\n", f[1], f[2], f[3], count[k], files, m
     }
   }' "$@" | sort)
-echo "| case | check | FAIL | ERROR | first message |"
+echo "| case | check | verdict | seeds | first message |"
 echo "| --- | --- | --- | --- | --- |"
 echo "$rows"
