@@ -53,9 +53,10 @@ inline uint32_t hash32(uint64_t key, uint32_t index) {
 
 float uniform_pdf(float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; }
 
-/// hash_u32's keys unless HARD_WARPS_U32_HASH_KEYS says otherwise: 1, and XX, the
-/// first of 1..40 whose sweep fails the reach rule on today's main (tests/hard/BASELINE.md).
-constexpr std::array<uint64_t, 2> kDefaultU32Keys{1, 2};
+/// hash_u32's keys unless HARD_WARPS_U32_HASH_KEYS says otherwise: 1, and 6, the
+/// first of 1..40 that no input hashes to 0 or 1 for, so that the reach rule
+/// fails it on today's main (tests/hard/BASELINE.md lists all 40).
+constexpr std::array<uint64_t, 2> kDefaultU32Keys{1, 6};
 
 /// The keys of hash_u32: HARD_WARPS_U32_HASH_KEYS, a comma-separated list
 /// (empty: none, and no twin); unset: kDefaultU32Keys.
