@@ -70,7 +70,7 @@ void register_verdict_words(warpcheck::Registry& registry) {
                                                  .input = InputKind::Uniform1D,
                                                  .domain = Domain::interval(0, 1)},
                                                 NanInterval{}));
-    mark_twin(registry, "nan_everywhere_1d", "every check", "every sample is NaN");
+    mark_twin(registry, "nan_everywhere_1d", "every check", "sample, pdf and inverse are NaN");
     registry.add_case(warpcheck::make_warp_case(
         {.family = "nan_everywhere_sphere", .description = "returns NaN for every input; pdf 1/(4 pi)",
          .domain = Domain::sphere()},
