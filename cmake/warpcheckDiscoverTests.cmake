@@ -16,6 +16,13 @@
 # prefix being "<target>/" unless TEST_PREFIX says otherwise. LABELS are added
 # to every test beside the check's name; PROPERTIES are set on every test
 # (e.g. TIMEOUT 600).
+#
+# As with the GoogleTest adapter, WARPCHECK_SEED, WARPCHECK_SAMPLES and
+# WARPCHECK_ALPHA in ctest's environment replace the seed, sample count and
+# alpha of EXTRA_ARGS (`WARPCHECK_SAMPLES=10M ctest`), and an invalid value
+# fails every test with the variable's name and the reason. A failing test
+# writes its HTML report to WARPCHECK_EVIDENCE_DIR (default warpcheck-evidence
+# in the target's build folder) as <case>__<check>.html and names it.
 function(warpcheck_discover_tests target)
   cmake_parse_arguments(PARSE_ARGV 1 arg "" "TEST_PREFIX" "EXTRA_ARGS;LABELS;PROPERTIES")
   if(arg_UNPARSED_ARGUMENTS)

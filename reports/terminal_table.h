@@ -1,20 +1,63 @@
-// The pass/fail table that `validate` prints: one row per (case, check).
+// The pass/fail table that `validate` prints: one row per (case, check), then
+// a summary per warp family, the passing results closest to their limits, the
+// failures with the command that reruns each, and the totals.
 #pragma once
 
+#include <cstddef>
 #include <iosfwd>
+#include <optional>
+#include <string>
 
 #include "reports/result.h"
 
 namespace warpcheck {
 
 struct TableStyle {
-    bool color = false;         ///< ANSI colours for verdicts (only on a terminal)
-    bool failures_only = false; ///< print only rows that did not pass
-    bool timings = false;       ///< after the table, where the run's time went (print_timings)
+    bool color = false;          ///< ANSI colours for verdicts (only on a terminal)
+    bool failures_only = false;  ///< print only rows that did not pass
+    bool timings = false;        ///< after the table, where the run's time went (print_timings)
+    /// Columns the rows fit in: long case names and key figures are cut, the
+    /// cut marked by "…" (the JSON and HTML reports keep them whole). 0: no limit.
+    std::size_t width = 120;
+    bool families = true;        ///< the summary per warp family
+    std::size_t weakest = 3;     ///< passing rows listed per kind of limit as closest to it (0: none)
 };
 
-/// Prints the table, then the summary line and the rerun command of each failure.
+/// How far a row's key figure is from the limit that judges it, read off its
+/// figures: `p_over_level` for a statistical row (its p-value over the per-test
+/// level: it fails below 1), `of_tolerance` for a row judged against a
+/// tolerance (its largest error over that tolerance: it fails above 1; the
+/// largest of those a row has, named by `tolerance_figure`). Read from the
+/// figures' names: `*_over_tolerance` as it is; `X` beside `X_tolerance` as
+/// |X| (|X - 1| for an integral) over it; `max_error`, `max_relative_difference`
+/// and a pmf's `sum` (|sum - 1|) over `tolerance`. A tolerance of 0 (an exact
+/// rule) gives no fraction.
+struct RowMargin {
+    std::optional<double> p_over_level;
+    std::optional<double> of_tolerance;
+    std::string tolerance_figure;
+};
+RowMargin row_margin(const CheckResult& r);
+
+/// The margin as the table shows it: "390x level" or "0.4 of tol"; empty if
+/// the row has neither.
+std::string margin_text(const RowMargin& m);
+
+/// A case name cut to `columns`: the family is shortened in its middle before
+/// the parameters, which tell a family's rows apart, are touched:
+/// "trowbr…visible[ax=0.3,ay=0.05,theta_o=60]".
+std::string fit_case_name(const std::string& name, std::size_t columns);
+
+/// Prints the table, then the summaries, the failures with their rerun
+/// commands, and the totals.
 void print_table(const RunResult& run, std::ostream& out, const TableStyle& style = {});
+
+/// Per warp family (the case name before '['): cases and rows by verdict.
+void print_family_summary(const RunResult& run, std::ostream& out, bool failures_only = false);
+
+/// The passing rows closest to their limits: the `count` smallest p-values
+/// against the level, and the `count` largest fractions of a tolerance.
+void print_weakest(const RunResult& run, std::ostream& out, std::size_t count, std::size_t width = 120);
 
 /// Where the time went: seconds per check name over all cases, then the
 /// slowest rows with the parts of their compute (CheckResult::phases).

@@ -56,6 +56,9 @@ WarpCaseInfo to_info(const CaseInfo& in) {
     info.domain = to_domain(in.domain);
     info.roundtrip_tolerance = in.roundtrip_tolerance;
     for (const View& v : in.views) info.views.push_back(to_view(v));
+    info.inversion = in.inversion == Inversion::Claimed        ? warpcheck::Inversion::Claimed
+                     : in.inversion == Inversion::NotInversion ? warpcheck::Inversion::NotInversion
+                                                               : warpcheck::Inversion::Measure;
     return info;
 }
 

@@ -82,6 +82,9 @@ struct View {
     std::function<double(double)> pdf;               ///< empty: the warp's pdf (1D warps)
 };
 
+/// Whether sample is the inversion method (WarpCaseInfo::inversion says what each means).
+enum class Inversion { Measure, Claimed, NotInversion };
+
 /// The case's name, description, input, domain and views (WarpCaseInfo).
 struct CaseInfo {
     std::string family;
@@ -91,6 +94,7 @@ struct CaseInfo {
     Domain domain = Domain::unit_square();
     double roundtrip_tolerance = 1.0 / 65536.0;
     std::vector<View> views;
+    Inversion inversion = Inversion::Measure;
 };
 
 using SampleFn = std::function<Point(const WarpInput&)>;

@@ -1,16 +1,32 @@
 #include "validate/warp_case.h"
 
+#include <cmath>
+#include <limits>
+
 #include <fmt/format.h>
 
 namespace warpcheck {
+
+std::string parameter_value(double value) {
+    // {} gives the shortest decimal that reads back as the same value: 0.3,
+    // 1e-06, 85. A parameter that came from a float (0.3f, stored as the double
+    // 0.30000001192092896) reads as that float's shortest decimal, "0.3", when
+    // that is the shorter of the two; reading it back as a float gives the
+    // parameter again. A double that is no float keeps all its digits.
+    const std::string as_double = fmt::format("{}", value);
+    if (!(std::abs(value) <= std::numeric_limits<float>::max())) return as_double;  // NaN, inf, beyond float
+    const auto narrow = static_cast<float>(value);
+    if (static_cast<double>(narrow) != value) return as_double;
+    const std::string as_float = fmt::format("{}", narrow);
+    return as_float.size() < as_double.size() ? as_float : as_double;
+}
 
 std::string case_name(const std::string& family, const std::vector<Parameter>& params) {
     if (params.empty()) return family;
     std::string name = family + "[";
     for (std::size_t i = 0; i < params.size(); ++i) {
         if (i > 0) name += ",";
-        // {} gives the shortest decimal that reads back as the same double: 0.3, 1e-06, 85.
-        name += fmt::format("{}={}", params[i].name, params[i].value);
+        name += params[i].name + "=" + parameter_value(params[i].value);
     }
     return name + "]";
 }

@@ -79,8 +79,14 @@ struct Parameter {
     double value = 0.0;
 };
 
+/// A parameter's value in a case name: the shortest decimal that reads back as
+/// the value; for a value that is exactly a float (a float parameter stored as
+/// a double), the float's shortest decimal when that is shorter: 0.3f gives
+/// "0.3", not "0.30000001192092896".
+std::string parameter_value(double value);
+
 /// Name and parameters, e.g. family "uniform_cone", {cos_theta_max: 0.3}
-/// -> "uniform_cone[cos_theta_max=0.3]".
+/// -> "uniform_cone[cos_theta_max=0.3]" (values as parameter_value writes them).
 std::string case_name(const std::string& family, const std::vector<Parameter>& params);
 
 /// A monotone one-dimensional view of a warp, for the "tabulated" check (a case
@@ -88,8 +94,10 @@ std::string case_name(const std::string& family, const std::vector<Parameter>& p
 /// coordinate of the output that depends on one input coordinate only, and
 /// monotonically, with its marginal density. The check tabulates the density
 /// into a PiecewiseConstant1D and compares the warp with the table's inversion
-/// method, sample by sample. A 1D warp on an interval is its own view and needs
-/// none; a 1D warp on an unbounded line needs one to say where to truncate
+/// method, sample by sample. A declared view is a claim that the coordinate is
+/// monotone in its input. A 1D warp on an interval is its own view and needs
+/// none (whether it is monotone is then measured, or declared with
+/// WarpCaseInfo::inversion); a 1D warp on an unbounded line needs one to say where to truncate
 /// (`lo`, `hi`) and how much probability lies beyond each end (`lower_tail_mass`
 /// below lo, `tail_mass` above hi, from the case's own CDF).
 struct MonotoneMarginal {
@@ -104,6 +112,16 @@ struct MonotoneMarginal {
     std::function<double(const WarpOutput&)> coordinate;
     /// Its marginal density on [lo, hi]; empty: the warp's own pdf (1D warps only).
     std::function<double(double)> pdf;
+};
+
+/// Whether a case's sample is the inversion method of its density (monotone in
+/// u), which the tabulated check compares it with.
+enum class Inversion {
+    Measure,  ///< declared views are claims; a 1D warp without views is measured on a grid of inputs
+    Claimed,  ///< the 1D warp's sample is monotone in u: compared without measuring (and failed where it is not)
+    /// Not an inversion sampler (an alias table, a mixture chosen by u): the
+    /// tabulated check does not apply (chi2 and unbinned test the distribution).
+    NotInversion,
 };
 
 /// Built with designated initialisers, e.g. {.family = "uniform_cone", .params = ...,
@@ -121,7 +139,15 @@ struct WarpCaseInfo {
     /// Whether the inverse is expected to be exact on raw bits (invert returns
     /// the first input that maps to x) rather than within a tolerance.
     bool exact_inverse = false;
-    /// Cells of the chi-square test; zero fields take the domain's defaults (chi2/binning.h).
+    /// Cells of the chi-square test; zero fields take the domain's defaults
+    /// (chi2/binning.h: 32 x 32 on 2D domains, 200 on lines). Rarely needed:
+    /// the check merges cells that are narrower than the float resolution
+    /// allows, integrates jumps with a verified bound and finds support its
+    /// first nodes miss around the samples, so a discontinuous density or a
+    /// small light needs no finer grid. A finer grid sees local deviations
+    /// better and broad ones worse (Binning's constructor says why ~1000
+    /// cells); a half-line's or the real line's length scale and centre are
+    /// chosen from the warp unless set here.
     chi2::BinResolution chi2_resolution{};
     /// The case's monotone 1D views, each tabulated by the tabulated check and,
     /// on 2D domains, tested by the unbinned check: e.g. cos theta and the
@@ -129,6 +155,15 @@ struct WarpCaseInfo {
     /// needs its own label (results name the view by it). Empty: a 1D warp on
     /// an interval is its own view; other cases have none.
     std::vector<MonotoneMarginal> views{};
+    /// Whether sample is the inversion method (Inversion): by default measured
+    /// where no view claims it.
+    Inversion inversion = Inversion::Measure;
+    /// The measure (length, area, solid angle) of the set where the density is
+    /// positive, when that is less than the domain's: a tabulated sampler with
+    /// empty buckets, an environment map with empty rows. 0: not declared.
+    /// inverse_pdf_mean tests E[1/pdf], which is this measure, against it
+    /// (undeclared: one-sided, against the domain's measure).
+    double support_measure = 0.0;
     /// Discrete cases only: the number of categories; sample returns an index
     /// of 0 .. categories - 1 and the pdf is a pmf over them. A discrete case
     /// leaves `domain` unset (0 here means a continuous case).

@@ -17,7 +17,13 @@ warpcheck::WarpCaseInfo power_case(const char* family, float n) {
 }  // namespace
 
 void warpcheck_register(warpcheck::Registry& registry) {
-    for (float n : {1.0f, 4.0f}) registry.add_case(warpcheck::make_warp_case(power_case("power", n), PowerWarp{n}));
+    // n = 0.3f is named power[n=0.3]: a float parameter reads as the float it is.
+    for (float n : {0.3f, 4.0f}) registry.add_case(warpcheck::make_warp_case(power_case("power", n), PowerWarp{n}));
+    // Without an inverse: its round-trip checks do not apply (skipped tests, n/a rows).
+    const PowerWarp cubic{3};
+    registry.add_case(warpcheck::make_warp_case(
+        power_case("power_no_inverse", 3), [cubic](float u) { return cubic.sample(u); },
+        [cubic](float x) { return cubic.pdf(x); }));
 #ifdef WITH_WRONG_WARP
     registry.add_case(warpcheck::make_warp_case(power_case("power_wrong", 2), WrongPowerWarp{}));
 #endif

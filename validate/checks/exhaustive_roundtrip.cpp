@@ -7,7 +7,15 @@
 // consecutive floats u. A pdf of 0 is legitimate only at an output exactly on
 // the domain's boundary (chi2::Domain::on_boundary, the consistency check's
 // rule): such outputs are counted and reported (boundary_zero_pdf), not failed.
-// Verdict: FAIL on any round-trip failure, on any other pdf that is not finite
+// invert(x) must lie in [0,1), as in the sampled round trip (roundtrip.cpp):
+// a value outside fails (outside_input_domain; NaN already fails the
+// tolerance), except exactly 1.0 for u at the edge of 1 (u one of the two
+// largest floats below 1, or 1 - u within 4 pdf(x) spacing(x), the u-measure
+// of x's float cell): u rounded to 1, counted (rounded_to_one), passing by
+// default and failing under --strict (RunOptions::strict), since renderers
+// clamp u below 1 where they use it.
+// Verdict: FAIL on any round-trip failure, on any invert(x) outside [0,1)
+// but those, on any other pdf that is not finite
 // and positive, or when sample steps back against its direction (the direction
 // of the majority of its steps) by more than kWobbleUlps ulps (a 1D inversion
 // warp is monotone; a real step back breaks stratification, while a rounding
@@ -26,6 +34,7 @@
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
+#include "validate/checks/float_cell.h"
 #include "validate/checks/formatting.h"
 #include "validate/exhaustive_sweep.h"
 
@@ -43,6 +52,10 @@ constexpr std::size_t kBatch = 4096;
 // (1 - t) a + t b, round at most 4 times: 4 ulps. A defect such as a 6e-4 step
 // near 1 is ~5000 ulps.
 constexpr uint64_t kWobbleUlps = 4;
+// u rounded to 1 (see the top): the smaller of the two largest floats below 1,
+// and the float cells of x that the gap 1 - u may span (as roundtrip.cpp).
+constexpr float kTopTwoFloats = 0x1.fffffcp-1f;
+constexpr double kCellFactor = 4.0;
 
 // Position of x in the order of floats (-0 just below +0): the difference of two
 // keys is their distance in ulps.
@@ -61,6 +74,8 @@ struct BadPdfExample {
 
 struct ChunkStats {
     Tally<FailureExample> failures;  // first in u (the index is u's bit pattern)
+    Tally<FailureExample> outside;   // invert(x) outside [0,1), not NaN, not u rounded to 1
+    Tally<FailureExample> rounded_to_one;
     Tally<BadPdfExample> bad_pdf;
     uint64_t steps_up = 0, steps_down = 0;
     uint64_t boundary_zero = 0;               // pdf exactly 0 at an output on the domain's boundary
@@ -89,6 +104,10 @@ void check_one(ChunkStats& s, const chi2::Domain& domain, double tol, float u, f
     const double err = std::abs(static_cast<double>(back) - u);
     if (!(err <= s.max_error)) s.max_error = err;  // NaN sticks
     if (!(err <= tol)) s.failures.add(float_to_bits(u), {u, x, back});
+    if (back == 1.0f && (u >= kTopTwoFloats || 1.0 - u <= kCellFactor * pdf * float_spacing(x)))
+        s.rounded_to_one.add(float_to_bits(u), {u, x, back});
+    else if (!(back >= 0.0f && back < 1.0f) && !std::isnan(back))
+        s.outside.add(float_to_bits(u), {u, x, back});
     if (pdf == 0.0 && domain.on_boundary(chi2::DomainPoint{static_cast<double>(x), 0.0, 0.0})) {
         ++s.boundary_zero;
     } else if (!(std::isfinite(pdf) && pdf > 0.0)) {
@@ -137,6 +156,8 @@ ChunkStats merge_chunks(const std::vector<ChunkStats>& stats) {
         const ChunkStats& s = stats[c];
         if (c > 0) count_step(t, stats[c - 1].last_x, s.first_x);
         t.failures.merge(s.failures);
+        t.outside.merge(s.outside);
+        t.rounded_to_one.merge(s.rounded_to_one);
         t.bad_pdf.merge(s.bad_pdf);
         t.boundary_zero += s.boundary_zero;
         t.max_up_ulps = std::max(t.max_up_ulps, s.max_up_ulps);
@@ -151,7 +172,24 @@ ChunkStats merge_chunks(const std::vector<ChunkStats>& stats) {
 // ---- judge: the case's own round-trip tolerance (its documented float error)
 // and kWobbleUlps for steps back; a bad pdf off the boundary fails outright ----
 
-CheckResult judge(const ChunkStats& t, double tol) {
+// The reasons about where invert(x) lies: outside [0,1), or 1.0 for u rounded
+// to 1 under --strict.
+void domain_reasons(std::vector<std::string>& why, const ChunkStats& t, bool strict) {
+    if (t.outside.first) {
+        const FailureExample& e = *t.outside.first;
+        why.push_back(fmt::format("{} inputs: invert(x) is outside the input domain [0,1), first u = {:a} -> x = {} "
+                                  "-> {:a}",
+                                  t.outside.count, e.u, e.x, e.back));
+    }
+    if (strict && t.rounded_to_one.first) {
+        const FailureExample& e = *t.rounded_to_one.first;
+        why.push_back(fmt::format("{} inputs: invert(x) == 1.0 for u at the edge of 1 (u rounded to 1), first u = "
+                                  "{:a}: passes by default, fails under --strict",
+                                  t.rounded_to_one.count, e.u));
+    }
+}
+
+CheckResult judge(const ChunkStats& t, double tol, bool strict) {
     CheckResult r;
     r.samples = kUnitFloats;
     r.figures = {{"inputs", static_cast<double>(kUnitFloats)},
@@ -169,18 +207,24 @@ CheckResult judge(const ChunkStats& t, double tol) {
     r.figures.push_back({"steps_back", static_cast<double>(steps_back)});
     r.figures.push_back({"max_step_back_ulps", static_cast<double>(max_back)});
     r.figures.push_back({"wobble_tolerance_ulps", static_cast<double>(kWobbleUlps)});
+    r.figures.push_back({"outside_input_domain", static_cast<double>(t.outside.count)});
+    r.figures.push_back({"rounded_to_one", static_cast<double>(t.rounded_to_one.count)});
+    r.figures.push_back({"strict", strict ? 1.0 : 0.0});
     const bool non_monotone = max_back > kWobbleUlps;
-    r.verdict = t.failures.count == 0 && t.bad_pdf.count == 0 && !non_monotone ? Verdict::Pass : Verdict::Fail;
     r.summary = fmt::format("max |du| {:.2e} over all {} floats", t.max_error, kUnitFloats);
     if (steps_back > 0)
         r.summary += fmt::format(", {} steps back (largest {} ulps)", steps_back, max_back);
     if (t.boundary_zero > 0) r.summary += fmt::format(", {} zero pdfs on the boundary", t.boundary_zero);
+    if (t.rounded_to_one.count > 0)
+        r.summary += fmt::format(", {} rounded to 1 ({})", t.rounded_to_one.count,
+                                 strict ? "failed: --strict" : "fails under --strict");
     std::vector<std::string> why;
     if (t.failures.first) {
         const FailureExample& e = *t.failures.first;
         why.push_back(fmt::format("{} inputs come back further than {:.3g}, first u = {:a} -> x = {} -> {:a}",
                                   t.failures.count, tol, e.u, e.x, e.back));
     }
+    domain_reasons(why, t, strict);
     if (t.bad_pdf.first) {
         const BadPdfExample& e = *t.bad_pdf.first;
         why.push_back(fmt::format("{} samples with a pdf that is not finite and positive (off the domain's "
@@ -191,6 +235,7 @@ CheckResult judge(const ChunkStats& t, double tol) {
         why.push_back(fmt::format("sample is not monotone: {} steps up and {} steps down between consecutive "
                                   "floats u, stepping back by up to {} ulps (rounding wobble is at most {})",
                                   t.steps_up, t.steps_down, max_back, kWobbleUlps));
+    r.verdict = why.empty() ? Verdict::Pass : Verdict::Fail;
     r.message = join_reasons(why);
     return r;
 }
@@ -220,7 +265,7 @@ public:
             ctx.throw_if_cancelled();  // a cancelled or over-budget run stops at the next chunk
             stats[c] = scan_chunk(warp, tol, c);
         });
-        return judge(merge_chunks(stats), tol);
+        return judge(merge_chunks(stats), tol, ctx.options().strict);
     }
 };
 

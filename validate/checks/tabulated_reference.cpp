@@ -2,46 +2,62 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 namespace warpcheck {
 namespace {
 
 constexpr double kMargin = 1.25;             // extrema between the supersample points
-constexpr double kFloatEps = 0x1p-24;        // float rounding of the table's CDF and of u
+constexpr double kFloatEps = 0x1p-24;        // one float step of u in [0.5, 1)
 constexpr double kPdfRelativeSlack = 1e-5;  // float rounding of the densities compared
 
 }  // namespace
 
-std::vector<float> TabulatedReference::table_values(const std::vector<BucketSummary>& buckets, double width) {
-    std::vector<float> values(buckets.size());
-    double integral = 0.0;
-    for (std::size_t i = 0; i < buckets.size(); ++i) {
-        values[i] = static_cast<float>(buckets[i].mean);
-        integral += buckets[i].mean * width;
-    }
-    if (!std::isfinite(integral))
-        throw std::runtime_error("the density is not finite everywhere on the tabulated range");
-    return values;
-}
-
 TabulatedReference::TabulatedReference(const std::function<double(double)>& density, double lo, double hi,
                                        double body_mass)
-    : lo_(lo),
-      hi_(hi),
-      width_((hi - lo) / kBuckets),
-      body_mass_(body_mass),
-      buckets_(tabulate_buckets(density, lo, hi, kBuckets, kSupersamples)),
-      table_(table_values(buckets_, width_), static_cast<float>(lo), static_cast<float>(hi)) {
+    : lo_(lo), hi_(hi), width_((hi - lo) / kBuckets), body_mass_(body_mass) {
+    // Count NaN values as they come (a NaN min or max would hide in std::min):
+    // the check fails the warp for them instead of erroring.
+    const auto counted = [&](double x) {
+        const double v = density(x);
+        ++evaluations_;
+        if (std::isnan(v) && nan_values_++ == 0) first_nan_x_ = x;
+        return v;
+    };
+    buckets_ = tabulate_buckets(counted, lo, hi, kBuckets, kSupersamples);
+    if (nan_values_ > 0) return;  // no table: the check reports the NaN values
     for (const BucketSummary& b : buckets_) {
+        if (!std::isfinite(b.mean))
+            throw std::runtime_error(fmt::format(
+                "the density is infinite on the tabulated range (near x = {:.9g}): a table cannot hold it",
+                lo_ + width_ * static_cast<double>(&b - buckets_.data())));
         integral_ += b.mean * width_;
         integral_tol_ += (b.max - b.min) * width_ / kSupersamples;
     }
-    x_slack_abs_ = 16.0 * kFloatEps * std::max(std::abs(lo_), std::abs(hi_));
-    cdf_.assign(buckets_.size() + 1, 0.0);
-    for (std::size_t i = 0; i < buckets_.size(); ++i) cdf_[i + 1] = cdf_[i] + buckets_[i].mean * width_;
-    for (double& c : cdf_) c /= integral_;
+    x_slack_abs_ = float_slack(lo_, hi_);
+    build_cdf();
+    // 2^-23: the warp's own float arithmetic on u (two roundings of one float
+    // step each); 2^-22: the float rounding of its density values.
     cdf_delta_ = 2.0 * kFloatEps + 4.0 * kFloatEps + quadrature_error(density) / integral_;
+}
+
+double TabulatedReference::float_slack(double lo, double hi) {
+    return 16.0 * kFloatEps * std::max(std::abs(lo), std::abs(hi));
+}
+
+void TabulatedReference::build_cdf() {
+    const std::size_t n = buckets_.size();
+    cdf_.assign(n + 1, 0.0);
+    for (std::size_t i = 0; i < n; ++i) cdf_[i + 1] = cdf_[i] + buckets_[i].mean * width_;
+    if (integral_ > 0.0) {
+        for (double& c : cdf_) c /= integral_;
+    } else {  // no mass at all (the normalisation fails it): a uniform CDF keeps the arithmetic finite
+        for (std::size_t i = 0; i <= n; ++i) cdf_[i] = static_cast<double>(i) / static_cast<double>(n);
+    }
+    cdf_[n] = 1.0;
 }
 
 double TabulatedReference::quadrature_error(const std::function<double(double)>& density) const {
@@ -56,7 +72,9 @@ double TabulatedReference::quadrature_error(const std::function<double(double)>&
 }
 
 double TabulatedReference::table_pdf(double x) const {
-    return static_cast<double>(table_.pdf(static_cast<float>(x))) * body_mass_;
+    if (!(x >= lo_ && x <= hi_) || !(integral_ > 0.0)) return 0.0;
+    const auto o = std::min(static_cast<std::size_t>((x - lo_) / width_), buckets_.size() - 1);
+    return buckets_[o].mean / integral_ * body_mass_;
 }
 
 double TabulatedReference::cdf(double x) const {
@@ -67,21 +85,41 @@ double TabulatedReference::cdf(double x) const {
     return cdf_[o] + (t - static_cast<double>(o)) * (cdf_[o + 1] - cdf_[o]);
 }
 
-double TabulatedReference::inverse_cdf(double v) const {
+TabulatedReference::Located TabulatedReference::locate(double v) const {
     v = std::clamp(v, 0.0, 1.0);
     const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), v);
     const std::size_t o = std::min<std::size_t>(
         static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - cdf_.begin() - 1, 0)), buckets_.size() - 1);
     const double w = cdf_[o + 1] - cdf_[o];
-    const double t = w > 0.0 ? std::clamp((v - cdf_[o]) / w, 0.0, 1.0) : 0.0;
-    return lo_ + (static_cast<double>(o) + t) * width_;
+    return {o, w > 0.0 ? std::clamp((v - cdf_[o]) / w, 0.0, 1.0) : 0.0};
+}
+
+double TabulatedReference::inverse_cdf(double v) const {
+    const Located l = locate(v);
+    return lo_ + (static_cast<double>(l.bucket) + l.t) * width_;
+}
+
+TabulatedReference::Sample TabulatedReference::sample(double u_body) const {
+    const Located l = locate(u_body);
+    return {lo_ + (static_cast<double>(l.bucket) + l.t) * width_, static_cast<int>(l.bucket)};
 }
 
 double TabulatedReference::x_tolerance(int bucket, double u_body) const {
     const BucketSummary& b = buckets_[static_cast<std::size_t>(bucket)];
     const double shape = b.min > 0.0 ? (b.max - b.min) * width_ / (2.0 * b.min) : width_;
-    const double cdf_spread = inverse_cdf(u_body + cdf_delta_) - inverse_cdf(u_body - cdf_delta_);
+    // Within delta of an end of [0, 1] the interval reaches that end of the
+    // range: every x whose CDF is below delta is as good as any, even where the
+    // density underflows to 0 in double and the table's mass begins later (a
+    // cos^1000 lobe is 0 below z = 0.475, yet u = 0 rightly gives z = 0).
+    const double below = u_body - cdf_delta_ <= 0.0 ? lo_ : inverse_cdf(u_body - cdf_delta_);
+    const double above = u_body + cdf_delta_ >= 1.0 ? hi_ : inverse_cdf(u_body + cdf_delta_);
+    const double cdf_spread = above - below;
     return kMargin * std::min(width_, shape) + x_slack_abs_ + cdf_spread;
+}
+
+double TabulatedReference::tail_allowance(bool upper) const {
+    const double spread = upper ? hi_ - inverse_cdf(1.0 - cdf_delta_) : inverse_cdf(cdf_delta_) - lo_;
+    return spread + x_slack_abs_;
 }
 
 TabulatedReference::Envelope TabulatedReference::envelope(double x) const {

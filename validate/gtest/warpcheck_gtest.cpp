@@ -1,15 +1,13 @@
 #include "validate/gtest/warpcheck_gtest.h"
 
-#include <unistd.h>
-
+#include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
-#include <ostream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,39 +15,15 @@
 
 #include "reports/outputs.h"
 #include "reports/terminal_table.h"
+#include "sampling/hash.h"
+#include "validate/cli_input.h"
 #include "warpcheck/version.h"
 
 namespace warpcheck::gtest {
 namespace {
 
-/// The variable's value if it is set and not empty.
-const char* variable(const char* name) {
-    const char* value = std::getenv(name);
-    return value && *value ? value : nullptr;
-}
-
-uint64_t unsigned_variable(const char* name, uint64_t fallback, uint64_t min, uint64_t max) {
-    const char* text = variable(name);
-    if (!text) return fallback;
-    errno = 0;
-    char* end = nullptr;
-    const unsigned long long v = std::strtoull(text, &end, 10);
-    if (!std::isdigit(static_cast<unsigned char>(*text)) || *end || errno == ERANGE || v < min || v > max)
-        throw std::invalid_argument(fmt::format("{}='{}' is not an integer from {} to {}", name, text, min, max));
-    return v;
-}
-
-double alpha_variable(const char* name, double fallback) {
-    const char* text = variable(name);
-    if (!text) return fallback;
-    char* end = nullptr;
-    const double v = std::strtod(text, &end);
-    if (*end || !(v >= 1e-12 && v <= 0.5))
-        throw std::invalid_argument(fmt::format("{}='{}' is not a number from 1e-12 to 0.5", name, text));
-    return v;
-}
-
-/// Letters and digits kept, everything else '_': a gtest name and a file name.
+/// Letters and digits kept, everything else '_', trailing '_' dropped: a gtest
+/// name and a file name.
 std::string identifier(const std::string& text) {
     std::string id;
     for (char c : text) id += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
@@ -97,20 +71,28 @@ RunResult run_part(const std::vector<Job>& jobs, int family_tests, const Setting
     return run;
 }
 
-/// Success, or the lines `validate` prints for the failures, each failure's
-/// p-value and level, and the evidence written to `evidence_file`.
+/// Success, or the lines `validate` prints for the failures, the p-value and
+/// level of each failure that the p-value decided (none where no test was
+/// done), and the evidence written to `evidence_file`.
 ::testing::AssertionResult judge(RunResult run, const Settings& settings, const std::string& evidence_file) {
     if (run.all_passed()) return ::testing::AssertionSuccess();
     if (const std::string rerun = gtest_rerun_command(settings); !rerun.empty())
         for (CheckResult& r : run.results) r.rerun_command = rerun;
+    // The level of the run's statistical tests, only if a p-value is among the failures.
+    if (std::none_of(run.results.begin(), run.results.end(),
+                     [](const CheckResult& r) { return r.verdict != Verdict::Pass && r.p_value; }))
+        run.info.statistical_tests = 0;
     std::ostringstream text;
     TableStyle style;
     style.failures_only = true;
+    style.width = 0;  // whole names and figures: a test log has no columns to fit
+    style.families = false;
+    style.weakest = 0;
     print_table(run, text, style);
     for (const CheckResult& r : run.results)
-        if (r.verdict != Verdict::Pass && r.p_value)
+        if (r.verdict != Verdict::Pass && r.p_value && r.level && !(*r.p_value >= *r.level))
             text << fmt::format("{} {}: p-value {:.4g} at level {:.4g}\n", r.check_name, r.case_name, *r.p_value,
-                                r.level.value_or(std::nan("")));
+                                *r.level);
     text << write_evidence(run, settings, evidence_file) << "\n";
     return ::testing::AssertionFailure() << text.str();
 }
@@ -124,14 +106,107 @@ const Registry& builtin_checks() {
     return registry;
 }
 
+/// The whole run a registration function defines: its cases with the
+/// built-in checks, the jobs `validate --all` would run, and their Šidák family.
+struct Suite {
+    Registry registry;
+    std::vector<Job> jobs;
+    int family_tests = 0;
+    Settings settings;
+    std::string settings_error;  ///< an invalid WARPCHECK_* value: every test fails with it
+    std::string error;           ///< why the suite could not be built: its one test fails with it
+};
+
+/// One (case, check) job of a suite, or the suite's failure to build.
+class JobTest : public ::testing::Test {
+public:
+    JobTest(std::shared_ptr<const Suite> suite, std::size_t index, std::string name, const char* file, int line)
+        : suite_(std::move(suite)), index_(index), name_(std::move(name)), file_(file), line_(line) {}
+
+    void TestBody() override {
+        if (!suite_->error.empty()) return fail("warpcheck: could not build the suite: " + suite_->error);
+        if (!suite_->settings_error.empty()) return fail("warpcheck: " + suite_->settings_error + "; no check ran");
+        const Job& job = suite_->jobs[index_];
+        if (!job.not_applicable.empty())
+            return report(fmt::format("warpcheck: {} does not apply to {}: {}", job.check->name(), job.warp->name(),
+                                      job.not_applicable),
+                          ::testing::TestPartResult::kSkip);
+        const ::testing::AssertionResult verdict =
+            judge(run_part({job}, suite_->family_tests, suite_->settings), suite_->settings, name_ + ".html");
+        if (!verdict)
+            fail(fmt::format("warpcheck: {} failed on {}:\n{}", job.check->name(), job.warp->name(), verdict.message()));
+    }
+
+private:
+    // At the user's WARPCHECK_TEST_SUITE line: the location ADD_FAILURE_AT and
+    // GTEST_SKIP report through, without ADD_FAILURE_AT's "Failed" line.
+    void report(const std::string& message, ::testing::TestPartResult::Type type) const {
+        GTEST_MESSAGE_AT_(file_, line_, message.c_str(), type);
+    }
+    void fail(const std::string& message) const { report(message, ::testing::TestPartResult::kNonFatalFailure); }
+
+    std::shared_ptr<const Suite> suite_;
+    std::size_t index_;
+    std::string name_;
+    const char* file_;
+    int line_;
+};
+
+/// A suite that could not be built has one test, which names the reason; a
+/// run that selects no test at all (a filter naming one of the tests the
+/// suite would have had, as ctest does) fails with the reason too, instead of
+/// passing with nothing run.
+class BrokenSuiteListener : public ::testing::EmptyTestEventListener {
+public:
+    BrokenSuiteListener(std::string suite, std::string error, const char* file, int line)
+        : suite_(std::move(suite)), error_(std::move(error)), file_(file), line_(line) {}
+
+    void OnTestIterationStart(const ::testing::UnitTest& unit_test, int) override {
+        if (unit_test.test_to_run_count() == 0) {
+            const std::string message =
+                fmt::format("warpcheck: no test was selected, and the suite {} could not be built: {}", suite_, error_);
+            GTEST_MESSAGE_AT_(file_, line_, message.c_str(), ::testing::TestPartResult::kNonFatalFailure);
+        }
+    }
+
+private:
+    std::string suite_, error_;
+    const char* file_;
+    int line_;
+};
+
+/// The suite of `register_cases`: jobs listed with the default settings if the
+/// environment's are invalid (the test names do not depend on them).
+std::shared_ptr<Suite> build_suite(void (*register_cases)(Registry&)) {
+    auto suite = std::make_shared<Suite>();
+    try {
+        suite->settings = settings_from_environment();
+    } catch (const std::exception& e) {
+        suite->settings_error = e.what();
+    }
+    try {
+        register_builtin_checks(suite->registry);
+        register_cases(suite->registry);
+        suite->jobs = select_jobs(suite->registry, {}, {}, suite->settings.run);
+        suite->family_tests = statistical_tests(suite->jobs);
+    } catch (const std::exception& e) {
+        suite->error = e.what();
+    } catch (...) {  // registration is foreign code
+        suite->error = "an exception that is not a std::exception";
+    }
+    if (suite->error.empty() && suite->jobs.empty())
+        suite->error = "the registration function added no case that a check applies to";
+    if (!suite->error.empty()) suite->jobs.clear();
+    return suite;
+}
+
 }  // namespace
 
 Settings settings_from_environment() {
     Settings s;
-    s.run.seed = unsigned_variable("WARPCHECK_SEED", s.run.seed, 0, UINT64_MAX);
-    s.run.samples = unsigned_variable("WARPCHECK_SAMPLES", s.run.samples, 1000, 10'000'000'000);
-    s.run.alpha = alpha_variable("WARPCHECK_ALPHA", s.run.alpha);
-    if (const char* dir = variable("WARPCHECK_EVIDENCE_DIR")) s.evidence_dir = dir;
+    if (const std::string problem = apply_environment_settings(s.run); !problem.empty())
+        throw std::invalid_argument(problem);
+    if (const char* dir = std::getenv("WARPCHECK_EVIDENCE_DIR"); dir && *dir) s.evidence_dir = dir;
     return s;
 }
 
@@ -140,7 +215,7 @@ Settings settings_from_environment() {
     try {
         settings = settings_from_environment();
     } catch (const std::exception& e) {
-        return ::testing::AssertionFailure() << "warpcheck: " << e.what();
+        return ::testing::AssertionFailure() << "warpcheck: " << e.what() << "; no check ran";
     }
     std::vector<Job> jobs;
     for (const auto& check : builtin_checks().checks())
@@ -157,53 +232,42 @@ Settings settings_from_environment() {
     return WarpCasePasses(expression, *warp);
 }
 
-std::vector<JobParam> jobs_of(void (*register_cases)(Registry&)) {
-    auto suite = std::make_shared<Suite>();
-    try {
-        suite->settings = settings_from_environment();
-        register_builtin_checks(suite->registry);
-        register_cases(suite->registry);
-        suite->jobs = select_jobs(suite->registry, {}, {}, suite->settings.run);
-        suite->family_tests = statistical_tests(suite->jobs);
-    } catch (const std::exception& e) {
-        suite->error = e.what();
-    } catch (...) {  // registration is foreign code
-        suite->error = "an exception that is not a std::exception";
+std::vector<std::string> job_test_names(const std::vector<Job>& jobs) {
+    const auto plain = [](const Job& job) { return identifier(job.warp->name()) + "__" + identifier(job.check->name()); };
+    std::map<std::string, std::size_t> uses;
+    for (const Job& job : jobs) ++uses[plain(job)];
+    std::vector<std::string> names;
+    std::map<std::string, std::size_t> taken;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        std::string name = plain(jobs[i]);
+        if (uses[name] > 1)
+            name = fmt::format("{}_{:08x}__{}", identifier(jobs[i].warp->name()),
+                               hash_string(jobs[i].warp->name()) & 0xFFFFFFFFu, identifier(jobs[i].check->name()));
+        // Two names equal even so (a 32-bit hash collision): the job's position settles it.
+        if (taken[name]++ > 0) name += fmt::format("_{}", i);
+        names.push_back(std::move(name));
     }
-    if (!suite->error.empty() || suite->jobs.empty()) {
-        if (suite->error.empty()) suite->error = "the registration function added no case that a check applies to";
-        suite->jobs.clear();
-        return {JobParam{suite, 0}};
-    }
-    std::vector<JobParam> params;
-    for (std::size_t i = 0; i < suite->jobs.size(); ++i) params.push_back({suite, i});
-    return params;
+    return names;
 }
 
-std::string job_test_name(const ::testing::TestParamInfo<JobParam>& info) {
-    const Suite& suite = *info.param.suite;
-    if (suite.jobs.empty()) return "registration";
-    const Job& job = suite.jobs[info.param.index];
-    return identifier(job.warp->name()) + "__" + identifier(job.check->name());
-}
-
-void PrintTo(const JobParam& param, std::ostream* out) {
-    const Suite& suite = *param.suite;
-    if (suite.jobs.empty()) *out << "(no jobs: " << suite.error << ")";
-    else *out << suite.jobs[param.index].check->name() << " on " << suite.jobs[param.index].warp->name();
-}
-
-void JobTest::run_job() const {
-    const Suite& suite = *GetParam().suite;
-    if (suite.jobs.empty()) {
-        ADD_FAILURE() << "warpcheck: could not build the suite: " << suite.error;
-        return;
+std::vector<int> register_job_tests(const char* suite_name, void (*register_cases)(Registry&), const char* file,
+                                    int line) {
+    const std::shared_ptr<const Suite> suite = build_suite(register_cases);
+    const std::string test_suite = std::string("warpcheck/") + suite_name;
+    if (!suite->error.empty()) {
+        ::testing::RegisterTest(test_suite.c_str(), "Passes/registration", nullptr, nullptr, file, line,
+                                [=]() -> ::testing::Test* { return new JobTest(suite, 0, "registration", file, line); });
+        ::testing::UnitTest::GetInstance()->listeners().Append(
+            new BrokenSuiteListener(test_suite, suite->error, file, line));
+        return {};
     }
-    const Job& job = suite.jobs[GetParam().index];
-    const std::string file = identifier(job.warp->name()) + "__" + identifier(job.check->name()) + ".html";
-    const ::testing::AssertionResult verdict = judge(run_part({job}, suite.family_tests, suite.settings), suite.settings, file);
-    if (!verdict) ADD_FAILURE() << "warpcheck: " << job.check->name() << " failed on " << job.warp->name() << ":\n"
-                                << verdict.message();
+    const std::vector<std::string> names = job_test_names(suite->jobs);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        const std::string name = names[i];
+        ::testing::RegisterTest(test_suite.c_str(), ("Passes/" + name).c_str(), nullptr, nullptr, file, line,
+                                [=]() -> ::testing::Test* { return new JobTest(suite, i, name, file, line); });
+    }
+    return {};
 }
 
 }  // namespace warpcheck::gtest

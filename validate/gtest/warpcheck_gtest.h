@@ -11,22 +11,29 @@
 //     WARPCHECK_TEST_SUITE(MyWarps, warpcheck_register);
 //
 // which gives tests named warpcheck/MyWarps.Passes/<case>__<check>, e.g.
-// warpcheck/MyWarps.Passes/linear_a_1_b_3__chi2, for --gtest_filter. A failure
-// prints the lines `validate` prints for it (the row with its key figure, the
-// message, the p-value and the level, the command that reruns it) and writes
-// the case's HTML evidence to a file it names. The figures are `validate`'s
-// for the same seed and sample count: each job draws from the stream of its
-// names and the seed, and the Šidák level is that of the whole suite (every
-// job of the registry, whatever --gtest_filter or GTEST_SHARD_INDEX selects).
+// warpcheck/MyWarps.Passes/linear_a_1_b_3__chi2, for --gtest_filter and, through
+// gtest_discover_tests, as ctest names (no "# GetParam() = ..." after them).
+// A failure is reported at the line of the WARPCHECK_TEST_SUITE (or of the
+// EXPECT_WARP_PASSES) in the user's file; it prints the lines `validate` prints
+// for it (the row with its key figure, the message, the command that reruns
+// it; the p-value and the level when the p-value is what failed) and writes
+// the case's HTML evidence to a file it names. A check that does not apply to
+// a case is a skipped test (GTEST_SKIP) that says why. The figures are
+// `validate`'s for the same seed and sample count: each job draws from the
+// stream of its names and the seed, and the Šidák level is that of the whole
+// suite (every job of the registry, whatever --gtest_filter or
+// GTEST_SHARD_INDEX selects).
 //
 // Settings come from the environment, so that a test binary needs no flags:
-//   WARPCHECK_SEED (default 1), WARPCHECK_SAMPLES (default 1000000),
-//   WARPCHECK_ALPHA (family-wise, default 0.01),
+//   WARPCHECK_SEED (default 1), WARPCHECK_SAMPLES (default 1000000; 1e6, 10M
+//   and 1_000_000 are read), WARPCHECK_ALPHA (family-wise, default 0.01),
 //   WARPCHECK_EVIDENCE_DIR (default warpcheck-evidence, in the working directory).
+// An invalid value fails every test of the suite with its name and the reason;
+// so does a registration function that throws (and a run in which, for that
+// reason, no test at all is selected).
 #pragma once
 
 #include <cstddef>
-#include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
@@ -54,38 +61,27 @@ Settings settings_from_environment();
 ::testing::AssertionResult WarpCasePasses(const char* expression, const WarpCase& warp);
 ::testing::AssertionResult WarpCasePasses(const char* expression, const std::unique_ptr<WarpCase>& warp);
 
-/// The whole run a registration function defines: its cases with the built-in
-/// checks, the jobs `validate --all` would run, and their Šidák family.
-struct Suite {
-    Registry registry;
-    std::vector<Job> jobs;
-    int family_tests = 0;
-    Settings settings;
-    std::string error;  ///< why the suite could not be built (then every test fails with it)
-};
+/// The test names of a suite's jobs, in order: "<case>__<check>", each name
+/// with its letters and digits kept and every other character '_' (trailing
+/// ones dropped): power[n=4] and chi2 give power_n_4__chi2. Cases whose names
+/// differ only in other characters (a[x=1.5] and a[x=1_5]) would share a test
+/// name: each of them then carries 8 hex digits of a hash of its full name,
+/// a_x_1_5_<8 hex digits>__chi2, so names stay unique, and a case without such
+/// a twin keeps its plain name.
+std::vector<std::string> job_test_names(const std::vector<Job>& jobs);
 
-/// One (case, check) job of a suite: the parameter of WARPCHECK_TEST_SUITE's tests.
-struct JobParam {
-    std::shared_ptr<const Suite> suite;
-    std::size_t index = 0;
-};
+/// Registers one GoogleTest test per (case, check) job of `register_cases`
+/// (called with a registry that has the built-in checks), in suite
+/// "warpcheck/<suite_name>", located at `file`:`line`. Called by
+/// WARPCHECK_TEST_SUITE while GoogleTest initialises (after main() has begun,
+/// so a registration function may rely on any static object); returns no
+/// parameters.
+std::vector<int> register_job_tests(const char* suite_name, void (*register_cases)(Registry&), const char* file,
+                                    int line);
 
-/// The jobs of `register_cases` (called with a registry that has the built-in
-/// checks), one parameter each; one parameter carrying the error if the
-/// registration throws or a setting is invalid.
-std::vector<JobParam> jobs_of(void (*register_cases)(Registry&));
-
-/// "<case>__<check>" with every character but letters and digits as '_'.
-std::string job_test_name(const ::testing::TestParamInfo<JobParam>& info);
-
-/// How gtest shows a parameter (instead of its bytes).
-void PrintTo(const JobParam& param, std::ostream* out);
-
-/// The fixture of WARPCHECK_TEST_SUITE: runs the parameter's job.
-class JobTest : public ::testing::TestWithParam<JobParam> {
-protected:
-    void run_job() const;
-};
+/// The hook of WARPCHECK_TEST_SUITE: a value-parameterised suite that is never
+/// instantiated, whose (empty) generator registers the real tests.
+class SuiteRegistrar : public ::testing::TestWithParam<int> {};
 
 }  // namespace warpcheck::gtest
 
@@ -97,8 +93,13 @@ protected:
 
 /// One gtest test per (case, check) of the cases `register_cases` adds, e.g.
 ///   WARPCHECK_TEST_SUITE(MyWarps, warpcheck_register);
-#define WARPCHECK_TEST_SUITE(suite_name, register_cases)                                              \
-    class suite_name : public ::warpcheck::gtest::JobTest {};                                         \
-    TEST_P(suite_name, Passes) { run_job(); }                                                         \
-    INSTANTIATE_TEST_SUITE_P(warpcheck, suite_name, ::testing::ValuesIn(::warpcheck::gtest::jobs_of(register_cases)), \
-                             ::warpcheck::gtest::job_test_name)
+/// at namespace scope. GoogleTest evaluates a parameter generator when it
+/// initialises; this one registers the tests (GoogleTest's RegisterTest, so
+/// that they carry no parameter text) and yields nothing.
+#define WARPCHECK_TEST_SUITE(suite_name, register_cases)                                                       \
+    class suite_name : public ::warpcheck::gtest::SuiteRegistrar {};                                           \
+    TEST_P(suite_name, Registrar) {}                                                                           \
+    INSTANTIATE_TEST_SUITE_P(warpcheck, suite_name,                                                            \
+                             ::testing::ValuesIn(::warpcheck::gtest::register_job_tests(                      \
+                                 #suite_name, register_cases, __FILE__, __LINE__)));                           \
+    GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(suite_name)
