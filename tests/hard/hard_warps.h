@@ -59,14 +59,19 @@ struct Frame {
     Vector3f to_world(Vector3f v) const { return v.x * x + v.y * y + v.z * z; }
 };
 
+/// v clamped into [0, 1) (the largest float below 1 at the top), as
+/// renderers clamp an inverse's result to a valid input.
+inline float clamp_unit(float v) { return std::fmin(std::fmax(v, 0.0f), kOneMinusEpsilon); }
+
 /// A unit vector of polar angle theta_deg and azimuth phi_deg (degrees), in float.
 inline Vector3f unit_vector_deg(float theta_deg, float phi_deg) {
     const float t = theta_deg * kPi / 180, p = phi_deg * kPi / 180;
     return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
 }
 
-/// The cos theta view about `axis` (in double, from the float output), driven
-/// by u.x; `pdf` is its marginal density on [lo, 1].
+/// The cos theta view about `axis` (in double, from the float output: the
+/// cosine of the angle between the two, both normalised in double), driven by
+/// u.x; `pdf` is its marginal density on [lo, 1].
 warpcheck::MonotoneMarginal cos_theta_view(Vector3f axis, bool increasing, double lo, std::function<double(double)> pdf);
 /// The azimuth view about frame.z, in [0, 2 pi), driven by u.y, uniform.
 warpcheck::MonotoneMarginal azimuth_view(const Frame& frame);
