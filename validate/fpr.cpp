@@ -32,6 +32,7 @@
 #include "validate/power_simulation.h"
 #include "validate/registry.h"
 #include "validate/runner.h"
+#include "validate/worker.h"
 
 namespace {
 
@@ -48,7 +49,8 @@ Interval clopper_pearson(int trials, int successes) {
             binomial_distribution<>::find_upper_bound_on_p(trials, successes, 0.025)};
 }
 
-int false_positive_rate(const std::vector<Job>& jobs, RunOptions options, int runs, uint64_t first_seed) {
+int false_positive_rate(const std::vector<Job>& jobs, RunOptions options, int runs, uint64_t first_seed,
+                        const Isolation& isolation) {
     // Checks that enumerate their inputs give the same result for every seed:
     // they run with the first seed only (a failure there fails every run).
     std::vector<Job> seeded_jobs;
@@ -61,7 +63,7 @@ int false_positive_rate(const std::vector<Job>& jobs, RunOptions options, int ru
     for (int i = 0; i < runs; ++i) {
         options.seed = first_seed + static_cast<uint64_t>(i);
         const std::vector<Job>& run_list = i == 0 ? jobs : seeded_jobs;
-        const RunResult run = run_jobs(run_list, options);
+        const RunResult run = run_jobs(run_list, options, {}, isolation);
         tests = run.info.statistical_tests;
         bool any = unseeded_failed;
         for (std::size_t k = 0; k < run.results.size(); ++k) {
@@ -80,8 +82,10 @@ int false_positive_rate(const std::vector<Job>& jobs, RunOptions options, int ru
 
     const double rate = static_cast<double>(failed_runs) / runs;
     const Interval ci = clopper_pearson(runs, failed_runs);
-    std::cout << fmt::format("{} runs of {} checks ({} statistical tests per run, {} samples, family-wise alpha {})\n",
-                             runs, jobs.size(), tests, options.samples, options.alpha);
+    std::cout << fmt::format("{} runs of {} checks ({} statistical tests per run, {} samples, family-wise alpha {}, "
+                             "{})\n",
+                             runs, jobs.size(), tests, options.samples, options.alpha,
+                             isolation.enabled ? "isolated" : "not isolated");
     std::cout << fmt::format("runs with a failure: {} = {:.4f}, 95% interval [{:.4f}, {:.4f}]\n", failed_runs, rate,
                              ci.lo, ci.hi);
     for (const auto& [what, n] : failures_by_check) std::cout << fmt::format("  {:4d}  {}\n", n, what);
@@ -154,6 +158,11 @@ int fpr_main(int argc, char** argv, const FprProgram& program) {
     app.add_option("--threads", options.threads, "Worker threads (0: all)")->capture_default_str();
     app.add_option("--filter", filters, "Only cases matching PATTERN (repeatable)");
     app.add_option("--check", checks, "Only this check (repeatable)");
+    // Isolated by default, as validate runs: each job in a worker process under
+    // its CPU time budget, so a busy machine or a crashing warp is one job's
+    // ERROR (counted as a failed run), not a stalled or killed measurement.
+    bool no_isolation = false;
+    app.add_flag("--no-isolation", no_isolation, "Run the checks on threads of this process (for debuggers)");
     if (program.power_check)
         app.add_flag("--power-check", check_power,
                      "Instead: simulate the stated 90%-power tilts of two cases and measure their detection rates");
@@ -176,7 +185,9 @@ int fpr_main(int argc, char** argv, const FprProgram& program) {
         std::cerr << program.name << ": no checks selected\n";
         return 2;
     }
-    return false_positive_rate(jobs, options, runs, first_seed);
+    Isolation isolation;
+    isolation.enabled = !no_isolation;
+    return false_positive_rate(jobs, options, runs, first_seed, isolation);
 }
 
 }  // namespace warpcheck

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -32,9 +33,17 @@ void register_grid_sampler(Registry& registry) {
         [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; }));
 }
 
-std::string run_fpr(void (*register_cases)(Registry&), int& status) {
+// A sampler that ends its process: only an isolated run survives it.
+void register_exiting_sampler(Registry& registry) {
+    registry.add_case(make_warp_case({.family = "exits", .input = InputKind::Uniform1D,
+                                      .domain = chi2::Domain::interval(0, 1)},
+                                     [](float) -> float { std::_Exit(7); }, [](float) { return 1.0f; }));
+}
+
+std::string run_fpr(void (*register_cases)(Registry&), int& status, const std::vector<std::string>& extra = {}) {
     std::vector<std::string> args{"test_fpr", "--runs",  "3",           "--samples", "1000",
                                   "--check",  "exhaustive", "--check", "consistency"};
+    args.insert(args.end(), extra.begin(), extra.end());
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     ::testing::internal::CaptureStdout();
@@ -57,6 +66,22 @@ TEST(FalsePositiveRate, ProgramsOwnCasesPassingEveryRun) {
     EXPECT_THAT(out, HasSubstr("3 runs of 2 checks"));
     EXPECT_THAT(out, HasSubstr("runs with a failure: 0 = 0.0000"));
     EXPECT_EQ(status, 0) << out;  // 0.2 lies inside [0, 0.71]
+}
+
+TEST(FalsePositiveRate, IsolatedByDefault) {
+    // issue 22: the measurement runs isolated, so a job that ends its process
+    // (or overruns its CPU budget) is that run's ERROR, and the count goes on.
+    int status = -1;
+    const std::string out = run_fpr(register_exiting_sampler, status);
+    EXPECT_THAT(out, HasSubstr("isolated)"));
+    EXPECT_THAT(out, HasSubstr("runs with a failure: 3 = 1.0000"));
+    EXPECT_THAT(out, HasSubstr("consistency exits"));
+    EXPECT_EQ(status, 1) << out;
+}
+
+TEST(FalsePositiveRateDeathTest, NotIsolatedOnlyOnRequest) {
+    int status = -1;
+    EXPECT_EXIT(run_fpr(register_exiting_sampler, status, {"--no-isolation"}), ::testing::ExitedWithCode(7), "");
 }
 
 }  // namespace
