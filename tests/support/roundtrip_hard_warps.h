@@ -69,6 +69,29 @@ inline std::unique_ptr<WarpCase> phong(const std::string& name, float n, float e
         [exponent](Vector3f w) { return Point2f{std::fmin(std::pow(w.z, exponent), kBelowOne), azimuth(w.x, w.y)}; });
 }
 
+/// A uniform cone (a sun) of half-angle `degrees` on its own cap, as one-minus-
+/// cos samplers write it: 1 - cos theta = u.x (1 - cos_max), sin theta from
+/// (1 - cos)(2 - (1 - cos)), with the inverse u.x = (1 - z) / (1 - cos_max).
+/// At 0.25 degree z takes only 160 floats over the whole of u.x (a float step
+/// of z is 6e-3 of u.x), so the inverse reads u.x back within a step of z. The
+/// wrong twin's inverse scales u.x by `inverse_scale`.
+inline std::unique_ptr<WarpCase> tiny_cone(const std::string& name, float degrees, float inverse_scale = 1.0f) {
+    const float cos_max = std::cos(degrees * std::numbers::pi_v<float> / 180.0f);
+    WarpCaseInfo info{name, {{"half_angle_deg", degrees}}, "uniform cone", InputKind::Uniform2D,
+                      chi2::Domain::spherical_cap(cos_max)};
+    return make_warp_case(
+        info,
+        [cos_max](Point2f u) {
+            const float one_minus_cos = u.x * (1.0f - cos_max), phi = kTwoPi * u.y;
+            const float r = std::sqrt(one_minus_cos * (2.0f - one_minus_cos));
+            return Vector3f{r * std::cos(phi), r * std::sin(phi), 1.0f - one_minus_cos};
+        },
+        [cos_max](Vector3f w) { return w.z >= cos_max ? 1.0f / (kTwoPi * (1.0f - cos_max)) : 0.0f; },
+        [cos_max, inverse_scale](Vector3f w) {
+            return Point2f{std::fmin(inverse_scale * (1.0f - w.z) / (1.0f - cos_max), kBelowOne), azimuth(w.x, w.y)};
+        });
+}
+
 /// Uniform on [0, a] as x = a u, inverted by multiplying with the reciprocal,
 /// x * (1 / a), as renderers write it: for a = 7 the largest float below 1
 /// comes back as exactly 1.0. The wrong twin returns 1.0 for every u >= `from`.

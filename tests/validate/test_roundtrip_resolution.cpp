@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "support/check_harness.h"
@@ -177,6 +178,48 @@ TEST(RoundtripResolution, SharpPhongLobesWrongInverseFails) {
     // less than a float step of cos theta: no round trip can see it.)
     const auto off_by_one = hard::phong("phong_exponent_n", 1000.0f, 1.0f, true);
     for (uint64_t seed : kSeeds) EXPECT_EQ(roundtrip(*off_by_one, seed, 200'000).verdict, Verdict::Fail) << seed;
+}
+
+// ---- 2D -> 3D: a cone so narrow that its z has a few hundred floats ----
+
+TEST(FloatCell, ATinyConesZIsMeasuredThoughItHasFewFloats) {
+    // z of a 0.25 degree cone moves by 160 floats over all of u.x, 20 spacings
+    // of 1.0 over a quarter of it: counted as floats between the two values,
+    // and with a last step of a quarter exactly, its slope is measured (before:
+    // 0, and the cell was x's and y's alone, 1e-7 of u.x instead of 6e-3).
+    const auto cone = hard::tiny_cone("cone", 0.25f);
+    for (float ux : {0.002f, 0.3f}) {
+        const WarpInput u{{ux, 0.1f}, 0};
+        std::array<WarpOutput, 1> x{};
+        cone->sample(std::span<const WarpInput>(&u, 1), x);
+        const FloatCell cell = measure_float_cell(*cone, u, x[0], 2, 3);
+        const double one_minus_cos_max = 1.0 - std::cos(0.25f * std::numbers::pi_v<float> / 180.0f);
+        EXPECT_NEAR(cell.jacobian[2][0], -one_minus_cos_max, 0.25 * one_minus_cos_max) << "u.x " << ux;
+        EXPECT_GT(cell.extent[0], 0.5 * float_spacing(x[0][2]) / one_minus_cos_max) << "u.x " << ux;
+    }
+}
+
+TEST(RoundtripResolution, TinyConesInversePasses) {
+    for (float degrees : {0.25f, 0.5f}) {
+        const auto cone = hard::tiny_cone("cone", degrees);
+        for (uint64_t seed : kSeeds) {
+            const CheckResult r = roundtrip(*cone, seed, 200'000);
+            EXPECT_EQ(r.verdict, Verdict::Pass) << degrees << " seed " << seed << ": " << r.message;
+            EXPECT_GT(figure(r, "resolution_limited"), 100'000.0) << degrees << " seed " << seed;
+            EXPECT_LE(figure(r, "max_resolution_limited_cells"), 1.0) << degrees << " seed " << seed;  // rule: 4
+        }
+    }
+}
+
+TEST(RoundtripResolution, TinyConesWrongInverseFails) {
+    // u.x read back 20% small: up to 0.2 of u.x, beyond 4 float steps of z
+    // (0.025 at 0.25 degree) for u.x above 0.13.
+    const auto wrong = hard::tiny_cone("cone_inverse_0.8", 0.25f, 0.8f);
+    for (uint64_t seed : kSeeds) {
+        const CheckResult r = roundtrip(*wrong, seed, 200'000);
+        EXPECT_EQ(r.verdict, Verdict::Fail) << "seed " << seed;
+        EXPECT_GT(figure(r, "failures"), 100'000.0) << "seed " << seed;
+    }
 }
 
 // ---- u rounded to exactly 1 at the edge ----

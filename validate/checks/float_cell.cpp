@@ -1,6 +1,8 @@
 #include "validate/checks/float_cell.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <vector>
@@ -17,11 +19,18 @@ namespace {
 // slope. It grows 4x at a time, up to a quarter of the range, until x_k has
 // moved by kMeasuredSpacings of its floats: the two values sample returns are
 // each within a couple of floats of exact for a float warp, so the slope is
-// then right within 4/32 = 1/8. Where sample rounds an intermediate value
+// then right within 4/32 = 1/8. The floats are counted between the two values
+// (not as multiples of the spacing at x): at a binade's edge (z = 1 at the
+// pole of a cone) the spacing above x is twice the spacing the values move
+// through, and a 0.25 degree cone's z has only 160 floats over the whole input
+// range (40 over a quarter of it, half of them in spacings of 1.0). Where sample rounds an intermediate value
 // first (cos theta, then sin theta from it), its outputs stand still and then
 // jump; the growing step spans a few such stairs, and the slope is their
-// average within about a factor 2. A coordinate that never moves by that much
-// is taken not to depend on u_j.
+// average within about a factor 2. The last step is a quarter of the range
+// exactly (not the last power of 4 below it): a coordinate with few floats over
+// the whole input range (cos theta of a 0.25 degree cone has 160) moves by 32
+// of them only over such a step, which still measures its slope within 1/8. A
+// coordinate that never moves by that much is taken not to depend on u_j.
 constexpr double kFirstStep = 1.0 / 256.0;
 constexpr double kStepGrowth = 4.0;
 constexpr double kLargestStep = 0.25;
@@ -46,34 +55,45 @@ bool step_inputs(const WarpInput& u, int j, double h, WarpInput& lo, WarpInput& 
     return true;
 }
 
+/// The number of floats from a to b (finite, either sign), by their ordered bit patterns.
+double floats_between(float a, float b) {
+    auto key = [](float f) {
+        const auto bits = static_cast<int64_t>(float_to_bits(f) & ~kFloatSignMask);
+        return float_sign_bit(f) ? -bits : bits;
+    };
+    return static_cast<double>(std::abs(key(a) - key(b)));
+}
+
 /// d x / d u_j at u, entry by entry at the smallest step where x_k moved by
 /// kMeasuredSpacings floats (0 where it never did).
-Column measure_column(const WarpCase& warp, const WarpInput& u, const WarpOutput& x, int j, int out_dims) {
+Column measure_column(const WarpCase& warp, const WarpInput& u, int j, int out_dims) {
     const auto a = static_cast<std::size_t>(j);
     const double c = u.u[a];
     std::array<WarpInput, 2 * kMaxSteps> in{};
     std::array<double, kMaxSteps> du{};
     std::size_t steps = 0;
-    for (double h = std::max(kFirstStep * std::min(c, 1.0 - c), 4.0 * float_spacing(u.u[a]));
-         h <= kLargestStep && steps < kMaxSteps; h *= kStepGrowth) {
+    double h = std::min(std::max(kFirstStep * std::min(c, 1.0 - c), 4.0 * float_spacing(u.u[a])), kLargestStep);
+    while (steps < kMaxSteps) {
         WarpInput lo, hi;
         if (!step_inputs(u, j, h, lo, hi)) break;
         const double width = static_cast<double>(hi.u[a]) - lo.u[a];
-        if (width <= 0.0) continue;
-        in[2 * steps] = lo;
-        in[2 * steps + 1] = hi;
-        du[steps++] = width;
+        if (width > 0.0) {
+            in[2 * steps] = lo;
+            in[2 * steps + 1] = hi;
+            du[steps++] = width;
+        }
+        if (h >= kLargestStep) break;
+        h = std::min(h * kStepGrowth, kLargestStep);
     }
     std::array<WarpOutput, 2 * kMaxSteps> out{};
     warp.sample(std::span<const WarpInput>(in.data(), 2 * steps), std::span<WarpOutput>(out.data(), 2 * steps));
     Column column{};
     for (int k = 0; k < out_dims; ++k) {
         const auto kk = static_cast<std::size_t>(k);
-        const double enough = kMeasuredSpacings * float_spacing(x[kk]);
         for (std::size_t i = 0; i < steps; ++i) {
-            const double moved = static_cast<double>(out[2 * i + 1][kk]) - out[2 * i][kk];
-            if (!(std::abs(moved) >= enough)) continue;  // NaN never counts as a move
-            if (std::isfinite(moved)) column[kk] = moved / du[i];
+            const float lo = out[2 * i][kk], hi = out[2 * i + 1][kk];
+            if (!std::isfinite(lo) || !std::isfinite(hi) || floats_between(lo, hi) < kMeasuredSpacings) continue;
+            column[kk] = (static_cast<double>(hi) - lo) / du[i];
             break;
         }
     }
@@ -119,7 +139,7 @@ FloatCell measure_float_cell(const WarpCase& warp, const WarpInput& u, const War
     for (int k = 0; k < out_dims; ++k) s[static_cast<std::size_t>(k)] = float_spacing(x[static_cast<std::size_t>(k)]);
     std::vector<int> axes;  // those sample depends on
     for (int j = 0; j < in_dims; ++j) {
-        const Column column = measure_column(warp, u, x, j, out_dims);
+        const Column column = measure_column(warp, u, j, out_dims);
         bool moved = false;
         for (int k = 0; k < out_dims; ++k) {
             cell.jacobian[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)] = column[static_cast<std::size_t>(k)];

@@ -1,0 +1,65 @@
+// The misses named in issue 22: wrong warps that passed.
+//
+// - alias_discrete_remap_10bit: a discrete alias table whose remapped u is
+//   quantised to 10 bits (floor(1024 u) / 1024), beside the same table with
+//   the exact remap. KS over 10^6 values sees sqrt(N) D ~ 0.98, and the
+//   per-category histogram's 16 bins divide 1024, so remapped_u passed it.
+// - hemisphere_azimuth_gap: the uniform hemisphere whose azimuth covers only
+//   [0, 0.999) of the turn (a 0.1% gap), beside the correct one. Kuiper's
+//   statistic, the only judged test of the azimuth, missed it; the computed
+//   but unjudged Anderson-Darling saw it at p 2e-5.
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "alias_table.h"
+#include "hard_warps.h"
+
+namespace hard {
+namespace {
+
+using warpcheck::chi2::Domain;
+using warpcheck::InputKind;
+
+struct DiscreteAlias {
+    std::vector<float> pmf;
+    AliasTable table;
+    bool quantised = false;  // twin
+    warpcheck::DiscreteSample sample(float u) const {
+        const auto [i, v] = table.sample(u);
+        return {i, quantised ? std::floor(v * 1024) / 1024 : v};
+    }
+};
+
+struct UniformHemisphere {
+    float turn = 1;  // twin: 0.999
+    Vector3f sample(Point2f u) const { return spherical_direction(u.x, 2 * kPi * turn * u.y); }
+    float pdf(Vector3f w) const { return w.z >= 0 ? 1 / (2 * kPi) : 0; }
+};
+
+}  // namespace
+
+void register_misses(warpcheck::Registry& registry) {
+    const std::vector<float> weights{1, 0, 3, 2, 0.5f, 7, 1.5f, 4};
+    std::vector<float> pmf;
+    for (float w : weights) pmf.push_back(w / 19);
+    for (bool twin : {false, true})
+        registry.add_case(warpcheck::make_warp_case(
+            {.family = twin ? "alias_discrete_remap_10bit" : "alias_discrete",
+             .description = "alias table over eight weights (one 0) with its remapped u",
+             .input = InputKind::Uniform1D,
+             .categories = weights.size()},
+            [table = DiscreteAlias{pmf, AliasTable(weights), twin}](float u) { return table.sample(u); },
+            [pmf](uint32_t i) { return pmf[i]; }));
+    mark_twin(registry, "alias_discrete_remap_10bit", "remapped_u", "the remapped u takes only 1024 values");
+
+    for (bool twin : {false, true})
+        registry.add_case(warpcheck::make_warp_case(
+            {.family = twin ? "hemisphere_azimuth_gap" : "hemisphere_uniform",
+             .description = "uniform hemisphere, cos theta = u.x, phi = 2 pi u.y (the twin: 2 pi 0.999 u.y)",
+             .domain = Domain::hemisphere()},
+            UniformHemisphere{twin ? 0.999f : 1.0f}));
+    mark_twin(registry, "hemisphere_azimuth_gap", "unbinned", "the azimuth never reaches the last 0.1% of the turn");
+}
+
+}  // namespace hard
