@@ -111,9 +111,14 @@ void register_float_pdf(warpcheck::Registry& registry) {
     // about +z, takes 15 s of CPU and still misses its accuracy).
     for (double g : {0.8, 0.9, 0.95, 0.99}) add_hg(registry, "hg_float", g, 0, 1);
     for (double g : {0.8, 0.9, 0.95}) add_hg(registry, "hg_float", g, 57, 1);
-    add_hg(registry, "hg_float_norm_1e-3", 0.99, 0, 1 + 1e-3f);
+    // At g = 0.99 one float step of cos theta moves the float pdf by 0.2% at
+    // the peak, and chi2's normalisation allowance is twice that noise summed
+    // over the sphere (2.3e-3; the textbook formula's own error is 1.2e-4):
+    // a 1e-3 constant there is inside what float evaluation may do and fails
+    // only under --strict, so the twin at 0.99 is 1e-2 (at 0.9, 1e-3).
+    add_hg(registry, "hg_float_norm_1e-2", 0.99, 0, 1 + 1e-2f);
     add_hg(registry, "hg_float_norm_1e-3", 0.9, 57, 1 - 1e-3f);
-    mark_twin(registry, "hg_float_norm_1e-3[g=0.99,axis_theta=0]", "chi2", "the constant is 1e-3 too large");
+    mark_twin(registry, "hg_float_norm_1e-2[g=0.99,axis_theta=0]", "chi2", "the constant is 1e-2 too large");
     mark_twin(registry, "hg_float_norm_1e-3[g=0.9,axis_theta=57]", "chi2", "the constant is 1e-3 too small");
     add_smooth(registry, false);
     add_smooth(registry, true);
