@@ -69,7 +69,7 @@ public:
         : WarpCase(std::move(info)), sample_(std::move(sample)), pdf_(std::move(pdf)), invert_(std::move(invert)) {}
 
     void sample(std::span<const warpcheck::WarpInput> in, std::span<WarpOutput> out) const override {
-        for (std::size_t k = 0; k < in.size(); ++k) out[k] = sample_({in[k].u, in[k].bits});
+        for (std::size_t k = 0; k < in.size(); ++k) out[k] = sample_({{in[k].u[0], in[k].u[1]}, in[k].bits});
     }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
         for (std::size_t k = 0; k < x.size(); ++k) out[k] = pdf_(x[k]);
@@ -78,7 +78,7 @@ public:
         if (!invert_) throw std::logic_error("warp case " + name() + " has no inverse");
         for (std::size_t k = 0; k < x.size(); ++k) {
             const WarpInput u = invert_(x[k]);
-            out[k] = {u.u, u.bits};
+            out[k] = {{u.u[0], u.u[1]}, u.bits};
         }
     }
     bool has_inverse() const override { return static_cast<bool>(invert_); }
