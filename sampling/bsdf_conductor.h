@@ -42,6 +42,7 @@ public:
         const float side = wo.z > 0.0f ? 1.0f : -1.0f;
         const Vector3f up{wo.x, wo.y, side * wo.z};
         const Vector3f wm = tr_.visible_normals(up).sample(u);
+        if (!has_side(wm)) return {};
         Vector3f wi = reflect(up, wm);
         if (!(wi.z > 0.0f)) return {};
         const float pdf = visible_normal_pdf(tr_, up, wm) / (4.0f * dot(up, wm));

@@ -95,6 +95,7 @@ public:
     BsdfSample sample(Vector3f wo, float uc, Point2f u) const {
         if (wo.z == 0.0f) return {};
         const Vector3f wm = tr_.visible_normals(wo).sample(u);
+        if (!has_side(wm)) return {};
         const float cos_om = dot(wo, wm);
         const float r = fresnel_dielectric(cos_om, eta_), t = 1.0f - r;
         const float visible = visible_normal_pdf(tr_, wo, wm);

@@ -26,6 +26,13 @@ inline float visible_normal_pdf(const TrowbridgeReitz& tr, Vector3f w, Vector3f 
     return tr.G1_over_cos(w) * std::abs(dot(w, wm)) * tr.D(wm);
 }
 
+/// Whether a sampled normal has a side: the visible-normal warp maps inputs on
+/// the square's edge to normals on the horizon (wm.z = 0), a set of measure 0
+/// whose half vector, recomputed from the rounded wi, may come out on either
+/// side; samplers give up on those (no sample) rather than return a wi whose
+/// f and pdf, recomputed, are 0.
+inline bool has_side(Vector3f wm) { return wm.z > 0.0f; }
+
 /// wm turned to the upper side (z >= 0).
 inline Vector3f face_up(Vector3f wm) { return wm.z < 0.0f ? -1.0f * wm : wm; }
 

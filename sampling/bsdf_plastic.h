@@ -46,7 +46,9 @@ public:
         Vector3f wi;
         if (uc < ps) {
             if (!tr_) return {{-wo.x, -wo.y, wo.z}, ps / std::abs(wo.z), ps, BsdfFlags::Reflection | BsdfFlags::Delta};
-            wi = reflect(up, tr_->visible_normals(up).sample(u));
+            const Vector3f wm = tr_->visible_normals(up).sample(u);
+            if (!has_side(wm)) return {};
+            wi = reflect(up, wm);
         } else {
             wi = CosineHemisphere{}.sample(u);
         }

@@ -60,6 +60,9 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(make_remapped_u_check());
     registry.add_check(bsdf::make_bsdf_chi2_check());
     registry.add_check(bsdf::make_bsdf_weight_check());
+    registry.add_check(bsdf::make_bsdf_delta_check());
+    registry.add_check(bsdf::make_bsdf_albedo_check());
+    registry.add_check(bsdf::make_bsdf_reciprocity_check());
 }
 
 }  // namespace warpcheck

@@ -64,8 +64,23 @@ std::vector<Result> map_bsdf_chunks(const CheckContext& ctx, const BsdfCase& bsd
 
 /// pdf(wo, .) at quadrature nodes.
 chi2::BatchPdf pdf_integrand(const BsdfCase& bsdf);
-/// f(wo, .) |cos theta_i| at quadrature nodes, times energy_factor when `energy`.
-chi2::BatchPdf albedo_integrand(const BsdfCase& bsdf, bool energy);
+/// f(wo, .) |cos theta_i| at quadrature nodes (p for a phase function), for
+/// the given wo (the case's own, or another for a sweep).
+chi2::BatchPdf albedo_integrand(const BsdfCase& bsdf, Vector3f wo);
+
+/// How far the neighbours of a direction lie that measure a BSDF's float
+/// resolution at it: 2^-20, 8 float ulps of a unit vector's components.
+inline constexpr double kFloatStep = 0x1p-20;
+/// How many neighbours float_neighbours gives.
+inline constexpr std::size_t kFloatNeighbours = 8;
+
+/// The kFloatNeighbours directions kFloatStep from w in eight directions of
+/// its tangent plane, renormalised and rounded to float. What f or pdf does
+/// over them (a smooth change plus each evaluation's own rounding) is the
+/// float resolution of a value computed at w: a half vector recomputed from
+/// rounded directions, a Fresnel term near the critical angle, a microfacet
+/// seen edge-on.
+std::vector<WarpOutput> float_neighbours(const WarpOutput& w);
 
 /// The cells of the BSDF checks' sphere: the case's chi2_resolution, or by
 /// default 32 azimuths by 64 heights, so that each hemisphere has the 32 x 32
