@@ -11,14 +11,26 @@
 // (chi2::evaluate_chi2 with each cell's integral over T) tests the shape.
 // The scale is tested by where the draws went:
 //  - T may not exceed 1 - P_delta (P_delta: the delta lobes' claimed
-//    probability) by more than the quadrature's error bound plus 2^-20 (the
-//    float rounding of the density, as chi2::kIntegralTolerance): a FAIL;
+//    probability) by more than the quadrature's verified error bound plus
+//    2^-20 (the float rounding of the density, as chi2::kIntegralTolerance)
+//    plus, unless --strict, twice the pdf's float noise (its change over one
+//    float step of wi, chi2::kFloatNoiseFactor: a float pdf of a sharp lobe
+//    rounds its half vector and its 1 / (4 wo.wm)): a FAIL;
 //  - the share of non-delta draws that landed is Binomial with probability
 //    T / (1 - P_delta) (the rest gave up): its two-sided p-value, against that
 //    probability widened by the same tolerance, joins Pearson's and the
 //    largest residual's in one p-value (weighted Bonferroni, chi2/min_p.h), so
 //    a pdf too small for the samples (1/pi typed as 0.318) fails by chance
 //    at most at the run's level.
+// The cells and the statistic are those of the chi2 check (chi2_check.cpp):
+// cells no narrower than the float steps of their edges allow
+// (chi2::float_aware_resolution), the quadrature verified and its float noise
+// measured, and each cell's expected count known within a band (the verified
+// bound, the float noise and chi2::kEdgeFloatSteps float steps at each edge)
+// that Pearson's statistic and the largest residual allow for, so a sharp lobe
+// (alpha 0.05) and the horizon, where the float wi crowd onto few floats, are
+// judged at what a float sampler can do.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -78,19 +90,36 @@ Draws draw(const BsdfCase& bsdf, const CheckContext& ctx, const chi2::Binning& b
     return merge_in_order(parts);
 }
 
-/// The cells' integrals over T: the density of a continuous sample given that it landed.
+/// The cells' integrals over T: the density of a continuous sample given that
+/// it landed (errors and float noise scaled alike).
 chi2::CellIntegrals conditional(chi2::CellIntegrals q) {
     const double t = q.total;
     if (!(t > 0.0) || !std::isfinite(t)) return q;  // the engine then fails the integral
     q.total = 0.0;
     q.error_total = 0.0;
+    q.float_noise_total = 0.0;
     for (std::size_t i = 0; i < q.probability.size(); ++i) {
         q.probability[i] /= t;
         q.error[i] /= t;
         q.total += q.probability[i];
         q.error_total += q.error[i];
+        if (i < q.float_noise.size()) {
+            q.float_noise[i] /= t;
+            q.float_noise_total += q.float_noise[i];
+        }
     }
     return q;
+}
+
+/// The largest cell residual against the same bands as Pearson's statistic
+/// (as the chi2 check).
+chi2::LocalResidual local_residual(const chi2::Chi2Outcome& o, uint64_t samples) {
+    std::vector<double> lower(o.expected.size()), upper(o.expected.size());
+    for (std::size_t i = 0; i < lower.size(); ++i) {
+        lower[i] = std::max(0.0, o.expected[i] - o.band[i]);
+        upper[i] = o.expected[i] + o.band[i];
+    }
+    return chi2::largest_cell_residual(o.histogram.counts, o.expected, lower, upper, samples);
 }
 
 struct Normalisation {
@@ -100,10 +129,10 @@ struct Normalisation {
     std::string failure;
 };
 
-Normalisation normalisation(const chi2::CellIntegrals& q, const Draws& d) {
+Normalisation normalisation(const chi2::CellIntegrals& q, const Draws& d, bool strict) {
     Normalisation n;
     n.integral = q.total;
-    n.tolerance = chi2::kIntegralTolerance + q.error_total;
+    n.tolerance = chi2::kIntegralTolerance + q.error_total + (strict ? 0.0 : chi2::kFloatNoiseFactor * q.float_noise_total);
     n.delta = d.delta.claimed();
     n.trials = d.total - d.delta.count();
     n.landed = d.landed();
@@ -141,6 +170,10 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
                  {"zero_expected_hits", static_cast<double>(o.zero_expected_hits)},
                  {"cells", static_cast<double>(o.expected.size())},
                  {"cells_used", static_cast<double>(o.pearson.terms)},
+                 {"noncentrality", o.pearson.noncentrality},
+                 {"float_noise", o.integrals.float_noise_total},
+                 {"edge_band", o.edge_band_total},
+                 {"verification_mismatches", static_cast<double>(o.integrals.verification_mismatches)},
                  {"quadrature_evaluations", static_cast<double>(o.integrals.evaluations)},
                  {"power_tilt_eps", chi2::pearson_tilt_for_noncentrality(lambda, n.landed)},
                  {"power_level", level}};
@@ -203,14 +236,21 @@ protected:
     bool applies_to_bsdf(const BsdfCase& b) const override { return has(b.claims().lobes, BsdfFlags::Continuous); }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
-        const chi2::Binning binning(bsdf.domain(), bsdf_resolution(bsdf));
+        const uint64_t samples = ctx.options().samples;
+        chi2::Chi2Options options;
+        options.resolution = chi2::float_aware_resolution(bsdf.domain(), bsdf_resolution(bsdf), samples);
+        options.strict = ctx.options().strict;
+        const chi2::Binning binning(bsdf.domain(), options.resolution);
         chi2::QuadratureOptions q;
-        q.sample_count = ctx.options().samples;
+        q.sample_count = samples;
+        q.accuracy_fraction = options.accuracy_fraction;
+        q.verify = true;
+        q.float_noise = true;
         const chi2::CellIntegrals integrals = chi2::integrate_cells(binning, pdf_integrand(bsdf), q, ctx.executor());
         const Draws d = draw(bsdf, ctx, binning, chi2::zero_cells_of(integrals));
-        const Normalisation n = normalisation(integrals, d);
-        const chi2::Chi2Outcome o = chi2::evaluate_chi2(binning, d.hist, conditional(integrals), n.landed, {});
-        const chi2::LocalResidual local = chi2::largest_cell_residual(o.histogram.counts, o.expected, n.landed);
+        const Normalisation n = normalisation(integrals, d, options.strict);
+        const chi2::Chi2Outcome o = chi2::evaluate_chi2(binning, d.hist, conditional(integrals), n.landed, options);
+        const chi2::LocalResidual local = local_residual(o, n.landed);
         CheckResult r;
         add_figures(r, o, local, n, d, ctx.options());
         judge(r, o, local, n);
