@@ -6,6 +6,7 @@
 #include <tuple>
 #include <vector>
 
+#include "validate/bsdf/bsdf_checks.h"
 #include "validate/checks/checks.h"
 #include "validate/registry.h"
 
@@ -57,6 +58,11 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(make_pmf_check());
     registry.add_check(make_discrete_chi2_check());
     registry.add_check(make_remapped_u_check());
+    registry.add_check(bsdf::make_bsdf_chi2_check());
+    registry.add_check(bsdf::make_bsdf_weight_check());
+    registry.add_check(bsdf::make_bsdf_delta_check());
+    registry.add_check(bsdf::make_bsdf_albedo_check());
+    registry.add_check(bsdf::make_bsdf_reciprocity_check());
 }
 
 }  // namespace warpcheck

@@ -153,6 +153,10 @@ public:
     /// that a shard of the run, or one job of it, is judged at the level of
     /// the whole run (a job that errors, or finds nothing to test, still counts).
     virtual bool statistical() const { return false; }
+    /// Whether the check is about BSDFs and phase functions (validate/bsdf/):
+    /// the runner gives BSDF cases only to such checks, and every other case
+    /// only to the others.
+    virtual bool about_bsdfs() const { return false; }
     /// Seconds this check may take before the runner reports it as an error:
     /// the run's budget, unless the check knows it needs more for a correct
     /// warp (a full 2^32 sweep) and the user did not set --time-budget.

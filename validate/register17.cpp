@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 
+#include "validate/bsdf/bsdf_case.h"
 #include "validate/registry.h"
 
 namespace warpcheck::cxx17 {
@@ -69,7 +70,7 @@ public:
         : WarpCase(std::move(info)), sample_(std::move(sample)), pdf_(std::move(pdf)), invert_(std::move(invert)) {}
 
     void sample(std::span<const warpcheck::WarpInput> in, std::span<WarpOutput> out) const override {
-        for (std::size_t k = 0; k < in.size(); ++k) out[k] = sample_({in[k].u, in[k].bits});
+        for (std::size_t k = 0; k < in.size(); ++k) out[k] = sample_({{in[k].u[0], in[k].u[1]}, in[k].bits});
     }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
         for (std::size_t k = 0; k < x.size(); ++k) out[k] = pdf_(x[k]);
@@ -78,7 +79,7 @@ public:
         if (!invert_) throw std::logic_error("warp case " + name() + " has no inverse");
         for (std::size_t k = 0; k < x.size(); ++k) {
             const WarpInput u = invert_(x[k]);
-            out[k] = {u.u, u.bits};
+            out[k] = {{u.u[0], u.u[1]}, u.bits};
         }
     }
     bool has_inverse() const override { return static_cast<bool>(invert_); }
@@ -89,7 +90,55 @@ private:
     InvertFn invert_;
 };
 
+BsdfFlags to_lobes(const BsdfInfo& in) {
+    BsdfFlags lobes = BsdfFlags::None;
+    if (in.reflection) lobes = lobes | BsdfFlags::Reflection;
+    if (in.transmission) lobes = lobes | BsdfFlags::Transmission;
+    if (in.continuous) lobes = lobes | BsdfFlags::Continuous;
+    if (in.delta) lobes = lobes | BsdfFlags::Delta;
+    return lobes;
+}
+
+BsdfClaims to_claims(const BsdfInfo& in) {
+    return {.wo = {in.wo[0], in.wo[1], in.wo[2]},
+            .lobes = in.phase_function ? BsdfFlags::Continuous : to_lobes(in),
+            .reciprocal = in.reciprocal,
+            .transport = in.importance ? Transport::Importance : Transport::Radiance,
+            .eta = in.eta,
+            .phase_function = in.phase_function};
+}
+
+/// The plain sample as the checks see it: its lobe's flags from the two bools.
+::warpcheck::BsdfSample to_sample(const BsdfSample& s) {
+    BsdfFlags flags = s.transmission ? BsdfFlags::Transmission : BsdfFlags::Reflection;
+    flags = flags | (s.delta ? BsdfFlags::Delta : BsdfFlags::Continuous);
+    return {{s.wi[0], s.wi[1], s.wi[2]}, s.f, s.pdf, flags, s.eta};
+}
+
+Point to_point(Vector3f v) { return {v.x, v.y, v.z}; }
+
 }  // namespace
+
+void add_bsdf(Registry& registry, const BsdfInfo& info, BsdfSampleFn sample, BsdfEvalFn f, BsdfEvalFn pdf) {
+    WarpCaseInfo converted;
+    converted.family = info.family;
+    for (const auto& [name, value] : info.params) converted.params.push_back({name, value});
+    converted.description = info.description;
+    const std::string name = case_name(converted.family, converted.params);
+    if (!sample || !f || !pdf) throw std::invalid_argument("registry: BSDF case " + name + " needs sample, f and pdf");
+    const BsdfClaims claims = to_claims(info);
+    registry.add_case(make_bsdf_case(
+        std::move(converted), claims,
+        [sample = std::move(sample)](Vector3f wo, float uc, Point2f u) {
+            return to_sample(sample(to_point(wo), uc, {u.x, u.y}));
+        },
+        [f = std::move(f)](Vector3f wo, Vector3f wi) { return f(to_point(wo), to_point(wi)); },
+        [pdf = std::move(pdf)](Vector3f wo, Vector3f wi) { return pdf(to_point(wo), to_point(wi)); }));
+}
+
+Point bsdf_direction(double theta_degrees, double phi_degrees) {
+    return to_point(::warpcheck::bsdf_direction(theta_degrees, phi_degrees));
+}
 
 void add_case(Registry& registry, const CaseInfo& info, SampleFn sample, PdfFn pdf, InvertFn invert) {
     WarpCaseInfo converted = to_info(info);

@@ -106,6 +106,48 @@ using InvertFn = std::function<WarpInput(const Point&)>;
 /// (an inconsistent declaration throws std::invalid_argument naming the case).
 void add_case(Registry& registry, const CaseInfo& info, SampleFn sample, PdfFn pdf, InvertFn invert = {});
 
+/// A BSDF's or phase function's sample as a renderer returns it (pbrt-v4's
+/// BSDFSample): the direction wi, f(wo, wi) (for a delta lobe the value whose
+/// f |cos theta_i| / pdf is the weight), the pdf (for a delta lobe the
+/// probability of choosing it; 0: no sample), its lobe, and for transmission
+/// eta(wi's side) / eta(wo's side). Directions in the shading frame, z the normal.
+struct BsdfSample {
+    Point wi{};
+    float f = 0.0f;
+    float pdf = 0.0f;
+    bool transmission = false;  ///< wi on the other side of the surface
+    bool delta = false;         ///< a delta lobe (mirror, smooth refraction)
+    float eta = 1.0f;
+};
+
+/// A BSDF case: its name, the outgoing direction wo it is checked at, and what
+/// it claims (BsdfClaims in validate/bsdf/bsdf_case.h says what each means).
+struct BsdfInfo {
+    std::string family;
+    std::vector<std::pair<std::string, double>> params;
+    std::string description;
+    Point wo{0.0f, 0.0f, 1.0f};  ///< unit length, off the horizon
+    bool reflection = true, transmission = false;  ///< the sides it samples
+    bool continuous = true, delta = false;         ///< lobes with a density, delta lobes
+    bool reciprocal = true;      ///< f(wo, wi) = f(wi, wo) (the eta^2 rule across an interface)
+    bool importance = false;     ///< transmitted f without the 1 / eta^2 of radiance
+    float eta = 1.0f;            ///< index below the surface over above
+    bool phase_function = false; ///< wi on the whole sphere, weight p / pdf (no cosine)
+};
+
+/// sample(wo, uc, u): uc chooses the lobe, u = (u1, u2) the direction.
+using BsdfSampleFn = std::function<BsdfSample(const Point& wo, float uc, const std::array<float, 2>& u)>;
+/// f(wo, wi) or pdf(wo, wi).
+using BsdfEvalFn = std::function<double(const Point& wo, const Point& wi)>;
+
+/// Adds a BSDF case that the BSDF checks take (bsdf_chi2, bsdf_weight,
+/// bsdf_delta, bsdf_albedo, bsdf_reciprocity); validated as make_bsdf_case
+/// validates (a bad wo or no lobes throws std::invalid_argument naming it).
+void add_bsdf(Registry& registry, const BsdfInfo& info, BsdfSampleFn sample, BsdfEvalFn f, BsdfEvalFn pdf);
+
+/// The outgoing direction at theta degrees from the normal and azimuth phi degrees.
+Point bsdf_direction(double theta_degrees, double phi_degrees = 0.0);
+
 /// Registry::mark_known_flaw for one check of a case ("" for the whole case).
 void mark_known_flaw(Registry& registry, const std::string& case_name, const std::string& check_name,
                      const std::string& flaw);

@@ -68,6 +68,22 @@ void register_builtin_checks(Registry& registry);
 /// them with --include-flawed or when one is named in full.
 void register_flawed_interval_cases(Registry& registry);
 
+/// A known-bad BSDF (validate/cases/bsdf_flawed.cpp): how to make it, the
+/// check meant to catch it, its bug in a few words, and the other checks its
+/// bug rightly fails too (a wrong weight moves the mean weight, so the albedo
+/// test fails with it); every other check that applies must pass.
+struct FlawedBsdf {
+    std::unique_ptr<WarpCase> (*make)();
+    std::string caught_by;
+    std::string flaw;
+    std::vector<std::string> also_fails{};
+};
+/// The catalogue of known-bad BSDFs, one per bug renderers ship.
+std::vector<FlawedBsdf> bsdf_flawed_catalogue();
+/// Registers the catalogue, each marked as a known flaw (as
+/// register_flawed_interval_cases).
+void register_flawed_bsdf_cases(Registry& registry);
+
 namespace detail {
 using RegisterCasesFn = void (*)(Registry&);
 /// Records a family's registration function; called during static initialisation.

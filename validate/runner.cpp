@@ -49,6 +49,7 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
                                                     : std::find(check_names.begin(), check_names.end(),
                                                                 check->name()) != check_names.end();
             if (!wanted || (!registry.known_flaw(*warp, *check).empty() && !run_flawed)) continue;
+            if ((warp->sample_returns() == SampleReturns::Bsdf) != check->about_bsdfs()) continue;
             if (check->applies_to(*warp)) jobs.push_back({warp.get(), check.get()});
             else if (std::string why = check->not_applicable_because(*warp); !why.empty())
                 jobs.push_back({warp.get(), check.get(), std::move(why)});

@@ -39,6 +39,7 @@ const char* input_name(InputKind k) {
         case InputKind::Uniform2D: return "Uniform2D (a Point2f)";
         case InputKind::Bits32: return "Bits32 (a uint32_t)";
         case InputKind::Bits64: return "Bits64 (a uint64_t)";
+        case InputKind::Uniform3D: return "Uniform3D (a BSDF's uc and u)";
     }
     return "?";
 }

@@ -28,14 +28,19 @@ enum class InputKind {
     Uniform2D,  ///< a point of [0,1)^2
     Bits32,     ///< 32 raw random bits
     Bits64,     ///< 64 raw random bits
+    /// A point of [0,1)^3: a BSDF's (uc, u) (validate/bsdf/bsdf_case.h), uc in u[0].
+    Uniform3D,
 };
 
-constexpr int input_dimension(InputKind k) { return k == InputKind::Uniform2D ? 2 : 1; }
+constexpr int input_dimension(InputKind k) {
+    return k == InputKind::Uniform3D ? 3 : k == InputKind::Uniform2D ? 2 : 1;
+}
 constexpr bool takes_bits(InputKind k) { return k == InputKind::Bits32 || k == InputKind::Bits64; }
 
-/// One input of a warp: u[0..1] for uniform inputs, `bits` for raw-bit inputs.
+/// One input of a warp: u[0..2] for uniform inputs (unused coordinates 0),
+/// `bits` for raw-bit inputs.
 struct WarpInput {
-    std::array<float, 2> u{};
+    std::array<float, 3> u{};
     uint64_t bits = 0;
 };
 
@@ -50,6 +55,9 @@ enum class SampleReturns {
     PointAndWeight,     ///< WeightedSample: the point and the weight eval(x) / pdf(x)
     Index,              ///< an integer: a discrete choice among WarpCaseInfo::categories
     IndexAndRemappedU,  ///< DiscreteSample: the index and the input remapped to [0,1) for reuse
+    /// A BSDF's or phase function's sample (wi, f, pdf, flags, eta): a BsdfCase
+    /// (validate/bsdf/bsdf_case.h), which only the BSDF checks take.
+    Bsdf,
 };
 
 /// A sample that carries its pdf (with respect to the domain's measure).

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <chi2/domain_kinds.h>
+#include <validate/bsdf/bsdf_grid.h>
 #include <validate/external.h>
 
 namespace {
@@ -368,9 +369,51 @@ void register_float_sampler(warpcheck::Registry& registry) {
     }
 }
 
+// A renderer's diffuse BSDF as it is (pbrt-v4's BxDF shape): cosine-weighted
+// wi by Malley's method, f = R / pi; its wrong twin makes f brighter towards
+// the normal on the wi side only, which is not reciprocal.
+struct RendererDiffuse {
+    float r;
+    bool wrong = false;
+    float f(warpcheck::Vector3f wo, warpcheck::Vector3f wi) const {
+        if (!(wo.z * wi.z > 0)) return 0.0f;
+        return r * std::numbers::inv_pi_v<float> * (wrong ? 0.7f + 0.6f * std::abs(wi.z) : 1.0f);
+    }
+    float pdf(warpcheck::Vector3f wo, warpcheck::Vector3f wi) const {
+        return wo.z * wi.z > 0 ? std::abs(wi.z) * std::numbers::inv_pi_v<float> : 0.0f;
+    }
+    warpcheck::BsdfSample sample(warpcheck::Vector3f wo, float, warpcheck::Point2f u) const {
+        const float rad = std::sqrt(u.x), phi = 2 * std::numbers::pi_v<float> * u.y;
+        warpcheck::Vector3f wi{rad * std::cos(phi), rad * std::sin(phi), std::sqrt(std::max(0.0f, 1 - u.x))};
+        if (wo.z < 0) wi.z = -wi.z;
+        const float p = pdf(wo, wi);
+        if (!(p > 0)) return {};
+        return {wi, f(wo, wi), p, warpcheck::BsdfFlags::Reflection | warpcheck::BsdfFlags::Continuous};
+    }
+};
+
+void register_bsdfs(warpcheck::Registry& registry) {
+    using namespace warpcheck;
+    for (bool wrong : {false, true})
+        for (double theta : {0.0, 60.0, 85.0}) {
+            const RendererDiffuse bsdf{0.7f, wrong};
+            WarpCaseInfo info{.family = wrong ? "renderer_diffuse_not_reciprocal" : "renderer_diffuse",
+                              .params = {{"theta_o", theta}},
+                              .description = "a renderer's diffuse BSDF"};
+            const std::string name = case_name(info.family, info.params);
+            registry.add_case(make_bsdf_case(
+                std::move(info), {.wo = bsdf_direction(theta), .lobes = BsdfFlags::Reflection | BsdfFlags::Continuous},
+                [bsdf](Vector3f wo, float uc, Point2f u) { return bsdf.sample(wo, uc, u); },
+                [bsdf](Vector3f wo, Vector3f wi) { return bsdf.f(wo, wi); },
+                [bsdf](Vector3f wo, Vector3f wi) { return bsdf.pdf(wo, wi); }));
+            if (wrong) registry.mark_known_flaw(name, "f brighter towards the normal on the wi side: not reciprocal");
+        }
+}
+
 }  // namespace
 
 void warpcheck_register(warpcheck::Registry& registry) {
+    register_bsdfs(registry);
     register_linear(registry);
     register_normal(registry);
     register_mirrored_exponential(registry);

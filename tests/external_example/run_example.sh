@@ -60,7 +60,21 @@ expect_fail phong_mixture_wrong weight_mean
 expect_fail alias_table_wrong remapped_u
 expect_fail renderer_unit_float_swapped exhaustive
 
+# A renderer's BSDF over three outgoing directions passes every BSDF check (in
+# --all); its wrong twin fails the check meant for it.
+for theta in 0 60 85; do
+  for check in bsdf_chi2 bsdf_weight bsdf_albedo bsdf_reciprocity; do expect_row pass "$check" "renderer_diffuse[theta_o=$theta]"; done
+done
+expect_fail "renderer_diffuse_not_reciprocal[theta_o=60]" bsdf_reciprocity "not reciprocal"
+
 # A C++17 translation unit registers its warps through validate/register17.h.
 "$work/build/validate_my_warps17" --all --samples 200000 --color never | tee "$work/all17.txt"
 grep -q "logistic_cxx17\[mu=-3,s=0.25\]" "$work/all17.txt"
+grep -Eq "^pass +bsdf_weight +diffuse_cxx17\[theta_o=70\]" "$work/all17.txt" \
+  || { echo "expected the C++17 BSDF to pass bsdf_weight"; exit 1; }
+status=0
+out=$("$work/build/validate_my_warps17" --filter "diffuse_cxx17_weight_no_cos[theta_o=70]" --check bsdf_weight \
+  --samples 200000 --color never 2>&1) || status=$?
+[ "$status" -eq 1 ] && grep -Eq "^FAIL +bsdf_weight +" <<< "$out" \
+  || { echo "$out"; echo "expected the C++17 BSDF's twin to fail bsdf_weight"; exit 1; }
 echo "external example: built against the installed package and passed"

@@ -29,6 +29,13 @@ void draw_inputs(Pcg32& rng, InputKind kind, std::span<WarpInput> out) {
                 in = {{u0, uniform_float_from_bits(rng.next_u64())}, 0};
             }
             break;
+        case InputKind::Uniform3D:
+            for (auto& in : out) {
+                const float u0 = uniform_float_from_bits(rng.next_u64());
+                const float u1 = uniform_float_from_bits(rng.next_u64());
+                in = {{u0, u1, uniform_float_from_bits(rng.next_u64())}, 0};
+            }
+            break;
         case InputKind::Bits32:
             for (auto& in : out) in = {{0.0f, 0.0f}, rng.next_u32()};
             break;

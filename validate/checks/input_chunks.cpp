@@ -41,6 +41,20 @@ std::vector<WarpInput> edge_inputs(InputKind kind) {
                     inputs.push_back({{b, a}, 0});
                 }
             break;
+        case InputKind::Uniform3D:
+            // The corners in all three coordinates, and each edge value in one
+            // coordinate with the other two at a pair of corners.
+            for (float a : kCorners)
+                for (float b : kCorners)
+                    for (float c : kCorners) inputs.push_back({{a, b, c}, 0});
+            for (float e : edge_values())
+                for (float a : kCorners)
+                    for (float b : kCorners) {
+                        inputs.push_back({{e, a, b}, 0});
+                        inputs.push_back({{a, e, b}, 0});
+                        inputs.push_back({{a, b, e}, 0});
+                    }
+            break;
         case InputKind::Bits32: {
             constexpr uint64_t m = std::numeric_limits<uint32_t>::max();
             for (uint64_t b : {uint64_t{0}, uint64_t{1}, m / 2 + 1, m - 1, m}) inputs.push_back({{0.0f, 0.0f}, b});

@@ -21,7 +21,8 @@ std::vector<float> edge_values();
 
 /// The inputs at the edges of the input space: the edge values in 1D; in 2D
 /// all pairs of {0, 2^-24, 0.5, 1 - 2^-24} and each edge value in one
-/// coordinate with one of those in the other. For raw bits: 0, 1, the middle,
+/// coordinate with one of those in the other; in 3D likewise (the corners, and
+/// each edge value with a pair of corners in the other two). For raw bits: 0, 1, the middle,
 /// and the two largest values.
 std::vector<WarpInput> edge_inputs(InputKind kind);
 

@@ -1,0 +1,124 @@
+// Built-in BSDFs and a phase function (sampling/bsdf_*.h), each over a grid of
+// outgoing directions from normal incidence to grazing (85 degrees), for
+// transmission also from below the surface (theta_o above 90), and for
+// anisotropic roughness at several azimuths. The default grids are sized so
+// that the BSDF checks of all of them take about 10 CPU seconds (validate
+// --all stays under a minute); WARPCHECK_BSDF_GRID=full in the environment
+// registers the larger grids instead (more roughnesses, theta_o 80 and 89),
+// about four times the cases.
+#include <cstdlib>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "sampling/bsdf_conductor.h"
+#include "sampling/bsdf_dielectric.h"
+#include "sampling/bsdf_diffuse.h"
+#include "sampling/bsdf_phase.h"
+#include "sampling/bsdf_plastic.h"
+#include "validate/bsdf/bsdf_grid.h"
+#include "validate/registry.h"
+
+namespace warpcheck {
+namespace {
+
+/// Gold at about 600 nm: eta + i k relative to air.
+constexpr float kGoldEta = 0.2f, kGoldK = 3.0f;
+/// Glass.
+constexpr double kGlass = 1.5;
+
+float as_float(double v) { return static_cast<float>(v); }
+
+/// Whether WARPCHECK_BSDF_GRID=full asks for the larger grids.
+bool full_grid() {
+    const char* v = std::getenv("WARPCHECK_BSDF_GRID");
+    return v != nullptr && std::string_view(v) == "full";
+}
+
+/// The default axis values, or the full grid's.
+std::vector<double> axis(std::vector<double> small, std::vector<double> full) {
+    return full_grid() ? std::move(full) : std::move(small);
+}
+
+/// theta_o from above the surface, normal to grazing.
+std::vector<double> theta_above() { return axis({0, 60, 85}, {0, 30, 60, 80, 85, 89}); }
+
+void register_lambertian(Registry& registry) {
+    add_case_grid(registry,
+                  {.family = "lambertian", .description = "Lambertian reflection, f = R / pi, cosine-weighted sampling"},
+                  {{"R", {0.5}}, {"theta_o", theta_above()}}, [](WarpCaseInfo info, const GridPoint& p) {
+                      return make_bsdf_case(std::move(info), {.wo = grid_wo(p)}, Lambertian(as_float(p["R"])));
+                  });
+}
+
+void register_rough_conductor(Registry& registry) {
+    add_case_grid(registry,
+                  {.family = "rough_conductor",
+                   .description = "Trowbridge-Reitz conductor (gold), sampled by visible normals"},
+                  {{"alpha", axis({0.05, 0.3}, {0.05, 0.3, 1})}, {"theta_o", theta_above()}},
+                  [](WarpCaseInfo info, const GridPoint& p) {
+                      const TrowbridgeReitz tr(as_float(p["alpha"]));
+                      return make_bsdf_case(std::move(info), {.wo = grid_wo(p)}, RoughConductor(tr, kGoldEta, kGoldK));
+                  });
+    add_case_grid(registry,
+                  {.family = "rough_conductor_aniso",
+                   .description = "anisotropic Trowbridge-Reitz conductor (gold), sampled by visible normals"},
+                  {{"ax", {0.3}}, {"ay", {0.05}}, {"theta_o", axis({60, 85}, {30, 60, 80, 89})}, {"phi_o", axis({0, 45}, {0, 45, 90})}},
+                  [](WarpCaseInfo info, const GridPoint& p) {
+                      const TrowbridgeReitz tr(as_float(p["ax"]), as_float(p["ay"]));
+                      return make_bsdf_case(std::move(info), {.wo = grid_wo(p)}, RoughConductor(tr, kGoldEta, kGoldK));
+                  });
+}
+
+void register_dielectrics(Registry& registry) {
+    add_case_grid(registry,
+                  {.family = "rough_dielectric",
+                   .description = "Trowbridge-Reitz dielectric interface (glass below), reflection and transmission"},
+                  {{"alpha", axis({0.1, 0.5}, {0.05, 0.1, 0.5})},
+                   {"eta", {kGlass}},
+                   {"theta_o", axis({30, 85, 150}, {0, 30, 60, 80, 85, 89, 120, 150})}},
+                  [](WarpCaseInfo info, const GridPoint& p) {
+                      const TrowbridgeReitz tr(as_float(p["alpha"]));
+                      return make_bsdf_case(std::move(info), {.wo = grid_wo(p)}, RoughDielectric(tr, as_float(p["eta"])));
+                  });
+    add_case_grid(registry,
+                  {.family = "smooth_dielectric",
+                   .description = "smooth dielectric interface (glass below): delta reflection and refraction"},
+                  {{"eta", {kGlass}}, {"theta_o", axis({0, 60, 85, 150}, {0, 30, 60, 80, 85, 89, 120, 150})}},
+                  [](WarpCaseInfo info, const GridPoint& p) {
+                      return make_bsdf_case(std::move(info), {.wo = grid_wo(p)}, SmoothDielectric(as_float(p["eta"])));
+                  });
+}
+
+void register_plastic(Registry& registry) {
+    add_case_grid(registry,
+                  {.family = "plastic",
+                   .description = "diffuse base under a dielectric coat, lobes chosen by the Fresnel weight (alpha 0: "
+                                  "a delta coat)"},
+                  {{"kd", {0.8}}, {"eta", {kGlass}}, {"alpha", {0, 0.2}}, {"theta_o", theta_above()}},
+                  [](WarpCaseInfo info, const GridPoint& p) {
+                      return make_bsdf_case(std::move(info), {.wo = grid_wo(p)},
+                                            Plastic(as_float(p["kd"]), as_float(p["eta"]), as_float(p["alpha"])));
+                  });
+}
+
+void register_henyey_greenstein(Registry& registry) {
+    add_case_grid(registry,
+                  {.family = "henyey_greenstein", .description = "Henyey-Greenstein phase function on the sphere"},
+                  {{"g", {-0.5, 0.3, 0.9}}, {"theta_o", axis({30}, {0, 30, 120})}}, [](WarpCaseInfo info, const GridPoint& p) {
+                      return make_phase_case(std::move(info), grid_wo(p), HenyeyGreenstein(as_float(p["g"])));
+                  });
+}
+
+void register_bsdf_cases(Registry& registry) {
+    register_lambertian(registry);
+    register_rough_conductor(registry);
+    register_dielectrics(registry);
+    register_plastic(registry);
+    register_henyey_greenstein(registry);
+}
+
+WARPCHECK_BUILTIN_CASES(70, register_bsdf_cases);
+
+}  // namespace
+}  // namespace warpcheck

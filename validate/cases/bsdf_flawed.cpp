@@ -1,0 +1,200 @@
+// Known-bad BSDFs: the bugs renderers ship, each a built-in of
+// sampling/bsdf_*.h with one thing wrong, marked as a known flaw (they run
+// with --include-flawed or when named) and each caught by the check named in
+// bsdf_flawed_catalogue(); tests/validate/test_bsdf.cpp holds each to that
+// check and to passing the checks its bug does not touch.
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "sampling/bsdf_conductor.h"
+#include "sampling/bsdf_dielectric.h"
+#include "sampling/bsdf_diffuse.h"
+#include "sampling/bsdf_plastic.h"
+#include "validate/bsdf/bsdf_case.h"
+#include "validate/registry.h"
+
+namespace warpcheck {
+namespace {
+
+constexpr float kGoldEta = 0.2f, kGoldK = 3.0f, kGlass = 1.5f;
+
+WarpCaseInfo flawed_info(std::string family, std::vector<Parameter> params, std::string description) {
+    return {.family = std::move(family), .params = std::move(params), .description = std::move(description)};
+}
+
+/// Weight missing the cosine: the sample's f is f / |cos theta_i|, so that
+/// the weight f |cos| / pdf is what a renderer that forgot the cosine gets.
+std::unique_ptr<WarpCase> weight_without_cosine() {
+    const RoughConductor c(TrowbridgeReitz(0.3f), kGoldEta, kGoldK);
+    return make_bsdf_case(
+        flawed_info("rough_conductor_weight_no_cos", {{"alpha", 0.3}, {"theta_o", 60}},
+                    "rough conductor whose sampled weight misses |cos theta_i|"),
+        {.wo = bsdf_direction(60), .lobes = c.flags()},
+        [c](Vector3f wo, float uc, Point2f u) {
+            BsdfSample s = c.sample(wo, uc, u);
+            if (s.pdf > 0.0f) s.f /= std::abs(s.wi.z);
+            return s;
+        },
+        [c](Vector3f wo, Vector3f wi) { return c.f(wo, wi); }, [c](Vector3f wo, Vector3f wi) { return c.pdf(wo, wi); });
+}
+
+/// Refraction by 1 / eta instead of eta (the sample still reports eta).
+std::unique_ptr<WarpCase> eta_swapped() {
+    const SmoothDielectric d(kGlass);
+    return make_bsdf_case(
+        flawed_info("smooth_dielectric_eta_swapped", {{"eta", 1.5}, {"theta_o", 30}},
+                    "smooth dielectric refracting with 1 / eta in place of eta"),
+        {.wo = bsdf_direction(30), .lobes = d.flags(), .eta = kGlass},
+        [d](Vector3f wo, float uc, Point2f u) {
+            BsdfSample s = d.sample(wo, uc, u);
+            float etap = 1.0f;
+            Vector3f wt;
+            if (has(s.flags, BsdfFlags::Transmission) && refract(wo, {0.0f, 0.0f, 1.0f}, 1.0f / kGlass, etap, wt))
+                s.wi = wt;
+            return s;
+        },
+        [d](Vector3f wo, Vector3f wi) { return d.f(wo, wi); }, [d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); });
+}
+
+/// A diffuse + glossy mixture whose pdf() gives each lobe the other's
+/// probability: (Ps cos / pi + (1 - Ps) pdf_spec); the sampler's choice is right.
+std::unique_ptr<WarpCase> mixture_wrong_lobe_pdf() {
+    const Plastic p(0.8f, kGlass, 0.2f);
+    const TrowbridgeReitz tr(0.2f);
+    auto pdf = [p, tr](Vector3f wo, Vector3f wi) {
+        if (!same_hemisphere(wo, wi)) return 0.0f;
+        const float ps = p.specular_probability(wo);
+        float value = ps * std::abs(wi.z) * kInvPi;
+        const Vector3f up_o{wo.x, wo.y, std::abs(wo.z)}, h = up_o + Vector3f{wi.x, wi.y, std::abs(wi.z)};
+        if (dot(h, h) > 0.0f) {
+            const Vector3f wm = normalize(h);
+            const float cos_om = dot(up_o, wm);
+            if (cos_om > 0.0f) value += (1.0f - ps) * visible_normal_pdf(tr, up_o, wm) / (4.0f * cos_om);
+        }
+        return value;
+    };
+    return make_bsdf_case(
+        flawed_info("plastic_wrong_lobe_pdf", {{"alpha", 0.2}, {"theta_o", 60}},
+                    "diffuse + glossy mixture whose pdf weights each lobe by the other's probability"),
+        {.wo = bsdf_direction(60), .lobes = p.flags()},
+        [p, pdf](Vector3f wo, float uc, Point2f u) {
+            BsdfSample s = p.sample(wo, uc, u);
+            if (s.pdf > 0.0f) s.pdf = pdf(wo, s.wi);
+            return s;
+        },
+        [p](Vector3f wo, Vector3f wi) { return p.f(wo, wi); }, pdf);
+}
+
+/// The delta reflection chosen with probability F but claiming 1 - F (and
+/// refraction the reverse), its value scaled to keep the weight.
+std::unique_ptr<WarpCase> lobe_probability_swapped() {
+    const SmoothDielectric d(kGlass);
+    return make_bsdf_case(
+        flawed_info("smooth_dielectric_lobe_swapped", {{"eta", 1.5}, {"theta_o", 60}},
+                    "smooth dielectric choosing reflection with probability F but weighting it as if 1 - F"),
+        {.wo = bsdf_direction(60), .lobes = d.flags(), .eta = kGlass},
+        [d](Vector3f wo, float uc, Point2f u) {
+            BsdfSample s = d.sample(wo, uc, u);
+            if (s.pdf > 0.0f) {
+                const float claimed = 1.0f - s.pdf;
+                s.f *= claimed / s.pdf;
+                s.pdf = claimed;
+            }
+            return s;
+        },
+        [d](Vector3f wo, Vector3f wi) { return d.f(wo, wi); }, [d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); });
+}
+
+/// A Lambertian-like f that is brighter towards the normal on the wi side
+/// only: f = R / pi (0.7 + 0.6 |cos theta_i|), sampled and evaluated alike.
+std::unique_ptr<WarpCase> not_reciprocal() {
+    auto f = [](Vector3f wo, Vector3f wi) {
+        return same_hemisphere(wo, wi) ? 0.5f * kInvPi * (0.7f + 0.6f * std::abs(wi.z)) : 0.0f;
+    };
+    const Lambertian l(0.5f);
+    return make_bsdf_case(
+        flawed_info("lambertian_not_reciprocal", {{"R", 0.5}, {"theta_o", 60}},
+                    "diffuse f = R / pi (0.7 + 0.6 |cos theta_i|): not symmetric in wo and wi"),
+        {.wo = bsdf_direction(60), .lobes = l.flags()},
+        [l, f](Vector3f wo, float uc, Point2f u) {
+            BsdfSample s = l.sample(wo, uc, u);
+            if (s.pdf > 0.0f) s.f = f(wo, s.wi);
+            return s;
+        },
+        f, [l](Vector3f wo, Vector3f wi) { return l.pdf(wo, wi); });
+}
+
+/// A white Lambertian 2% brighter where wo or wi is within 10 degrees of the
+/// horizon: reciprocal, sampled and evaluated alike, with albedo 1.02 at
+/// grazing wo.
+std::unique_ptr<WarpCase> energy_gain_at_grazing() {
+    auto f = [](Vector3f wo, Vector3f wi) {
+        if (!same_hemisphere(wo, wi)) return 0.0f;
+        const float grazing = 0.17364818f;  // cos 80 degrees
+        return (std::min(std::abs(wo.z), std::abs(wi.z)) < grazing ? 1.02f : 1.0f) * kInvPi;
+    };
+    const Lambertian l(1.0f);
+    return make_bsdf_case(
+        flawed_info("lambertian_energy_gain", {{"R", 1}, {"theta_o", 85}},
+                    "white diffuse 2% brighter within 10 degrees of the horizon: albedo 1.02 at grazing"),
+        {.wo = bsdf_direction(85), .lobes = l.flags()},
+        [l, f](Vector3f wo, float uc, Point2f u) {
+            BsdfSample s = l.sample(wo, uc, u);
+            if (s.pdf > 0.0f) s.f = f(wo, s.wi);
+            return s;
+        },
+        f, [l](Vector3f wo, Vector3f wi) { return l.pdf(wo, wi); });
+}
+
+/// Visible normals sampled as seen from wo mirrored about the normal
+/// (-wo.x, -wo.y, wo.z); f and pdf evaluated right at the wi it returns.
+std::unique_ptr<WarpCase> visible_normals_wrong_side() {
+    const TrowbridgeReitz tr(0.3f);
+    const RoughConductor c(tr, kGoldEta, kGoldK);
+    return make_bsdf_case(
+        flawed_info("rough_conductor_vndf_wrong_side", {{"alpha", 0.3}, {"theta_o", 60}},
+                    "rough conductor sampling the normals visible from the mirror of wo"),
+        {.wo = bsdf_direction(60), .lobes = c.flags()},
+        [c, tr](Vector3f wo, float, Point2f u) -> BsdfSample {
+            const Vector3f wm = tr.visible_normals({-wo.x, -wo.y, wo.z}).sample(u);
+            if (!has_side(wm)) return {};
+            const Vector3f wi = reflect(wo, wm);
+            const float pdf = c.pdf(wo, wi);
+            if (!(wi.z > 0.0f) || !(pdf > 0.0f)) return {};
+            return {wi, c.f(wo, wi), pdf, c.flags()};
+        },
+        [c](Vector3f wo, Vector3f wi) { return c.f(wo, wi); }, [c](Vector3f wo, Vector3f wi) { return c.pdf(wo, wi); });
+}
+
+}  // namespace
+
+std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
+    return {
+        // The mean weight is then the albedo of f / |cos|, not of f.
+        {weight_without_cosine, "bsdf_weight", "the sampled weight misses |cos theta_i|", {"bsdf_albedo"}},
+        // The weights are right for the direction it claims, so the albedo holds.
+        {eta_swapped, "bsdf_delta", "refracts with 1 / eta in place of eta"},
+        // Weights f |cos| / pdf with the wrong pdf: the mean weight is off too.
+        {mixture_wrong_lobe_pdf, "bsdf_chi2", "pdf() gives each lobe of the mixture the other's probability",
+         {"bsdf_albedo"}},
+        // Each lobe's weight is scaled by its claimed over its true probability.
+        {lobe_probability_swapped, "bsdf_delta", "chooses reflection with probability F, claims 1 - F",
+         {"bsdf_albedo"}},
+        {not_reciprocal, "bsdf_reciprocity", "f(wo, wi) != f(wi, wo)"},
+        {energy_gain_at_grazing, "bsdf_albedo", "albedo 1.02 at grazing: creates energy"},
+        // Weights against the right pdf of the wrong distribution: the mean is off.
+        {visible_normals_wrong_side, "bsdf_chi2", "visible normals sampled from the wrong side of wo", {"bsdf_albedo"}},
+    };
+}
+
+void register_flawed_bsdf_cases(Registry& registry) {
+    for (const FlawedBsdf& flawed : bsdf_flawed_catalogue()) {
+        std::unique_ptr<WarpCase> bsdf = flawed.make();
+        const std::string name = bsdf->name();
+        registry.add_case(std::move(bsdf));
+        registry.mark_known_flaw(name, flawed.flaw + " (caught by " + flawed.caught_by + ")");
+    }
+}
+
+}  // namespace warpcheck
