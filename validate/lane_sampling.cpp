@@ -25,7 +25,17 @@ namespace lane_kernels {
     }
 WARPCHECK_LANE_FORMS(WARPCHECK_DEFINE_GROUP_FN)
 #undef WARPCHECK_DEFINE_GROUP_FN
+
+void planar_portable(const void* warp, const LaneGroup& g) { run_planar_group(warp, g); }
+
+void sample_planar(const void* warp, const float* u0, const float* u1, float* x, float* y, float* z, std::size_t n) {
+    static_cast<const WarpCase*>(warp)->sample_planar(u0, u1, x, y, z, n);
+}
 }  // namespace lane_kernels
+
+LaneSampler planar_lane_sampler(const WarpCase& warp) {
+    return {&warp, &lane_kernels::planar_avx512, &lane_kernels::planar_portable};
+}
 
 namespace builtin_lanes {
 #define WARPCHECK_DEFINE_SAMPLER(name, Kernel)                                                      \

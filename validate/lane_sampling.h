@@ -62,6 +62,12 @@ const LaneSampler& uniform_hemisphere();
 const LaneSampler& uniform_sphere();
 }  // namespace builtin_lanes
 
+/// The lane sampler of a Uniform2D warp without a lane form: the lanes draw
+/// and bin, and the warp's own sample maps the points in blocks of 1,536
+/// (WarpCase::sample_planar), so the histogram is the scalar path's. It refers
+/// to `warp`, which must outlive it.
+LaneSampler planar_lane_sampler(const WarpCase& warp);
+
 enum class LanePath { Auto, Avx512, Portable };
 
 /// Whether this processor runs the AVX-512 path (AVX-512 F, CD, BW, DQ, VL).

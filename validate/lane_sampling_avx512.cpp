@@ -12,4 +12,6 @@ namespace warpcheck::lane_kernels {
 WARPCHECK_LANE_FORMS(WARPCHECK_DEFINE_GROUP_FN)
 #undef WARPCHECK_DEFINE_GROUP_FN
 
+void planar_avx512(const void* warp, const LaneGroup& g) { run_planar_group(warp, g); }
+
 }  // namespace warpcheck::lane_kernels

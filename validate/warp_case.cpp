@@ -1,5 +1,6 @@
 #include "validate/warp_case.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -19,6 +20,19 @@ std::string parameter_value(double value) {
     if (static_cast<double>(narrow) != value) return as_double;
     const std::string as_float = fmt::format("{}", narrow);
     return as_float.size() < as_double.size() ? as_float : as_double;
+}
+
+void WarpCase::sample_planar(const float* u0, const float* u1, float* x, float* y, float* z, std::size_t n) const {
+    constexpr std::size_t kBlock = 256;
+    std::array<WarpInput, kBlock> in{};
+    std::array<WarpOutput, kBlock> out{};
+    for (std::size_t first = 0; first < n; first += kBlock) {
+        const std::size_t m = std::min(kBlock, n - first);
+        for (std::size_t k = 0; k < m; ++k) in[k].u = {u0[first + k], u1[first + k]};
+        sample(std::span<const WarpInput>(in.data(), m), std::span<WarpOutput>(out.data(), m));
+        for (std::size_t k = 0; k < m; ++k)
+            x[first + k] = out[k][0], y[first + k] = out[k][1], z[first + k] = out[k][2];
+    }
 }
 
 std::string case_name(const std::string& family, const std::vector<Parameter>& params) {

@@ -196,6 +196,12 @@ public:
 
     /// out[i] = sample(in[i]). Sizes must match.
     virtual void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const = 0;
+    /// sample() of a Uniform2D warp on planar arrays, the layout of the
+    /// vectorised chi-square path (validate/lane_sampling.h): (x[i], y[i], z[i])
+    /// = sample({u0[i], u1[i]}) for i < n (z = 0 for a point of the plane). A
+    /// case made by make_warp_case does it in one loop with sample inlined; this
+    /// default converts through sample().
+    virtual void sample_planar(const float* u0, const float* u1, float* x, float* y, float* z, std::size_t n) const;
     /// out[i] = pdf(x[i]), the density with respect to the domain's measure.
     virtual void pdf(std::span<const WarpOutput> x, std::span<double> out) const = 0;
     /// out[i] = the input that sample maps to x[i]. Only where has_inverse().
@@ -371,6 +377,17 @@ public:
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override {
         for (std::size_t k = 0; k < in.size(); ++k)
             out[k] = to_output<Out>(Result::point(sample_(WarpTypes<In>::from_input(in[k]))));
+    }
+    void sample_planar(const float* u0, const float* u1, float* x, float* y, float* z,
+                       std::size_t n) const override {
+        if constexpr (std::is_same_v<In, Point2f>) {
+            for (std::size_t k = 0; k < n; ++k) {
+                const WarpOutput o = to_output<Out>(Result::point(sample_(Point2f{u0[k], u1[k]})));
+                x[k] = o[0], y[k] = o[1], z[k] = o[2];
+            }
+        } else {
+            WarpCase::sample_planar(u0, u1, x, y, z, n);
+        }
     }
     void sample_with_value(std::span<const WarpInput> in, std::span<WarpOutput> out,
                            std::span<double> value) const override {

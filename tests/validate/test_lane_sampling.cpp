@@ -12,10 +12,12 @@
 
 #include "chi2/chi2_test.h"
 #include "sampling/hemisphere.h"
+#include "sampling/sphere.h"
 #include "support/builtin_case.h"
 #include "validate/check.h"
 #include "validate/checks/checks.h"
 #include "validate/lane_sampling.h"
+#include "validate/registry.h"
 #include "validate/thread_pool.h"
 #include "validate/warp_case.h"
 
@@ -70,6 +72,71 @@ TEST(LaneSampling, EveryLaneCaseBuildsTheScalarHistogramOnEveryPath) {
             }
         }
     }
+}
+
+// A case that keeps WarpCase's default sample_planar (through sample()).
+class ConeThroughSpans final : public WarpCase {
+public:
+    ConeThroughSpans() : WarpCase({.family = "cone_through_spans", .domain = chi2::Domain::sphere()}) {}
+    void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override {
+        for (std::size_t k = 0; k < in.size(); ++k) {
+            const Vector3f v = cone_.sample({in[k].u[0], in[k].u[1]});
+            out[k] = {v.x, v.y, v.z};
+        }
+    }
+    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
+        for (std::size_t k = 0; k < x.size(); ++k) out[k] = cone_.pdf({x[k][0], x[k][1], x[k][2]});
+    }
+    void invert(std::span<const WarpOutput>, std::span<WarpInput>) const override {}
+
+private:
+    UniformCone cone_{0.3f};
+};
+
+// The lane path of warps without a lane form (planar_lane_sampler): every
+// built-in 2D case the lanes can bin, a renderer's plain struct through
+// make_warp_case, and a case with the default sample_planar.
+TEST(LaneSampling, WarpsWithoutLaneFormBuildTheScalarHistogramOnEveryPath) {
+    constexpr uint64_t kSamples = 300'007;  // a partial last chunk and group, as above
+    RunOptions options;
+    ThreadPool pool(2);
+    std::vector<const WarpCase*> cases;
+    Registry registry;
+    register_builtin_cases(registry);
+    for (const auto& c : registry.cases())
+        if (c->input_kind() == InputKind::Uniform2D && chi2::Binning(c->domain()).lane_plan()) cases.push_back(c.get());
+    WarpCaseInfo info = testing::builtin_case("cosine_hemisphere").info();
+    info.lanes = nullptr;
+    const auto plain = make_warp_case(info, CosineHemisphere{});
+    const ConeThroughSpans spans;
+    cases.push_back(plain.get());
+    cases.push_back(&spans);
+    ASSERT_GE(cases.size(), 15u);  // the five lane forms, cones, cosine powers, Trowbridge-Reitz, ...
+    for (const WarpCase* warp : cases) {
+        const CheckContext ctx(options, pool, stream_for(warp->name(), 5));
+        const chi2::Binning binning(warp->domain());
+        const chi2::Histogram expected = scalar_histogram(*warp, binning, kSamples, {}, ctx);
+        for (const LanePath path : paths()) {
+            const auto rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
+            const chi2::Histogram got = lane_histogram(binning, kSamples, 4096, rng, planar_lane_sampler(*warp), {},
+                                                       ctx.executor(), path);
+            expect_equal(got, expected, warp->name() + " planar on the " + lane_path_name(path) + " path");
+        }
+    }
+}
+
+TEST(LaneSampling, PlanarComparisonCanFail) {
+    // Another warp's samples through the planar path give another histogram.
+    const WarpCase& warp = testing::builtin_case("uniform_cone[cos_theta_max=0.3]");
+    const WarpCase& other = testing::builtin_case("uniform_cone[cos_theta_max=0.99]");
+    const chi2::Binning binning(warp.domain());
+    RunOptions options;
+    ThreadPool pool(1);
+    const CheckContext ctx(options, pool, stream_for(warp.name(), 1));
+    const auto rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
+    const chi2::Histogram got =
+        lane_histogram(binning, 100'000, 4096, rng, planar_lane_sampler(other), {}, ctx.executor());
+    EXPECT_NE(got.counts, scalar_histogram(warp, binning, 100'000, {}, ctx).counts);
 }
 
 TEST(LaneSampling, SameHistogramForAnyThreadCount) {

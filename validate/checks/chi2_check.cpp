@@ -125,16 +125,18 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
         warp.pdf(x, density);
     };
     // The same histogram, 24 samples at a time (validate/lane_sampling.h), where
-    // the processor has AVX-512; elsewhere the scalar chunks below, which beat
-    // the lanes' portable build (28-31 against 20-24 M samples/s per core here).
-    if (warp.info().lanes && kind == InputKind::Uniform2D && binning.lane_plan() && avx512_available()) {
+    // the processor has AVX-512: by the warp's lane form, or else by its own
+    // sample between the lanes' draws and binning. Elsewhere the scalar chunks
+    // below, which beat the lanes' portable build (28-31 against 20-24 M samples/s per core here).
+    if (kind == InputKind::Uniform2D && binning.lane_plan() && avx512_available()) {
+        const LaneSampler sampler = warp.info().lanes ? *warp.info().lanes : planar_lane_sampler(warp);
         const chi2::SampleHistogram lanes = [&](std::span<const unsigned char> zero) {
             const auto chunk_rng = [&](uint64_t chunk) {
                 ctx.throw_if_cancelled();
                 return ctx.chunk_rng(chunk);
             };
-            return lane_histogram(binning, ctx.options().samples, options.chunk_size, chunk_rng, *warp.info().lanes,
-                                  zero, ctx.executor());
+            return lane_histogram(binning, ctx.options().samples, options.chunk_size, chunk_rng, sampler, zero,
+                                  ctx.executor());
         };
         return chi2::run_chi2_test(binning, ctx.options().samples, lanes, pdf, options, ctx.executor());
     }
