@@ -148,7 +148,9 @@ TEST(SvgPlot, LongSeriesAreThinnedToThePixelColumns) {
 
 TEST(SvgPlot, HeatmapsShareScalesAndMarkMissingCells) {
     const Plot maps = sample_chi2_fail(8, 16).plots[0];
-    const std::string svg = render_svg(maps, {"t0", 640, 320});
+    SvgOptions options;
+    options.id_prefix = "t0";
+    const std::string svg = render_svg(maps, options);
     EXPECT_THAT(xml_problem(svg), IsEmpty());
     EXPECT_EQ(count_of(svg, "<image "), 3u);
     EXPECT_EQ(count_of(svg, "<linearGradient "), 2u);  // observed+expected share one, residuals the other
