@@ -31,9 +31,12 @@ void put_chunk(std::string& out, std::string_view type, std::string_view data) {
 }  // namespace
 
 std::string encode_palette_png(int width, int height, const std::vector<std::uint8_t>& indices,
-                               const std::array<Rgba, 256>& palette) {
+                               const std::vector<Rgba>& palette) {
     if (width <= 0 || height <= 0 || indices.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
         throw std::invalid_argument("encode_palette_png: size does not match the pixels");
+    if (palette.empty() || palette.size() > 256 ||
+        std::any_of(indices.begin(), indices.end(), [&](std::uint8_t i) { return i >= palette.size(); }))
+        throw std::invalid_argument("encode_palette_png: the palette has 1 to 256 entries and covers every index");
 
     std::string png = "\x89PNG\r\n\x1a\n";
     std::string header;
@@ -52,7 +55,8 @@ std::string encode_palette_png(int width, int height, const std::vector<std::uin
         trns += static_cast<char>(c.a);
     }
     put_chunk(png, "PLTE", plte);
-    put_chunk(png, "tRNS", trns);
+    while (!trns.empty() && static_cast<std::uint8_t>(trns.back()) == 255) trns.pop_back();  // absent entries are opaque
+    if (!trns.empty()) put_chunk(png, "tRNS", trns);
 
     std::string raw;
     raw.reserve(indices.size() + static_cast<std::size_t>(height));

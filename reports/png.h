@@ -5,7 +5,6 @@
 // packed evidence.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -18,9 +17,11 @@ struct Rgba {
 };
 
 /// A PNG file of a width x height image of palette indices, given row by row
-/// from the top. Palette entries with alpha < 255 are (partly) transparent.
+/// from the top. The palette has 1 to 256 entries and every index must be
+/// below its size; entries with alpha < 255 are (partly) transparent, and
+/// putting them first keeps the file small (tRNS ends at the last of them).
 std::string encode_palette_png(int width, int height, const std::vector<std::uint8_t>& indices,
-                               const std::array<Rgba, 256>& palette);
+                               const std::vector<Rgba>& palette);
 
 /// A zlib stream (RFC 1950) of `bytes` at the best compression: what PNG's
 /// IDAT holds and what a browser's DecompressionStream("deflate") reads.

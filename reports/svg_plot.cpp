@@ -733,6 +733,7 @@ struct Scale {
     ColorMap map = ColorMap::Sequential;
     double lo = 0.0, hi = 1.0;
     std::vector<std::string> members;  ///< labels of the heatmaps that use it
+    std::vector<const ScaleMark*> marks;  ///< values marked on its colour bar
     double t(double v) const { return (v - lo) / (hi - lo); }
 };
 
@@ -747,18 +748,25 @@ ColorMap resolve(const Heatmap& h) {
     return negative && positive ? ColorMap::Diverging : ColorMap::Sequential;
 }
 
+/// Colour levels of a heatmap's image: 128 steps of its scale (a step is under
+/// 1% of the range, below what the eye tells apart in a map of noise, and half
+/// the palette keeps a report of a hundred heatmaps small).
+constexpr int kColorLevels = 128;
+
 /// The data URL of a heatmap's image: one pixel per cell, row 0 at the bottom,
-/// cells without a value transparent (the hatching behind them shows).
+/// cells without a value transparent (palette entry 0; the hatching behind
+/// them shows).
 std::string heatmap_image(const Heatmap& h, const Scale& scale) {
-    std::array<Rgba, 256> palette{};
-    for (int i = 0; i < 255; ++i) palette[static_cast<std::size_t>(i)] = color_at(scale.map, i / 254.0);
-    palette[255] = {0, 0, 0, 0};
+    std::vector<Rgba> palette(kColorLevels + 1);
+    palette[0] = {0, 0, 0, 0};
+    for (int i = 0; i < kColorLevels; ++i) palette[static_cast<std::size_t>(i + 1)] = color_at(scale.map, i / (kColorLevels - 1.0));
     std::vector<std::uint8_t> pixels(h.values.size());
     for (int r = 0; r < h.rows; ++r) {
         for (int c = 0; c < h.cols; ++c) {
             const double v = h.values[static_cast<std::size_t>(r) * static_cast<std::size_t>(h.cols) + static_cast<std::size_t>(c)];
-            std::uint8_t index = 255;
-            if (!std::isnan(v)) index = static_cast<std::uint8_t>(std::lround(std::clamp(scale.t(v), 0.0, 1.0) * 254.0));
+            std::uint8_t index = 0;
+            if (!std::isnan(v))
+                index = static_cast<std::uint8_t>(1 + std::lround(std::clamp(scale.t(v), 0.0, 1.0) * (kColorLevels - 1)));
             pixels[static_cast<std::size_t>(h.rows - 1 - r) * static_cast<std::size_t>(h.cols) + static_cast<std::size_t>(c)] = index;
         }
     }
@@ -791,6 +799,15 @@ double append_color_bar(std::string& svg, const Scale& scale, const std::string&
                            kAxisColor, px(tx), px(bar_top + 25), t.label.markup);
     }
     svg += "</g>";
+    for (const ScaleMark* m : scale.marks) {
+        const double v = std::abs(m->value);
+        for (double value : scale.map == ColorMap::Diverging ? std::vector<double>{-v, v} : std::vector<double>{m->value}) {
+            if (!(value >= lo && value <= hi)) continue;
+            svg += fmt::format("<path d=\"M{} {}v16\" stroke=\"{}\" stroke-width=\"2\"/>", px(x + scale.t(value) * width),
+                               px(bar_top - 3), kLimitColor);
+        }
+        if (!m->label.empty()) svg += halo_text(x, bar_top + 40, "start", m->label);
+    }
     return 48.0;
 }
 
@@ -832,7 +849,7 @@ void settle_scale(Scale& s) {
     }
 }
 
-SharedScales shared_scales(const std::vector<Heatmap>& maps) {
+SharedScales shared_scales(const std::vector<Heatmap>& maps, const std::vector<ScaleMark>& marks) {
     SharedScales shared;
     shared.scale_of.assign(maps.size(), 0);
     for (std::size_t i = 0; i < maps.size(); ++i) {
@@ -840,12 +857,18 @@ SharedScales shared_scales(const std::vector<Heatmap>& maps) {
         const ColorMap map = resolve(maps[i]);
         auto it = std::find_if(shared.scales.begin(), shared.scales.end(), [&](const Scale& s) { return s.map == map; });
         if (it == shared.scales.end()) {
-            shared.scales.push_back({map, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), {}});
+            shared.scales.push_back({map, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), {}, {}});
             it = shared.scales.end() - 1;
         }
         shared.scale_of[i] = static_cast<std::size_t>(it - shared.scales.begin());
         it->members.push_back(maps[i].label.empty() ? fmt::format("map {}", i + 1) : maps[i].label);
         widen_scale(*it, maps[i], shared.any_missing);
+    }
+    for (const ScaleMark& m : marks) {
+        if (m.heatmap >= maps.size() || !well_formed(maps[m.heatmap]) || !std::isfinite(m.value)) continue;
+        Scale& scale = shared.scales[shared.scale_of[m.heatmap]];
+        scale.marks.push_back(&m);
+        scale.lo = std::min(scale.lo, m.value), scale.hi = std::max(scale.hi, m.value);
     }
     for (Scale& s : shared.scales) settle_scale(s);
     return shared;
@@ -979,8 +1002,9 @@ void append_cell_highlights(std::string& svg, const Plot& plot, const SvgOptions
 
 std::string render_heatmaps(const Plot& plot, const SvgOptions& options) {
     const auto& maps = plot.heatmaps;
-    const SharedScales shared = shared_scales(maps);
-    const PanelGrid grid = panel_grid(plot);
+    const SharedScales shared = shared_scales(maps, options.scale_marks);
+    PanelGrid grid = panel_grid(plot);
+    if (!options.scale_marks.empty()) grid.height += 14.0;  // the marks' labels below the colour bars
     const std::string hatch = options.id_prefix + "-nan";
     std::string svg = svg_open(grid.width, grid.height, plot.title);
     svg += hatch_pattern(hatch);

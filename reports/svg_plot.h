@@ -35,6 +35,15 @@ struct CellHighlight {
     std::string label;
 };
 
+/// A value marked on the colour bar of a heatmap's scale (both signs on a
+/// diverging one), e.g. the residual at which one cell alone fails. The scale
+/// widens to show it.
+struct ScaleMark {
+    std::size_t heatmap = 0;
+    double value = 0.0;
+    std::string label;
+};
+
 struct SvgOptions {
     /// Prefix for the ids of gradients and patterns: unique per plot within
     /// one document, e.g. "p12-0".
@@ -47,6 +56,7 @@ struct SvgOptions {
     std::vector<LimitLine> limits;
     std::vector<Highlight> highlights;
     std::vector<CellHighlight> cells;
+    std::vector<ScaleMark> scale_marks;
 };
 
 /// An <svg> element (with the SVG namespace, so that it is also well-formed
