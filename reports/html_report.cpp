@@ -203,11 +203,13 @@ std::string p_value_cell(const CheckResult& r) {
                        escaped(format_probability(*r.p_value)));
 }
 
+/// The case name, its family part quieter (the group's heading says it) and
+/// the whole name as the tooltip.
 std::string case_cell(const std::string& name) {
     const std::size_t bracket = name.find('[');
     if (bracket == std::string::npos) return "<span class=\"case mono\">" + escaped(name) + "</span>";
-    return "<span class=\"case mono\"><span class=\"fam-part\">" + escaped(name.substr(0, bracket)) + "</span>" +
-           escaped(name.substr(bracket)) + "</span>";
+    return "<span class=\"case mono\" title=\"" + escaped(name) + "\"><span class=\"fam-part\">" +
+           escaped(name.substr(0, bracket)) + "</span>" + escaped(name.substr(bracket)) + "</span>";
 }
 
 /// The details of the rows that are not open, packed: grouped by check in

@@ -146,7 +146,7 @@ void chi2_p_lines(const CheckResult& r, double level, std::vector<JudgedLine>& o
     if (!pearson || !local || !r.p_value) return;
     const double combined = std::min({1.0, *pearson / (1.0 - kLocalShare), *local / kLocalShare});
     if (!same(combined, *r.p_value)) return;  // another rule than this file knows: show the p-value alone
-    out.push_back(p_line(fmt::format("Pearson X\u00b2 = {} on {} dof: p-value", general(r.figure("statistic").value_or(NAN)),
+    out.push_back(p_line(fmt::format("Pearson X\u00b2 = {:.4g} on {} dof: p-value", r.figure("statistic").value_or(NAN),
                                      general(r.figure("dof").value_or(NAN))),
                          *pearson, (1.0 - kLocalShare) * level, fmt::format(" ({} \u00d7 level)", 1.0 - kLocalShare)));
     out.push_back(p_line(fmt::format("largest cell residual {:+.2f} (cell {}): p-value over the cells",
@@ -177,8 +177,8 @@ void unbinned_p_lines(const CheckResult& r, double level, std::vector<JudgedLine
         const std::string name = figure_label(marginal) + "_" + test;
         const auto p = r.figure(name + "_p_value");
         if (!p) continue;
-        out.push_back(p_line(fmt::format("{}: {} = {}, p-value", marginal, test_name(test),
-                                         general(r.figure(name + "_statistic").value_or(NAN))),
+        out.push_back(p_line(fmt::format("{}: {} = {:.4g}, p-value", marginal, test_name(test),
+                                         r.figure(name + "_statistic").value_or(NAN)),
                              *p, per_marginal, fmt::format(" (level, \u0160id\u00e1k over {})", general(k))));
     }
 }

@@ -168,8 +168,9 @@ std::string plot_note(const CheckResult& r, std::size_t index) {
     if (index >= r.plots.size()) return "";
     const Plot& plot = r.plots[index];
     if (r.check_name == "roundtrip" && plot.kind == Plot::Kind::Bars && r.figure("tolerance").value_or(0.0) > 0.0)
-        return "Each bar counts the inputs whose error lies in one decade. Right of the dashed tolerance: inputs that "
-               "missed it, failures unless excused (counted above).";
+        return "Each bar counts the inputs whose error lies in one decade [10^e, 10^(e+1)), drawn at e; the dashed line "
+               "stands at the tolerance's place in its decade. Right of it: inputs that missed the tolerance, failures "
+               "unless excused (counted in the Judged table).";
     if (r.check_name == "unbinned" && plot.kind == Plot::Kind::Lines)
         return "Judged per marginal: Kuiper's V = D\u207a + D\u207b (the ringed highest and lowest points) on an azimuth, "
                "Anderson\u2013Darling's A\u00b2 elsewhere (the integral of the squared curve over F(1 \u2212 F); its "

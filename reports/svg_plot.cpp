@@ -503,8 +503,9 @@ XyData xy_data(const Plot& plot, const SvgOptions& options) {
             if (valid(p)) data.y.add(p.y);
         }
     }
-    if (plot.kind == Plot::Kind::Bars) widen_for_bars(data, plot.log_x, plot.log_y);
+    // Annotations first: the half bar of padding then also keeps a limit past every bar inside the frame.
     if (!data.x.empty() && !data.y.empty()) widen_for_annotations(data, plot, options);
+    if (plot.kind == Plot::Kind::Bars) widen_for_bars(data, plot.log_x, plot.log_y);
     if (plot.kind == Plot::Kind::Points && !data.x.empty() && !plot.log_x) {
         const double pad = (data.x.hi - data.x.lo) * 0.02;
         data.x.lo -= pad, data.x.hi += pad;
