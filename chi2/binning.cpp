@@ -45,9 +45,44 @@ double fast_phi(double x, double y) {
 
 uint64_t Histogram::total() const {
     uint64_t n = outside + nan + on_boundary;
+    for (uint64_t c : poles) n += c;
     for (uint64_t c : counts) n += c;
     return n;
 }
+
+namespace {
+
+/// Keeps, per cell, the points of `points` plus `more` that are extreme in a
+/// coordinate (the smallest and the largest x, y and z, ties broken by the
+/// whole point): they span the support the samples found in the cell, and
+/// which they are does not depend on the order of binning.
+void keep_extreme_points(std::vector<Histogram::CellPoint>& points, std::span<const Histogram::CellPoint> more) {
+    points.insert(points.end(), more.begin(), more.end());
+    std::sort(points.begin(), points.end());
+    points.erase(std::unique(points.begin(), points.end()), points.end());
+    std::vector<Histogram::CellPoint> kept;
+    for (std::size_t begin = 0; begin < points.size();) {
+        std::size_t end = begin;
+        while (end < points.size() && points[end].cell == points[begin].cell) ++end;
+        std::vector<std::size_t> pick;
+        for (std::size_t k = 0; k < 3; ++k) {
+            std::size_t lo = begin, hi = begin;
+            for (std::size_t i = begin; i < end; ++i) {
+                if (points[i].point[k] < points[lo].point[k]) lo = i;
+                if (points[i].point[k] > points[hi].point[k]) hi = i;
+            }
+            pick.push_back(lo);
+            pick.push_back(hi);
+        }
+        std::sort(pick.begin(), pick.end());
+        pick.erase(std::unique(pick.begin(), pick.end()), pick.end());
+        for (std::size_t i : pick) kept.push_back(points[i]);
+        begin = end;
+    }
+    points = std::move(kept);
+}
+
+}  // namespace
 
 void Histogram::merge(const Histogram& other) {
     if (counts.size() != other.counts.size()) throw std::invalid_argument("Histogram::merge: different binnings");
@@ -56,6 +91,34 @@ void Histogram::merge(const Histogram& other) {
     nan += other.nan;
     snapped += other.snapped;
     on_boundary += other.on_boundary;
+    if (!other.zero_cell_points.empty()) keep_extreme_points(zero_cell_points, other.zero_cell_points);
+    if (poles.size() < other.poles.size()) poles.resize(other.poles.size(), 0);
+    for (std::size_t r = 0; r < other.poles.size(); ++r) poles[r] += other.poles[r];
+}
+
+void Histogram::spread_poles(int cols) {
+    const auto n_cols = static_cast<uint64_t>(cols);
+    for (std::size_t r = 0; r < poles.size(); ++r)
+        for (uint64_t c = 0; c < n_cols; ++c)
+            counts[r * n_cols + c] += poles[r] / n_cols + (c < poles[r] % n_cols ? 1 : 0);
+    poles.clear();
+}
+
+double Binning::float_resolution(int axis, double u, double v) const {
+    const DomainPoint p = point_at(u, v);
+    const DomainPoint f{static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
+    const double at = parameters_of(f)[static_cast<std::size_t>(axis)];
+    double step = 0.0;
+    for (int c = 0; c < domain_.point_dimension(); ++c) {
+        for (const float toward : {INFINITY, -INFINITY}) {
+            DomainPoint n = f;
+            n[static_cast<std::size_t>(c)] = std::nextafter(static_cast<float>(f[static_cast<std::size_t>(c)]), toward);
+            double d = std::abs(parameters_of(n)[static_cast<std::size_t>(axis)] - at);
+            if (domain_.azimuthal() && axis == 0) d = std::min(d, kTwoPi - d);  // phi wraps
+            if (std::isfinite(d)) step = std::max(step, d);
+        }
+    }
+    return step;
 }
 
 Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domain), resolution_(resolution) {
@@ -236,6 +299,11 @@ bool Binning::on_parameter_boundary(double u, double v) const {
     return std::visit([&](const auto& k) { return k.on_parameter_boundary(u, v); }, domain_.shape());
 }
 
+void Binning::count_pole(Histogram& hist, std::size_t row) const {
+    if (hist.poles.empty()) hist.poles.assign(static_cast<std::size_t>(rows_), 0);
+    ++hist.poles[row];
+}
+
 template <typename Point>
 void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span<const unsigned char> zero_cells) const {
     if (hist.counts.size() != cell_count()) throw std::invalid_argument("Binning::bin: histogram of another binning");
@@ -249,19 +317,24 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
     // boundary, it is set aside: a float warp reaches the boundary from input
     // edges such as u = 0 (probability ~2^-24 per sample), where a density like
     // cos^n(theta) vanishes. The test caps how many it accepts (chi2_test.cpp).
-    auto add = [&](std::size_t cell, double u, double v) {
+    std::vector<Histogram::CellPoint> zero_points;  // samples left in zero cells (rare)
+    auto add = [&](std::size_t cell, double u, double v, const DomainPoint& q) {
         if (check_zero && zero_cells[cell]) {
             cell = snap_from_zero_cell(u, v, cell, zero_cells, hist.snapped);
             if (zero_cells[cell] && on_parameter_boundary(u, v)) {
                 ++hist.on_boundary;
                 return;
             }
+            if (zero_cells[cell]) {
+                zero_points.push_back({cell, q});
+                if (zero_points.size() >= 4096) keep_extreme_points(zero_points, {});
+            }
         }
         ++counts[cell];
     };
     // Spherical and disk samples: phi is computed exactly only to snap out of a zero cell (rare).
-    auto add_phi = [&](std::size_t cell, double x, double y, double v) {
-        if (check_zero && zero_cells[cell]) add(cell, exact_phi(x, y), v);
+    auto add_phi = [&](std::size_t cell, double x, double y, double v, const DomainPoint& q) {
+        if (check_zero && zero_cells[cell]) add(cell, exact_phi(x, y), v, q);
         else ++counts[cell];
     };
     // phi column: by the octant table, or else by the fast atan2, with the exact
@@ -294,19 +367,24 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
                 if (!inside) { ++hist.outside; continue; }
                 if constexpr (Kind::kAzimuthal) {
                     const double v = kind.v_of(q);
-                    const auto col = static_cast<std::size_t>(phi_column(q[0], q[1]));
                     const auto row = static_cast<std::size_t>(clamp_index((v - bounds_.v0) * inv_dv, rows_));
-                    add_phi(row * cols + col, q[0], q[1], v);
+                    if (q[0] == 0.0 && q[1] == 0.0) {  // a pole: no azimuth (Histogram::poles)
+                        count_pole(hist, row);
+                        continue;
+                    }
+                    const auto col = static_cast<std::size_t>(phi_column(q[0], q[1]));
+                    add_phi(row * cols + col, q[0], q[1], v, q);
                 } else {
                     const auto [u, v] = kind.parameters_of(q, resolution_);
                     const int c = interval_edges_.empty() ? clamp_index((u - bounds_.u0) * inv_du, cols_)
                                                           : interval_column(u);
                     const auto row = static_cast<std::size_t>(clamp_index((v - bounds_.v0) * inv_dv, rows_));
-                    add(row * cols + static_cast<std::size_t>(c), u, v);
+                    add(row * cols + static_cast<std::size_t>(c), u, v, q);
                 }
             }
         },
         domain_.shape());
+    if (!zero_points.empty()) keep_extreme_points(hist.zero_cell_points, zero_points);
 }
 
 void Binning::bin(std::span<const std::array<float, 3>> points, Histogram& hist,
@@ -336,6 +414,46 @@ std::optional<LanePlan> Binning::lane_plan() const {
     plan.octant_cols = octant_cols_;
     for (int k = 1; k < octant_cols_; ++k) plan.tan_edges[k - 1] = tan_edges_[static_cast<std::size_t>(k)];
     return plan;
+}
+
+namespace {
+
+/// The fewest float steps across a cell along `axis`, over the cells along
+/// that axis (at the middle of the other axis).
+double narrowest_in_floats(const Binning& b, int axis) {
+    const int n = axis == 0 ? b.cols() : b.rows();
+    const int other = axis == 0 ? b.rows() / 2 : b.cols() / 2;
+    double worst = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < n; ++k) {
+        const std::size_t cell = axis == 0 ? static_cast<std::size_t>(other) * b.cols() + k
+                                           : static_cast<std::size_t>(k) * b.cols() + other;
+        const ParamRect r = b.cell_rect(cell);
+        const double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
+        const double step = b.float_resolution(axis, uc, vc);
+        const double width = axis == 0 ? r.u1 - r.u0 : r.v1 - r.v0;
+        if (step > 0.0) worst = std::min(worst, width / step);
+    }
+    return worst;
+}
+
+}  // namespace
+
+BinResolution float_aware_resolution(const Domain& domain, BinResolution requested, uint64_t samples) {
+    Binning b(domain, requested);
+    BinResolution r = b.resolution();
+    r.first = b.cols();
+    r.second = b.parameter_dimension() == 1 ? 0 : b.rows();
+    for (int axis = 0; axis < b.parameter_dimension(); ++axis) {
+        while (true) {
+            const int n = axis == 0 ? b.cols() : b.rows();
+            const int floor = axis == 0 && domain.azimuthal() ? 8 : 1;
+            const double mean = static_cast<double>(samples) / static_cast<double>(b.cell_count());
+            if (n / 2 < floor || narrowest_in_floats(b, axis) >= 3.0 * std::sqrt(mean)) break;
+            (axis == 0 ? r.first : r.second) = n / 2;
+            b = Binning(domain, r);
+        }
+    }
+    return r;
 }
 
 std::string Binning::u_label() const {

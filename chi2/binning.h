@@ -28,9 +28,33 @@ struct Histogram {
     /// In a zero-expected cell and exactly on the domain's boundary, where a
     /// density may vanish: set aside, not counted in any cell (see bin_impl).
     uint64_t on_boundary = 0;
+    /// Azimuthal domains: per row, the samples exactly at the pole or centre
+    /// (x = y = 0), where the azimuth is undefined. A float warp puts real mass
+    /// there (a cap's cos theta rounds to 1 with the probability of one float's
+    /// rounding interval: 1/320 of a 0.25 degree sun), and a density continuous
+    /// at the pole spreads it evenly over the azimuth: spread_poles deals them
+    /// out over the row's columns. Empty until a pole sample is binned.
+    std::vector<uint64_t> poles;
+    /// Where samples landed in cells flagged as of zero probability (bin's
+    /// `zero_cells`): per such cell, the points extreme in a coordinate (the
+    /// smallest and largest x, y and z; ties by the whole point), which span
+    /// the support the samples found there and do not depend on the order
+    /// samples were binned in. The test looks at the density there: a sliver
+    /// of support between the quadrature's nodes is integrated again around
+    /// them (chi2_test.h).
+    struct CellPoint {
+        std::size_t cell = 0;
+        DomainPoint point{};
+        auto operator<=>(const CellPoint&) const = default;
+    };
+    std::vector<CellPoint> zero_cell_points;
     uint64_t total() const;
     /// Adds another histogram of the same binning (integer sums: any order gives the same result).
     void merge(const Histogram& other);
+    /// Deals each row's pole samples out over its `cols` columns, n / cols to
+    /// each and one more to the first n % cols (at most one sample from an
+    /// even share), and clears `poles`.
+    void spread_poles(int cols);
 };
 
 /// What a vectorised binning loop needs (validate/lane_cells.h): the constants
@@ -69,6 +93,11 @@ public:
     int cols() const { return cols_; }
     int rows() const { return rows_; }
     std::size_t cell_count() const { return static_cast<std::size_t>(cols_) * static_cast<std::size_t>(rows_); }
+
+    /// How far parameter `axis` moves when one coordinate of the domain point at
+    /// parameters (u, v) moves by one float step (the largest over the
+    /// coordinates): the resolution of a float sample along that axis there.
+    double float_resolution(int axis, double u, double v) const;
 
     /// The parameter range; v is [0, 1] for 1D domains.
     ParamRect parameter_bounds() const { return bounds_; }
@@ -116,6 +145,7 @@ public:
 private:
     template <typename Point>
     void bin_impl(std::span<const Point> points, Histogram& hist, std::span<const unsigned char> zero_cells) const;
+    void count_pole(Histogram& hist, std::size_t row) const;
     void build_interval_edges();
     void build_phi_table();
     bool on_parameter_boundary(double u, double v) const;
@@ -147,6 +177,17 @@ private:
     std::vector<double> interval_edges_;
     int interval_column(double x) const;
 };
+
+/// `requested` (zero fields: the domain's defaults, as Binning fills them in)
+/// with fewer cells along any axis whose cells are too narrow for float
+/// samples: a cell's expected count is uncertain by kEdgeFloatSteps float
+/// steps of probability at each of its two edges (chi2_test.h), so cells are
+/// halved along that axis until each spans at least 3 sqrt(E) float steps
+/// there, E being the average expected count per cell (the band of an
+/// average cell then stays within one Poisson deviation). A tiny cap's
+/// cos theta or a narrow interval gets fewer, wider cells; other domains are
+/// unchanged. An azimuth keeps at least 8 columns.
+BinResolution float_aware_resolution(const Domain& domain, BinResolution requested, uint64_t samples);
 
 /// atan2(y, x) mapped to [0, 2 pi), within 3e-8 of the exact value: the
 /// polynomial of Abramowitz & Stegun 4.4.49 (|error| <= 2e-8 on [0, 1]) after

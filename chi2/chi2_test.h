@@ -32,6 +32,26 @@ namespace warpcheck::chi2 {
 /// 10^6 samples), so 1/pi typed as 0.318f (d = 9.7e-4) passes chi-square.
 inline constexpr double kIntegralTolerance = 0x1p-20;
 
+/// The normalisation rule grants a float density twice its float noise (the
+/// integral of its change over one float step of each argument, summed over
+/// the arguments; chi2/quadrature.h): an expression that rounds its
+/// intermediates and constants at its arguments' scale (1 + g^2 against
+/// 2 g cos theta, a direction normalised in float) errs by about one such
+/// step. Measured on Henyey-Greenstein's textbook float form over 48 random
+/// directions, g = 0.9 to 0.995: the integral's deviation reached 0.79 of the
+/// noise (0.95 with the same formula in double about a float-normalised
+/// direction), while a smooth density's noise is ~1e-7, so a 5e-5 error in a
+/// constant still fails.
+inline constexpr double kFloatNoiseFactor = 2.0;
+
+/// How many float steps of a sample's coordinates each cell edge is uncertain
+/// by: one for the warp's own rounding (a correct float warp's CDF at a float's
+/// rounding boundary stays within a fraction of one float's mass of the ideal:
+/// 0.31 measured for pbrt's cone cos = (1 - u) + u cos_max, 0.006 for
+/// 1 - u (1 - cos_max), 0.5 for a sampler that rounds down) and half a float
+/// for an edge that falls inside a float's rounding interval.
+inline constexpr double kEdgeFloatSteps = 1.5;
+
 struct Chi2Options {
     BinResolution resolution;
     double min_expected = kMinExpectedCount;
@@ -41,6 +61,10 @@ struct Chi2Options {
     /// stream) do not depend on the thread count.
     std::size_t chunk_size = 4096;
     std::size_t max_regions_per_cell = 1024;
+    /// Withhold the density's float-noise allowance from the normalisation
+    /// rule (validate --strict): a pdf whose float rounding moves its integral
+    /// then fails.
+    bool strict = false;
 };
 
 /// A sample point as warps produce it: float coordinates, unused ones 0.
@@ -69,6 +93,21 @@ struct Chi2Outcome {
     PearsonResult pearson;
     std::vector<double> expected;  ///< per cell: samples * probability
     std::vector<double> residual;  ///< per cell: (O - E) / sqrt(E); NaN where E <= 0
+    /// Per cell: how far the true expected count may lie from `expected`
+    /// either way (samples times the quadrature's verified error bound, the
+    /// density's float noise, and kEdgeFloatSteps float steps of probability
+    /// at each interior edge). Pearson's p-value allows for it as a
+    /// noncentrality (chi2/pearson.h), the largest residual as a distance to
+    /// the band (chi2/local_residual.h).
+    std::vector<double> band;
+    double edge_band_total = 0.0;   ///< probability in the edge bands, summed over cells
+    /// The float-noise allowance of the normalisation rule (0 under `strict`),
+    /// and whether the integral needed it to pass.
+    double float_noise_allowance = 0.0;
+    bool float_noise_used = false;
+    /// Cells integrated as zero where samples landed and the density is
+    /// positive at them: integrated again around those samples.
+    std::size_t reintegrated_cells = 0;
     std::size_t zero_expected_cells = 0;  ///< cells where the density integrates to zero
     uint64_t zero_expected_hits = 0;      ///< samples that landed in them
     uint64_t boundary_hits = 0;           ///< of those, exactly on the domain's boundary (accepted up to a cap)

@@ -19,9 +19,12 @@
 //      Optionally bin_contains(p, slack): the same set as contains, in the
 //      form the binning loop prefers (e.g. squared radii);
 //   2. add it to Domain::Shape below, with a factory.
+// (The triangle was added this way: binning, quadrature and the checks took it
+// unchanged.)
 // Nothing else switches on the kind: callers ask is<Kind>().
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -35,7 +38,7 @@ namespace warpcheck::chi2 {
 
 class Domain {
 public:
-    using Shape = std::variant<Interval, HalfLine, Box, Disk, SphericalCap, LowerHalfLine, RealLine>;
+    using Shape = std::variant<Interval, HalfLine, Box, Disk, SphericalCap, LowerHalfLine, RealLine, Triangle>;
     using Slack = DomainSlack;
 
     Domain() = default;
@@ -66,6 +69,17 @@ public:
         return Domain(SphericalCap{zmin});
     }
     static Domain sphere() { return spherical_cap(-1.0); }
+    /// The triangle with vertices a, b, c (area measure), e.g. a light's
+    /// triangle or half of a quad: its area must be positive and finite.
+    static Domain triangle(std::array<double, 2> a, std::array<double, 2> b, std::array<double, 2> c) {
+        const Triangle t{a, b, c};
+        const double area = t.measure();
+        const bool finite = std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(b[0]) && std::isfinite(b[1]) &&
+                            std::isfinite(c[0]) && std::isfinite(c[1]);
+        if (!finite || !(area > 0.0) || !std::isfinite(area))
+            throw std::invalid_argument("triangle domain needs three finite vertices that span a positive area");
+        return Domain(t);
+    }
     static Domain hemisphere() { return spherical_cap(0.0); }
 
     const Shape& shape() const { return shape_; }

@@ -17,6 +17,8 @@
 //                 (HalfLine's map on each side of the centre c: half the cells
 //                 lie within s of c; the first and the last cell are the tails)
 //   (s is BinResolution::half_line_scale, c BinResolution::line_center.)
+//   Triangle      (u, v) = (s, t), x = (1 - sqrt s) A + sqrt s ((1 - t) B + t C)
+//                 jacobian = the triangle's area (constant: equal-area cells)
 #pragma once
 
 #include <algorithm>
@@ -284,6 +286,91 @@ struct RealLine {
         const double t = r.u0 <= 0.0 ? r.u1 : r.u1 >= 1.0 ? r.u0 : 0.5 * (r.u0 + r.u1);
         return point_at(t, 0.5, res)[0];
     }
+};
+
+/// The triangle with vertices a, b, c (either orientation), area measure;
+/// binned through (s, t) in [0, 1]^2 -> (1 - sqrt s) A + sqrt s ((1 - t) B + t C):
+/// sqrt s is the distance from A towards the edge BC (as a fraction of the
+/// way), t the position along that segment, and every cell has the area
+/// du dv * area() (the map's jacobian is constant), as the disk's rows in r^2.
+struct Triangle {
+    std::array<double, 2> a{0.0, 0.0}, b{1.0, 0.0}, c{0.0, 1.0};
+
+    static constexpr int kPointDimension = 2;
+    static constexpr bool kAzimuthal = false;
+    /// Twice the signed area: cross(b - a, c - a).
+    double cross() const { return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]); }
+    double measure() const { return 0.5 * std::abs(cross()); }
+    /// As the box's slack, over the triangle's bounding box.
+    DomainSlack slack() const {
+        const double x0 = std::min({a[0], b[0], c[0]}), x1 = std::max({a[0], b[0], c[0]});
+        const double y0 = std::min({a[1], b[1], c[1]}), y1 = std::max({a[1], b[1], c[1]});
+        return {kDomainTolerance * std::max({x1 - x0, std::abs(x0), std::abs(x1)}),
+                kDomainTolerance * std::max({y1 - y0, std::abs(y0), std::abs(y1)})};
+    }
+    /// Barycentric coordinates of p with respect to (b, c): p = a + lb (b - a) + lc (c - a).
+    std::array<double, 2> barycentric(const DomainPoint& p) const {
+        const double dx = p[0] - a[0], dy = p[1] - a[1], k = cross();
+        return {(dx * (c[1] - a[1]) - dy * (c[0] - a[0])) / k, ((b[0] - a[0]) * dy - (b[1] - a[1]) * dx) / k};
+    }
+    /// How far p lies outside the edge from e0 to e1 (the third vertex is
+    /// `other`): the distance along the edge's outward unit normal n, less the
+    /// slack projected onto n (|n_x| s.x + |n_y| s.y); <= 0 within the slack.
+    static double beyond_edge(const DomainPoint& p, const std::array<double, 2>& e0, const std::array<double, 2>& e1,
+                              const std::array<double, 2>& other, const DomainSlack& s) {
+        double nx = e1[1] - e0[1], ny = e0[0] - e1[0];
+        const double len = std::hypot(nx, ny);
+        nx /= len, ny /= len;
+        if (nx * (other[0] - e0[0]) + ny * (other[1] - e0[1]) > 0.0) nx = -nx, ny = -ny;
+        return nx * (p[0] - e0[0]) + ny * (p[1] - e0[1]) - (std::abs(nx) * s.x + std::abs(ny) * s.y);
+    }
+    bool contains(const DomainPoint& p, const DomainSlack& s) const {
+        // Written so that NaN fails every comparison.
+        return beyond_edge(p, a, b, c, s) <= 0.0 && beyond_edge(p, b, c, a, s) <= 0.0 &&
+               beyond_edge(p, c, a, b, s) <= 0.0;
+    }
+    /// On an edge of the closed triangle: a barycentric coordinate exactly 0
+    /// (or their sum exactly 1) with the others in [0, 1].
+    bool on_boundary(const DomainPoint& p) const {
+        const auto [lb, lc] = barycentric(p);
+        const double la = 1.0 - lb - lc;
+        const bool inside = lb >= 0.0 && lc >= 0.0 && la >= 0.0;
+        return inside && (lb == 0.0 || lc == 0.0 || la == 0.0);
+    }
+    std::string describe() const {
+        return "triangle (" + std::to_string(a[0]) + ", " + std::to_string(a[1]) + "), (" + std::to_string(b[0]) +
+               ", " + std::to_string(b[1]) + "), (" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ")";
+    }
+
+    BinResolution default_resolution() const { return {32, 32}; }
+    ParamRect parameter_bounds() const { return {0.0, 1.0, 0.0, 1.0}; }
+    DomainPoint point_at(double u, double v, const BinResolution&) const {
+        const double r = std::sqrt(u), wa = 1.0 - r, wb = r * (1.0 - v), wc = r * v;
+        return {wa * a[0] + wb * b[0] + wc * c[0], wa * a[1] + wb * b[1] + wc * c[1], 0.0};
+    }
+    double jacobian(double, double, const BinResolution&) const { return measure(); }
+    /// The inverse of point_at: r = lb + lc, t = lc / r (t = 0.5 at the vertex a, where it is arbitrary).
+    std::array<double, 2> parameters_of(const DomainPoint& p, const BinResolution&) const {
+        const auto [lb, lc] = barycentric(p);
+        const double r = lb + lc;
+        return {r * r, r > 0.0 ? lc / r : 0.5};
+    }
+    double cell_measure(const ParamRect& r, const BinResolution&) const {
+        return (r.u1 - r.u0) * (r.v1 - r.v0) * measure();
+    }
+    /// s = 1 is the edge bc, t = 0 the edge ab, t = 1 the edge ac (s = 0 the vertex a).
+    bool on_parameter_boundary(double u, double v) const { return u <= 0.0 || u >= 1.0 || v <= 0.0 || v >= 1.0; }
+    /// The slack over the triangle's smallest height h: r moves by at most
+    /// slack / h, s = r^2 by twice that, and t (at r near 1) by as much as r.
+    std::array<double, 2> parameter_slack(const DomainSlack& s) const {
+        const double longest = std::max({std::hypot(b[0] - a[0], b[1] - a[1]), std::hypot(c[0] - b[0], c[1] - b[1]),
+                                         std::hypot(a[0] - c[0], a[1] - c[1])});
+        const double h = 2.0 * measure() / longest, d = std::max(s.x, s.y) / h;
+        return {2.0 * d, d};
+    }
+    std::string u_label() const { return "s = r^2"; }
+    std::string v_label() const { return "t"; }
+    double cell_position(const ParamRect& r, const BinResolution&) const { return 0.5 * (r.u0 + r.u1); }
 };
 
 }  // namespace warpcheck::chi2

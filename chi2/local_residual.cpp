@@ -28,16 +28,25 @@ double two_sided_binomial_p(uint64_t observed, double expected, uint64_t n) {
 }  // namespace
 
 LocalResidual largest_cell_residual(std::span<const uint64_t> counts, std::span<const double> expected, uint64_t n) {
+    return largest_cell_residual(counts, expected, expected, expected, n);
+}
+
+LocalResidual largest_cell_residual(std::span<const uint64_t> counts, std::span<const double> expected,
+                                    std::span<const double> lower, std::span<const double> upper, uint64_t n) {
     LocalResidual out;
     if (n == 0) return out;
-    for (std::size_t c = 0; c < counts.size() && c < expected.size(); ++c) {
+    const std::size_t cells = std::min({counts.size(), expected.size(), lower.size(), upper.size()});
+    for (std::size_t c = 0; c < cells; ++c) {
         if (!(expected[c] > 0.0)) continue;
         ++out.cells_tested;
-        const double p = two_sided_binomial_p(counts[c], expected[c], n);
+        const double o = static_cast<double>(counts[c]);
+        // The end of the band nearest to the count (the count itself inside it).
+        const double nearest = o < lower[c] ? lower[c] : o > upper[c] ? upper[c] : o;
+        const double p = nearest == o && lower[c] != upper[c] ? 1.0 : two_sided_binomial_p(counts[c], nearest, n);
         if (out.cells_tested == 1 || p < out.cell_p_value) {
             out.cell = c;
             out.cell_p_value = p;
-            out.residual = (static_cast<double>(counts[c]) - expected[c]) / std::sqrt(expected[c]);
+            out.residual = (o - nearest) / std::sqrt(upper[c]);
         }
     }
     const double m = static_cast<double>(out.cells_tested);

@@ -37,4 +37,13 @@ struct LocalResidual {
 /// at most 1 (Boost.Math's binomial distribution).
 LocalResidual largest_cell_residual(std::span<const uint64_t> counts, std::span<const double> expected, uint64_t n);
 
+/// The same where each cell's expectation is known only within [lower, upper]
+/// (chi2/pearson.h): a count above the band is judged by the upper tail at
+/// `upper`, one below it by the lower tail at `lower`, one inside it is not
+/// evidence (p 1); each is at least the p-value at the true expectation when
+/// it lies in the band, so the test stays conservative. The residual reported
+/// is the distance to the band over sqrt(upper).
+LocalResidual largest_cell_residual(std::span<const uint64_t> counts, std::span<const double> expected,
+                                    std::span<const double> lower, std::span<const double> upper, uint64_t n);
+
 }  // namespace warpcheck::chi2

@@ -47,6 +47,7 @@ struct Region {
     double value = 0.0;
     double err_u = 0.0;  // change when the u rule drops to Gauss
     double err_v = 0.0;  // change when the v rule drops to Gauss
+    double f_min = 0.0, f_max = 0.0;  // the density's range over the nodes
     double error() const { return err_u + err_v; }
 };
 
@@ -55,7 +56,8 @@ bool less_error(const Region& a, const Region& b) { return a.error() < b.error()
 /// Evaluates the tensor rule on rectangles of one binning, reusing its buffers.
 class RegionRule {
 public:
-    RegionRule(const Binning& binning, const BatchPdf& pdf) : binning_(binning), pdf_(pdf) {
+    RegionRule(const Binning& binning, const BatchPdf& pdf, bool probe_edges = false)
+        : binning_(binning), pdf_(pdf), probe_edges_(probe_edges) {
         const std::size_t n = binning.parameter_dimension() == 1 ? kNodes : kNodes * kNodes;
         points_.resize(n);
         values_.resize(n);
@@ -79,6 +81,7 @@ public:
 
         // Weight by the measure density, screening for values that make no density.
         bool finite = true;
+        double f_min = std::numeric_limits<double>::infinity(), f_max = -f_min;
         for (std::size_t k = 0; k < values_.size(); ++k) {
             const double f = values_[k];
             if (!std::isfinite(f)) {
@@ -88,9 +91,12 @@ public:
                 ++negative;
             }
             const std::size_t i = one_d ? k : k % kNodes, j = one_d ? 0 : k / kNodes;
+            f_min = std::min(f_min, f);
+            f_max = std::max(f_max, f);
             values_[k] = f * binning_.jacobian(us[i], vs[j]);
         }
-        Region out{r, 0.0, 0.0, 0.0};
+        if (probe_edges_) widen_by_edge_probes(r, f_min, f_max);
+        Region out{r, 0.0, 0.0, 0.0, f_min, f_max};
         if (!finite) {
             out.value = std::numeric_limits<double>::quiet_NaN();
             return out;
@@ -124,7 +130,112 @@ public:
         return out;
     }
 
+    /// The integral over r of the density's change over one float step of its
+    /// arguments (the file comment of quadrature.h), by the 3-point
+    /// Gauss-Legendre rule per parameter (a noise estimate needs no more): each
+    /// coordinate of each node moved one float up and down.
+    double noise(const ParamRect& r) {
+        static constexpr double kX[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+        static constexpr double kW[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+        const bool one_d = binning_.parameter_dimension() == 1;
+        const int dims = binning_.domain().point_dimension();
+        noise_points_.clear();
+        noise_weights_.clear();
+        for (int j = 0; j < (one_d ? 1 : 3); ++j)
+            for (int i = 0; i < 3; ++i) {
+                const double u = 0.5 * (r.u0 + r.u1) + 0.5 * (r.u1 - r.u0) * kX[i];
+                const double v = one_d ? 0.5 : 0.5 * (r.v0 + r.v1) + 0.5 * (r.v1 - r.v0) * kX[j];
+                noise_weights_.push_back(kW[i] * (one_d ? 1.0 : kW[j]) * binning_.jacobian(u, v));
+                const DomainPoint p = rounded(binning_.point_at(u, v));
+                noise_points_.push_back(p);
+                for (int c = 0; c < dims; ++c)
+                    for (const float toward : {INFINITY, -INFINITY}) {
+                        DomainPoint n = p;
+                        const auto k = static_cast<std::size_t>(c);
+                        n[k] = static_cast<double>(std::nextafter(static_cast<float>(p[k]), toward));
+                        noise_points_.push_back(n);
+                    }
+            }
+        noise_values_.resize(noise_points_.size());
+        pdf_(noise_points_, noise_values_);
+        evaluations += noise_values_.size();
+        const std::size_t stride = 1 + 2 * static_cast<std::size_t>(dims);
+        double sum = 0.0;
+        for (std::size_t node = 0; node < noise_weights_.size(); ++node) {
+            const double* f = &noise_values_[node * stride];
+            double change = 0.0;
+            for (int c = 0; c < dims; ++c) {
+                // A change of more than half the density over one float step is
+                // a jump of the density (a node on a support's edge), not its
+                // rounding: it is not counted.
+                const auto step = [&](double other) {
+                    const double d = std::abs(other - f[0]);
+                    return d > 0.5 * std::max(std::abs(other), std::abs(f[0])) ? 0.0 : d;
+                };
+                change += std::max(step(f[1 + 2 * c]), step(f[2 + 2 * c]));
+            }
+            if (std::isfinite(change)) sum += noise_weights_[node] * change;
+        }
+        const double area = one_d ? 0.5 * (r.u1 - r.u0) : 0.25 * (r.u1 - r.u0) * (r.v1 - r.v0);
+        return area * sum;
+    }
+
+    /// Widens [f_min, f_max] by the density just outside each side of r (the
+    /// midpoint of each edge moved out by 2^-20 of the region, where that stays
+    /// in the domain): a jump that lies exactly on the edge between two final
+    /// regions shows in neither's nodes, but here it does.
+    void widen_by_edge_probes(const ParamRect& r, double& f_min, double& f_max) {
+        const ParamRect b = binning_.parameter_bounds();
+        const double du = 0x1p-20 * (r.u1 - r.u0), dv = 0x1p-20 * (r.v1 - r.v0);
+        const double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
+        const bool one_d = binning_.parameter_dimension() == 1;
+        probe_points_.clear();
+        const auto probe = [&](double u, double v) {
+            if (u >= b.u0 && u <= b.u1 && v >= b.v0 && v <= b.v1) probe_points_.push_back(binning_.point_at(u, v));
+        };
+        probe(r.u0 - du, vc);
+        probe(r.u1 + du, vc);
+        if (!one_d) {
+            probe(uc, r.v0 - dv);
+            probe(uc, r.v1 + dv);
+        }
+        probe_values_.resize(probe_points_.size());
+        if (probe_points_.empty()) return;
+        pdf_(probe_points_, probe_values_);
+        evaluations += probe_values_.size();
+        for (const double f : probe_values_) {
+            if (!std::isfinite(f)) continue;
+            f_min = std::min(f_min, f);
+            f_max = std::max(f_max, f);
+        }
+    }
+
+    /// The mass within one float step of a jump of the density inside the
+    /// region or on its edges, bounded: where the density's values over the
+    /// nodes and the edge probes span more
+    /// than a factor 2 (or reach 0), a jump may cross the region, and the float
+    /// points on either side of it stand for half a step beyond it (the pdf of
+    /// a 0.25 degree sun, evaluated at float points, integrates to 1.003). The
+    /// bound is the values' range times the jacobian times one float step of
+    /// each parameter times the region's extent in the other (a line across
+    /// the region is at most that long in each direction).
+    double jump_band(const Region& g) {
+        if (!(g.f_max > 2.0 * g.f_min) || !std::isfinite(g.f_max)) return 0.0;
+        const ParamRect& r = g.rect;
+        const double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
+        const double range = (g.f_max - std::max(g.f_min, 0.0)) * binning_.jacobian(uc, vc);
+        if (binning_.parameter_dimension() == 1) return range * binning_.float_resolution(0, uc, vc);
+        return range * (binning_.float_resolution(0, uc, vc) * (r.v1 - r.v0) +
+                        binning_.float_resolution(1, uc, vc) * (r.u1 - r.u0));
+    }
+
 private:
+    /// The point as the density sees it: each coordinate rounded to float.
+    static DomainPoint rounded(const DomainPoint& p) {
+        return {static_cast<double>(static_cast<float>(p[0])), static_cast<double>(static_cast<float>(p[1])),
+                static_cast<double>(static_cast<float>(p[2]))};
+    }
+
     void fill_points(const std::array<double, kNodes>& us, const std::array<double, kNodes>& vs, bool one_d) {
         if (one_d) {
             for (std::size_t i = 0; i < kNodes; ++i) points_[i] = binning_.point_at(us[i], 0.5);
@@ -151,6 +262,10 @@ private:
     const BatchPdf& pdf_;
     std::vector<DomainPoint> points_;
     std::vector<double> values_;
+    bool probe_edges_ = false;
+    std::vector<DomainPoint> noise_points_, probe_points_;
+    std::vector<double> probe_values_;
+    std::vector<double> noise_values_, noise_weights_;
 };
 
 struct CellOutcome {
@@ -158,15 +273,18 @@ struct CellOutcome {
     double error = 0.0;
     bool converged = true;
     double error_ratio = 0.0;
+    double float_noise = 0.0;
+    bool mismatch = false;
 };
 
-CellOutcome integrate_cell(RegionRule& rr, const ParamRect& cell, bool one_d, const QuadratureOptions& options,
-                           std::vector<Region>& heap) {
+/// Globally adaptive integration of one rectangle within `budget` regions;
+/// leaves the final regions in `heap`.
+CellOutcome integrate_adaptive(RegionRule& rr, const ParamRect& cell, bool one_d, const QuadratureOptions& options,
+                               std::size_t budget, std::vector<Region>& heap) {
     heap.clear();
     heap.push_back(rr.evaluate(cell));
     double value = heap.front().value, error = heap.front().error();
-    while (std::isfinite(value) && !(error <= cell_tolerance(value, options)) &&
-           heap.size() < options.max_regions_per_cell) {
+    while (std::isfinite(value) && !(error <= cell_tolerance(value, options)) && heap.size() < budget) {
         std::pop_heap(heap.begin(), heap.end(), less_error);
         const Region worst = heap.back();
         heap.pop_back();
@@ -191,13 +309,147 @@ CellOutcome integrate_cell(RegionRule& rr, const ParamRect& cell, bool one_d, co
     CellOutcome out;
     out.value = value;
     out.error = error;
-    const double tol = cell_tolerance(value, options);
-    out.converged = error <= tol;
-    out.error_ratio = std::isfinite(value) ? error / tol : std::numeric_limits<double>::infinity();
     return out;
 }
 
+/// The rectangle cut at fractions (fu, fv) of its sides into four pieces (in
+/// 1D, at fu into two), each integrated adaptively within its share of the
+/// budget, summed. Cuts at irrational fractions leave no piece's nodes with
+/// the symmetry of the whole cell's (a line through the cell's corners passes
+/// through no piece's corners), and put a jump that lies between the first
+/// rule's nodes at other places relative to the pieces' nodes, whichever
+/// parameter it crosses.
+CellOutcome integrate_split(RegionRule& rr, const ParamRect& cell, bool one_d, double fu, double fv,
+                            const QuadratureOptions& options, std::vector<Region>& heap) {
+    const double um = cell.u0 + fu * (cell.u1 - cell.u0), vm = cell.v0 + fv * (cell.v1 - cell.v0);
+    std::vector<ParamRect> pieces = {{cell.u0, um, cell.v0, cell.v1}, {um, cell.u1, cell.v0, cell.v1}};
+    if (!one_d)
+        pieces = {{cell.u0, um, cell.v0, vm}, {um, cell.u1, cell.v0, vm}, {cell.u0, um, vm, cell.v1},
+                  {um, cell.u1, vm, cell.v1}};
+    CellOutcome sum;
+    const std::size_t budget = std::max<std::size_t>(1, options.max_regions_per_cell / pieces.size());
+    for (const ParamRect& piece : pieces) {
+        const CellOutcome o = integrate_adaptive(rr, piece, one_d, options, budget, heap);
+        sum.value += o.value;
+        sum.error += o.error;
+    }
+    return sum;
+}
+
+// Irrational fractions for the verifying cuts (1 - 1/golden ratio and
+// sqrt 2 - 1; for the arbiter, 1/golden ratio and 1 - 1/sqrt 2): no cut lies on
+// the first rule's lines of symmetry, nor on the other split's.
+constexpr double kVerifyU = 0.3819660112501051, kVerifyV = 0.41421356237309515;
+constexpr double kArbiterU = 0.6180339887498949, kArbiterV = 0.2928932188134524;
+
+/// How far two integrations of one cell may differ beyond their error bounds:
+/// the density's float noise and 2^-20 of the value, since a float density's
+/// rounding (2^-24 relative per value) differs between node sets.
+double rounding_slack(const CellOutcome& o) { return o.float_noise + 0x1p-20 * std::abs(o.value); }
+
+/// The first rule's result checked against the irrational split (see
+/// quadrature.h): where they disagree beyond both bounds, a third split
+/// arbitrates, the median value is kept and the bound covers the spread.
+void verify_cell(RegionRule& rr, const ParamRect& cell, bool one_d, const QuadratureOptions& options,
+                 std::vector<Region>& heap, CellOutcome& out) {
+    const CellOutcome second = integrate_split(rr, cell, one_d, kVerifyU, kVerifyV, options, heap);
+    if (!std::isfinite(out.value) || std::abs(out.value - second.value) <= out.error + second.error + rounding_slack(out))
+        return;
+    const CellOutcome third = integrate_split(rr, cell, one_d, kArbiterU, kArbiterV, options, heap);
+    out.mismatch = true;
+    // Two that agree within their bounds outvote the third (a rule whose nodes
+    // sat on a jump); their mean is kept, with the larger bound plus their
+    // difference. Without such a pair, the median, with the whole spread.
+    const std::array<CellOutcome, 3> all = {out, second, third};
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t a = 0; a < 3; ++a)
+        for (std::size_t b = a + 1; b < 3; ++b) {
+            const double diff = std::abs(all[a].value - all[b].value);
+            if (diff <= all[a].error + all[b].error + rounding_slack(all[a]) && diff < best) {
+                best = diff;
+                out.value = 0.5 * (all[a].value + all[b].value);
+                out.error = std::max(all[a].error, all[b].error) + diff;
+            }
+        }
+    if (best < std::numeric_limits<double>::infinity()) return;
+    std::array<double, 3> v = {all[0].value, all[1].value, all[2].value};
+    std::sort(v.begin(), v.end());
+    out.value = v[1];
+    out.error = (v[2] - v[0]) + std::max({all[0].error, all[1].error, all[2].error});
+}
+
+CellOutcome integrate_cell(RegionRule& rr, const ParamRect& cell, bool one_d, const QuadratureOptions& options,
+                           std::vector<Region>& heap) {
+    CellOutcome out = integrate_adaptive(rr, cell, one_d, options, options.max_regions_per_cell, heap);
+    if (options.float_noise && std::isfinite(out.value))
+        for (const Region& r : heap) out.float_noise += rr.noise(r.rect) + rr.jump_band(r);
+    if (options.verify) verify_cell(rr, cell, one_d, options, heap, out);
+    const double tol = cell_tolerance(out.value, options);
+    out.converged = out.error <= tol;
+    out.error_ratio = std::isfinite(out.value) ? out.error / tol : std::numeric_limits<double>::infinity();
+    return out;
+}
+
+/// The cuts of [lo, hi] around the points' range [a, b] along one parameter:
+/// the range widened by its own width each way (at least a 2^-20 of the
+/// piece), clipped to the piece.
+std::array<double, 4> cuts_around(double lo, double hi, double a, double b) {
+    const double margin = std::max(b - a, 0x1p-20 * (hi - lo));
+    return {lo, std::max(lo, a - margin), std::min(hi, b + margin), hi};
+}
+
+/// The piece integrated as usual; where it holds points and integrates to
+/// zero, it is cut into 3 x 3 pieces at the points' range widened by its own
+/// width (cuts_around), and each piece is treated the same way, so a sliver
+/// of support narrow in either parameter gets pieces of its own scale.
+void guided(RegionRule& rr, const ParamRect& r, const std::vector<std::array<double, 2>>& points, int depth,
+            bool one_d, const QuadratureOptions& options, std::vector<Region>& heap, GuidedIntegral& sum) {
+    // Whether the first rule sees the density at all decides; the piece that
+    // it does see is then integrated in full (verified, with its float noise).
+    const bool seen = integrate_adaptive(rr, r, one_d, options, options.max_regions_per_cell, heap).value != 0.0;
+    if (points.empty() || seen || depth >= 16) {
+        const CellOutcome o = integrate_cell(rr, r, one_d, options, heap);
+        sum.value += o.value;
+        sum.error += o.error;
+        sum.float_noise += o.float_noise;
+        return;
+    }
+    double u_min = r.u1, u_max = r.u0, v_min = r.v1, v_max = r.v0;
+    for (const auto& p : points) {
+        u_min = std::min(u_min, p[0]), u_max = std::max(u_max, p[0]);
+        v_min = std::min(v_min, p[1]), v_max = std::max(v_max, p[1]);
+    }
+    const std::array<double, 4> us = cuts_around(r.u0, r.u1, u_min, u_max);
+    const std::array<double, 4> vs = one_d ? std::array<double, 4>{r.v0, r.v0, r.v1, r.v1}
+                                           : cuts_around(r.v0, r.v1, v_min, v_max);
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) {
+            const ParamRect piece{us[i], us[i + 1], vs[j], vs[j + 1]};
+            if (!(piece.u1 > piece.u0) || !(piece.v1 > piece.v0)) continue;
+            std::vector<std::array<double, 2>> inside;
+            for (const auto& p : points)
+                if (p[0] >= piece.u0 && (p[0] < piece.u1 || (i == 2 && p[0] <= piece.u1)) && p[1] >= piece.v0 &&
+                    (p[1] < piece.v1 || (j == 2 && p[1] <= piece.v1)))
+                    inside.push_back(p);
+            // A piece that is the whole rectangle again cannot narrow: stop.
+            const bool same = piece.u0 == r.u0 && piece.u1 == r.u1 && piece.v0 == r.v0 && piece.v1 == r.v1;
+            guided(rr, piece, same ? std::vector<std::array<double, 2>>{} : inside, depth + 1, one_d, options, heap, sum);
+        }
+}
+
 }  // namespace
+
+GuidedIntegral integrate_around(const Binning& binning, const ParamRect& cell,
+                                std::span<const std::array<double, 2>> points, const BatchPdf& pdf,
+                                const QuadratureOptions& options) {
+    rule();
+    RegionRule rr(binning, pdf, options.float_noise);
+    std::vector<Region> heap;
+    GuidedIntegral sum;
+    guided(rr, cell, {points.begin(), points.end()}, 0, binning.parameter_dimension() == 1, options, heap, sum);
+    sum.evaluations = rr.evaluations;
+    return sum;
+}
 
 double cell_tolerance(double probability, const QuadratureOptions& options) {
     const double n = static_cast<double>(std::max<uint64_t>(options.sample_count, 1));
@@ -231,7 +483,7 @@ CellIntegrals integrate_rects(const Binning& binning, std::span<const ParamRect>
     std::vector<BlockStats> block_stats(blocks);
     const ParallelFor& run = parallel_for ? parallel_for : ParallelFor(serial_for);
     run(blocks, [&](std::size_t block) {
-        RegionRule rr(binning, pdf);
+        RegionRule rr(binning, pdf, options.float_noise);
         std::vector<Region> heap;
         heap.reserve(options.max_regions_per_cell + 2);
         const std::size_t end = std::min(cells, (block + 1) * kCellsPerBlock);
@@ -243,6 +495,7 @@ CellIntegrals integrate_rects(const Binning& binning, std::span<const ParamRect>
     CellIntegrals out;
     out.probability.resize(cells);
     out.error.resize(cells);
+    if (options.float_noise) out.float_noise.resize(cells);
     for (std::size_t c = 0; c < cells; ++c) {
         const CellOutcome& o = outcomes[c];
         out.probability[c] = o.value;
@@ -250,6 +503,11 @@ CellIntegrals integrate_rects(const Binning& binning, std::span<const ParamRect>
         out.total += o.value;
         out.error_total += o.error;
         out.unconverged_cells += o.converged ? 0 : 1;
+        out.verification_mismatches += o.mismatch ? 1 : 0;
+        if (options.float_noise) {
+            out.float_noise[c] = o.float_noise;
+            out.float_noise_total += o.float_noise;
+        }
         if (!(o.error_ratio <= out.worst_error_ratio)) out.worst_error_ratio = o.error_ratio;
     }
     for (const BlockStats& b : block_stats) {

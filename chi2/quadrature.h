@@ -19,9 +19,37 @@
 // estimate is too large is split in half across the parameter whose Gauss
 // substitution changed the result most (so a sharp peak draws refinement where
 // it is), globally adaptive per cell (largest error first).
+//
+// The error bound is a claim to verify, not a given. Gauss and Kronrod share
+// their nodes' symmetry: a jump along a cell's diagonal puts nodes exactly on
+// it, where both rules agree and both are wrong (a triangle's hypotenuse
+// x + y = 1 through the cells' corners: bound 500 times too small), and a
+// narrow peak can fall between the nodes of both. With `verify`, every cell is
+// integrated again on a split at irrational fractions of its sides, whose nodes
+// share no symmetry with the first rule's; where the two disagree by more than
+// both bounds together, a third split arbitrates (the median is kept) and the
+// cell's bound becomes the largest disagreement plus the largest bound.
+//
+// The float noise of a density. A warp's pdf is a float function of float
+// arguments: its value at a float point stands for the density over that
+// float's rounding interval only to within its change over one float step of
+// each argument (an intermediate rounded at the argument's scale, such as
+// 1 + g^2 against 2 g cos theta in Henyey-Greenstein's textbook form, errs by
+// at most that much). With `float_noise`, each cell carries the integral of
+// that change over its final regions (3-point Gauss nodes per parameter; each
+// argument moved one float up and down, the larger change of the two, so that
+// a float staircase counts its step; summed over the arguments, since the
+// roundings of a dot product's terms add up). A change of more than half the
+// density is a jump (a node on a support's edge), not rounding, and is not
+// counted there; instead, each final region whose values span more than a
+// factor 2 adds a bound on the mass within one float step of a jump across it
+// (RegionRule::jump_band): float points on either side of a jump stand for
+// half a step beyond it, which a tiny support (a sun, a sliver of light)
+// feels at 1e-3.
 #pragma once
 
 #include <cstddef>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -42,6 +70,8 @@ struct QuadratureOptions {
     uint64_t sample_count = 1'000'000;  ///< N of the accuracy rule
     double accuracy_fraction = 0.01;    ///< f of the accuracy rule
     std::size_t max_regions_per_cell = 1024;  ///< refinement budget of one cell
+    bool verify = false;       ///< integrate each cell again on an irrational split (see the top)
+    bool float_noise = false;  ///< estimate each cell's float noise of the density (see the top)
 };
 
 /// The accuracy rule's absolute error allowance for a cell of probability p.
@@ -49,9 +79,16 @@ double cell_tolerance(double probability, const QuadratureOptions& options);
 
 struct CellIntegrals {
     std::vector<double> probability;  ///< per cell: the density's integral over it
-    std::vector<double> error;        ///< per cell: the estimated absolute error
+    std::vector<double> error;        ///< per cell: the estimated absolute error (verified, with `verify`)
+    /// Per cell (with `float_noise`): the integral of the density's change over
+    /// one float step of its arguments; empty otherwise.
+    std::vector<double> float_noise;
     double total = 0.0;               ///< sum of probability (cell order)
     double error_total = 0.0;         ///< sum of error
+    double float_noise_total = 0.0;   ///< sum of float_noise
+    /// Cells whose second integration disagreed with the first by more than
+    /// both bounds (with `verify`): their bound was widened to cover it.
+    std::size_t verification_mismatches = 0;
     std::size_t unconverged_cells = 0;  ///< cells that ran out of refinement budget
     double worst_error_ratio = 0.0;   ///< max over cells of error / tolerance (<= 1: rule met)
     uint64_t evaluations = 0;         ///< density evaluations
@@ -69,5 +106,20 @@ CellIntegrals integrate_cells(const Binning& binning, const BatchPdf& pdf, const
 /// strips of a marginal CDF (chi2/marginal_cdf.h).
 CellIntegrals integrate_rects(const Binning& binning, std::span<const ParamRect> rects, const BatchPdf& pdf,
                               const QuadratureOptions& options, const ParallelFor& parallel_for = serial_for);
+
+/// One cell integrated again around points where the density is known to be
+/// positive (samples that landed in a cell the cubature integrated as zero: a
+/// sliver of support between its nodes). A piece that holds such points and
+/// integrates to zero is cut into 3 x 3 pieces at the points' range widened by
+/// its own width, and each piece is treated the same way (16 levels at most),
+/// so a sliver narrow in either parameter gets pieces of its own scale; the
+/// other pieces are integrated as usual.
+struct GuidedIntegral {
+    double value = 0.0, error = 0.0, float_noise = 0.0;
+    uint64_t evaluations = 0;
+};
+GuidedIntegral integrate_around(const Binning& binning, const ParamRect& cell,
+                                std::span<const std::array<double, 2>> points, const BatchPdf& pdf,
+                                const QuadratureOptions& options);
 
 }  // namespace warpcheck::chi2

@@ -25,13 +25,26 @@ namespace fs = std::filesystem;
     throw ReportError(fmt::format("cannot write {}: {}", path, reason));
 }
 
+fs::path folder_of(const fs::path& target) { return target.has_parent_path() ? target.parent_path() : fs::path("."); }
+
+/// The longest file name `folder` takes (NAME_MAX, 255 on Linux file systems).
+std::size_t longest_name(const fs::path& folder) {
+    const long most = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+    return most > 0 ? static_cast<std::size_t>(most) : 255;
+}
+
 /// A name in the target's folder that no other writer uses: hidden, with the
-/// process id and a per-process counter.
+/// process id and a per-process counter. The target's name is cut short where
+/// the whole would be longer than the folder allows, so that every name the
+/// folder takes has a temporary name.
 fs::path temporary_path_for(const fs::path& target) {
     static std::atomic<unsigned> counter{0};
-    fs::path folder = target.parent_path();
-    if (folder.empty()) folder = ".";
-    return folder / fmt::format(".{}.tmp-{}-{}", target.filename().string(), ::getpid(), counter++);
+    const fs::path folder = folder_of(target);
+    const std::string suffix = fmt::format(".tmp-{}-{}", ::getpid(), counter++);
+    std::string name = target.filename().string();
+    const std::size_t room = longest_name(folder) - 1 - suffix.size();
+    if (name.size() > room) name.resize(room);
+    return folder / ("." + name + suffix);
 }
 
 // The temporary file being written, for the signal handler: a fixed buffer,
@@ -96,19 +109,32 @@ std::string output_path_problem(const std::string& path) {
         if (S_ISDIR(st.st_mode)) return "it is a directory";
         if (!S_ISREG(st.st_mode)) return "it is not a regular file (a device, FIFO or socket)";
     }
-    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    const fs::path dir = folder_of(target);
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) return "folder " + dir.string() + " does not exist";
     if (::access(dir.c_str(), W_OK) != 0) return "folder " + dir.string() + " is not writable";
+    if (target.filename().string().size() > longest_name(dir))
+        return fmt::format("the name is longer than the {} bytes its folder allows", longest_name(dir));
+    // The write makes a temporary file beside the target first: make one now
+    // (and remove it), so that what would stop it shows before the run.
+    const fs::path probe = temporary_path_for(target);
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0) return fmt::format("cannot create a file in {}: {}", dir.string(), std::strerror(errno));
+    ::close(fd);
+    ::unlink(probe.c_str());
     return {};
 }
 
 void remove_temporary_files_on_signals() {
-    for (int sig : {SIGINT, SIGTERM}) {
-        struct sigaction action {};
+    // Every signal whose default action ends the process and that a user or a
+    // terminal sends: Ctrl-C, kill, a closed terminal, Ctrl-\. One that is
+    // ignored (nohup, a background job of a script) stays ignored.
+    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+        struct sigaction action {}, previous {};
         action.sa_handler = remove_temporary_and_reraise;
         sigemptyset(&action.sa_mask);
-        sigaction(sig, &action, nullptr);
+        if (sigaction(sig, &action, &previous) == 0 && previous.sa_handler == SIG_IGN)
+            sigaction(sig, &previous, nullptr);
     }
 }
 

@@ -23,8 +23,9 @@ std::string resolved_output_path(const std::string& path);
 /// and is writable; it is not a folder, device, FIFO or socket), else why not.
 std::string output_path_problem(const std::string& path);
 
-/// Installs SIGINT and SIGTERM handlers that remove the temporary file of a
-/// write in progress before the process ends as the signal says.
+/// Installs SIGINT, SIGTERM, SIGHUP and SIGQUIT handlers that remove the
+/// temporary file of a write in progress before the process ends as the signal
+/// says. A signal that is ignored (nohup) stays ignored.
 void remove_temporary_files_on_signals();
 
 }  // namespace warpcheck

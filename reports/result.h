@@ -1,14 +1,40 @@
 // The result model: plain data that every check produces and every output format
 // (terminal table, JSON, JUnit XML, HTML) is a view of. No behaviour lives here.
+//
+// Beside each type stands its description, `fields(visitor, value)`: every
+// member with its name, in the order the JSON report writes them. The JSON
+// writer, the `--merge` reader and the worker codec are all made from these
+// (reports/result_json.h), so a new member is one line here, next to it,
+// plus the schema (reports/schema); a member left out of its description fails
+// the test ResultModel.DescriptionsCoverEveryMember. A visitor `v` offers:
+//   v("name", member)                      one value: a number, string, bool, enum,
+//                                          optional number, or a list or described type
+//   v.group("name", [&](auto& g) {...})    a nested object of members
+//   v.optional_group("name", present, fn)  one written only when `present`
+//   v.named_numbers("name", list)          a list of (name, number) pairs written as
+//                                          one object; each element describes itself
+//                                          as v.entry(name, number)
 #pragma once
 
+#include <array>
+#include <concepts>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace warpcheck {
+
+/// T is the model type U, const or not: the descriptions serve writers and readers.
+template <class T, class U>
+concept Model = std::same_as<std::remove_const_t<T>, U>;
+
+/// The names JSON and the codec give an enum's values, in the order of the
+/// enumerators, and what one is called in an error message.
+template <class Enum>
+struct EnumNames;
 
 enum class Verdict {
     Pass,   ///< the check ran and the warp agrees with itself
@@ -30,11 +56,22 @@ constexpr std::string_view to_string(Verdict v) {
     return "?";
 }
 
+template <>
+struct EnumNames<Verdict> {
+    static constexpr std::string_view noun = "verdict";
+    static constexpr std::array<std::string_view, 4> names{"pass", "fail", "error", "not_applicable"};
+};
+
 /// A named number, e.g. {"p_value", 0.43} or {"max_error", 1.2e-7}.
 struct Figure {
     std::string name;
     double value = 0.0;
 };
+
+template <class V, Model<Figure> T>
+void fields(V& v, T& f) {
+    v.entry(f.name, f.value);
+}
 
 /// One curve or bar series of a plot.
 struct Series {
@@ -42,6 +79,13 @@ struct Series {
     std::vector<double> x;
     std::vector<double> y;
 };
+
+template <class V, Model<Series> T>
+void fields(V& v, T& s) {
+    v("label", s.label);
+    v("x", s.x);
+    v("y", s.y);
+}
 
 /// A 2D grid of values over [x_min, x_max] x [y_min, y_max]; values are row-major
 /// with row 0 at y_min. NaN marks a cell without a value (e.g. pooled away).
@@ -68,6 +112,26 @@ struct Heatmap {
     double min_color_limit = 0.0;
 };
 
+template <>
+struct EnumNames<Heatmap::ColorScale> {
+    static constexpr std::string_view noun = "colour scale";
+    static constexpr std::array<std::string_view, 3> names{"auto", "sequential", "diverging"};
+};
+
+template <class V, Model<Heatmap> T>
+void fields(V& v, T& h) {
+    v("label", h.label);
+    v("rows", h.rows);
+    v("cols", h.cols);
+    v("x_min", h.x_min);
+    v("x_max", h.x_max);
+    v("y_min", h.y_min);
+    v("y_max", h.y_max);
+    v("color_scale", h.color_scale);
+    v("min_color_limit", h.min_color_limit);
+    v("values", h.values);
+}
+
 struct Plot {
     enum class Kind { Lines, Bars, Points, Heatmaps };
     Kind kind = Kind::Lines;
@@ -80,6 +144,24 @@ struct Plot {
     std::vector<Heatmap> heatmaps;  ///< Heatmaps: shown side by side (e.g. observed, expected, residual)
 };
 
+template <>
+struct EnumNames<Plot::Kind> {
+    static constexpr std::string_view noun = "plot kind";
+    static constexpr std::array<std::string_view, 4> names{"lines", "bars", "points", "heatmaps"};
+};
+
+template <class V, Model<Plot> T>
+void fields(V& v, T& p) {
+    v("kind", p.kind);
+    v("title", p.title);
+    v("x_label", p.x_label);
+    v("y_label", p.y_label);
+    v("log_x", p.log_x);
+    v("log_y", p.log_y);
+    v("series", p.series);
+    v("heatmaps", p.heatmaps);
+}
+
 /// A small table of evidence, e.g. the worst inputs of a round trip.
 struct Table {
     std::string title;
@@ -87,11 +169,23 @@ struct Table {
     std::vector<std::vector<std::string>> rows;
 };
 
+template <class V, Model<Table> T>
+void fields(V& v, T& t) {
+    v("title", t.title);
+    v("columns", t.columns);
+    v("rows", t.rows);
+}
+
 /// Time spent in one part of a check's compute, e.g. "integration" or "sampling+binning".
 struct PhaseTime {
     std::string phase;
     double seconds = 0.0;
 };
+
+template <class V, Model<PhaseTime> T>
+void fields(V& v, T& p) {
+    v.entry(p.phase, p.seconds);
+}
 
 /// The outcome of one check on one warp case: one row of the pass/fail table.
 struct CheckResult {
@@ -120,6 +214,10 @@ struct CheckResult {
     /// (validate --timings); the rest of `seconds` is judging and evidence.
     std::vector<PhaseTime> phases;
     std::string rerun_command;     ///< the one command that reruns just this case and check
+    /// Set by `validate` on the rows it writes: a digest of this row, all but
+    /// its timings, and of its run's digest, which --merge checks
+    /// (validate/run_digest.h). Empty where none was made.
+    std::string digest;
 
     std::optional<double> figure(std::string_view name) const {
         for (const auto& f : figures)
@@ -127,6 +225,29 @@ struct CheckResult {
         return std::nullopt;
     }
 };
+
+template <class V, Model<CheckResult> T>
+void fields(V& v, T& r) {
+    v("case", r.case_name);
+    v("check", r.check_name);
+    v("verdict", r.verdict);
+    v("summary", r.summary);
+    v("message", r.message);
+    v("p_value", r.p_value);
+    v("level", r.level);
+    v.named_numbers("figures", r.figures);
+    v("samples", r.samples);
+    v("seconds", r.seconds);
+    v.named_numbers("phases", r.phases);
+    v.group("stream", [&](auto& g) {
+        g("seed", r.stream_seed);
+        g("sequence", r.stream_sequence);
+    });
+    v("rerun_command", r.rerun_command);
+    v("plots", r.plots);
+    v("tables", r.tables);
+    v("digest", r.digest);
+}
 
 /// What a whole run was: settings, environment and totals.
 struct RunInfo {
@@ -138,6 +259,10 @@ struct RunInfo {
     double family_alpha = 0.01;     ///< family-wise significance level asked for
     double per_test_alpha = 0.01;   ///< Šidák-corrected level applied to each statistical test
     int statistical_tests = 0;      ///< how many tests the correction covers
+    bool strict = false;            ///< --strict: no float-resolution allowance was granted
+    /// --max-float-bias: the factor past which an exhaustive sweep's float
+    /// counts fail; 0: bias is only reported.
+    double max_float_bias = 0.0;
     double wall_seconds = 0.0;
     std::string compiler;
     std::string machine;
@@ -151,11 +276,65 @@ struct RunInfo {
     unsigned shard_count = 0;
     /// The (case, check) jobs of the whole run, all shards together.
     uint64_t run_jobs = 0;
+    /// Set by `validate`: a digest of the settings that decide the figures and
+    /// verdicts and of the whole run's job list, the same in every shard of one
+    /// run, which --merge checks (validate/run_digest.h). Empty where none was made.
+    std::string digest;
 };
+
+/// The JSON document writes tool_version as its tool.version, the rest as its "run".
+template <class V, Model<RunInfo> T>
+void fields(V& v, T& i) {
+    v("tool_version", i.tool_version);
+    v("command_line", i.command_line);
+    v("seed", i.seed);
+    v("threads", i.threads);
+    v("samples", i.samples);
+    v("family_alpha", i.family_alpha);
+    v("per_test_alpha", i.per_test_alpha);
+    v("statistical_tests", i.statistical_tests);
+    v("strict", i.strict);
+    v("max_float_bias", i.max_float_bias);
+    v("wall_seconds", i.wall_seconds);
+    v("compiler", i.compiler);
+    v("machine", i.machine);
+    v("started_at", i.started_at);
+    v("abandoned_checks", i.abandoned_checks);
+    v("digest", i.digest);
+    v.optional_group("shard", i.shard_count > 0, [&](auto& g) {
+        g("index", i.shard_index);
+        g("count", i.shard_count);
+        g("jobs", i.run_jobs);
+    });
+}
+
+/// How many rows of each verdict a run has: the "totals" of the JSON document.
+struct Totals {
+    uint64_t checks = 0;
+    int passed = 0;
+    int failed = 0;
+    int errors = 0;
+    int not_applicable = 0;
+    bool operator==(const Totals&) const = default;
+};
+
+template <class V, Model<Totals> T>
+void fields(V& v, T& t) {
+    v("checks", t.checks);
+    v("passed", t.passed);
+    v("failed", t.failed);
+    v("errors", t.errors);
+    v("not_applicable", t.not_applicable);
+}
 
 struct RunResult {
     RunInfo info;
     std::vector<CheckResult> results;  ///< in registry order: case by case, check by check
+
+    Totals totals() const {
+        return {results.size(), count(Verdict::Pass), count(Verdict::Fail), count(Verdict::Error),
+                count(Verdict::NotApplicable)};
+    }
 
     int count(Verdict v) const {
         int n = 0;

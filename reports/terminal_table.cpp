@@ -283,7 +283,7 @@ void print_timings(const RunResult& run, std::ostream& out, std::size_t slowest)
     for (const CheckResult* r : rows) {
         std::string parts;
         for (const PhaseTime& p : r->phases) parts += fmt::format("{}{} {:.3f} s", parts.empty() ? "" : ", ", p.phase, p.seconds);
-        out << fmt::format("  {:>9.3f} s  {} {}{}\n", r->seconds, r->check_name, printable(r->case_name),
+        out << fmt::format("  {:>9.3f} s  {} {}{}\n", r->seconds, printable(r->check_name), printable(r->case_name),
                            parts.empty() ? "" : "  (" + parts + ")");
     }
 }

@@ -145,10 +145,43 @@ std::string fit_columns(std::string_view text, std::size_t columns) {
     return std::string(text);
 }
 
-std::string printable(std::string_view text) {
-    std::string out(text);
-    for (char& c : out)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+namespace {
+
+// The length of the valid UTF-8 sequence at the start of `text` that is not a
+// control character, or 0.
+std::size_t printable_sequence(std::string_view text) {
+    const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+    const unsigned char lead = byte(0);
+    if (lead >= 0x20 && lead < 0x7F) return 1;
+    const std::size_t length = lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
+                               : lead >= 0xF0 && lead <= 0xF4                 ? 4
+                                                                              : 0;
+    if (length == 0 || text.size() < length) return 0;
+    for (std::size_t i = 1; i < length; ++i)
+        if ((byte(i) & 0xC0) != 0x80) return 0;
+    if (lead == 0xC2 && byte(1) < 0xA0) return 0;   // U+0080..U+009F: C1 controls (CSI is U+009B)
+    if (lead == 0xE0 && byte(1) < 0xA0) return 0;   // overlong
+    if (lead == 0xED && byte(1) >= 0xA0) return 0;  // UTF-16 surrogates
+    if (lead == 0xF0 && byte(1) < 0x90) return 0;   // overlong
+    if (lead == 0xF4 && byte(1) >= 0x90) return 0;  // beyond U+10FFFF
+    return length;
+}
+
+}  // namespace
+
+std::string terminal_text(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    while (!text.empty()) {
+        std::size_t n = printable_sequence(text);
+        if (n > 0) {
+            out.append(text.substr(0, n));
+        } else {
+            n = 1;
+            out += fmt::format("\\x{:02x}", static_cast<unsigned char>(text.front()));
+        }
+        text.remove_prefix(n);
+    }
     return out;
 }
 

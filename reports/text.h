@@ -42,8 +42,14 @@ std::size_t display_width(std::string_view text);
 /// inside a UTF-8 sequence; a cut is marked by "…" in the last column.
 std::string fit_columns(std::string_view text, std::size_t columns);
 
-/// `text` with control characters (C0 and DEL; tab included) as '?', so that a
-/// case name or message cannot move the cursor or recolour a terminal.
-std::string printable(std::string_view text);
+/// `text` safe to print on a terminal: every byte that a terminal could take as
+/// a control (C0 controls and DEL, UTF-8-encoded C1 controls, bytes that are not
+/// valid UTF-8) becomes a visible \xNN escape, so that a case name or a message
+/// can neither move the cursor nor fake a row ('\n' and '\t' included). Other
+/// text, UTF-8 included, is unchanged.
+std::string terminal_text(std::string_view text);
+
+/// The same: what the table, the progress lines and the summaries print.
+inline std::string printable(std::string_view text) { return terminal_text(text); }
 
 }  // namespace warpcheck

@@ -13,6 +13,9 @@ namespace {
 void type_problems(const WarpCase& warp, std::vector<std::string>& out) {
     const double tol = warp.info().roundtrip_tolerance;
     if (!(tol > 0.0 && tol < 1.0)) out.push_back(fmt::format("roundtrip_tolerance {} is not in (0, 1)", tol));
+    const double support = warp.info().support_measure, domain = warp.domain().measure();
+    if (support != 0.0 && !(support > 0.0 && std::isfinite(support) && support <= domain))
+        out.push_back(fmt::format("support_measure {} is not in (0, {}] (the domain's measure)", support, domain));
 }
 
 /// One view against the warp's input and domain.

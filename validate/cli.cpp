@@ -11,9 +11,10 @@
 #include <cstdio>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -24,13 +25,14 @@
 
 #include "chi2/multiple_testing.h"
 #include "reports/atomic_file.h"
-#include "reports/json_input.h"
 #include "reports/outputs.h"
+#include "reports/text.h"
 #include "reports/render.h"
 #include "reports/progress.h"
 #include "reports/terminal_table.h"
 #include "validate/cli_input.h"
 #include "validate/merge.h"
+#include "validate/run_digest.h"
 #include "validate/runner.h"
 #include "warpcheck/version.h"
 
@@ -53,7 +55,8 @@ struct CliOptions {
     std::vector<std::string> checks;
     std::string report_path, json_path, junit_path;
     bool no_isolation = false;
-    uint64_t memory_limit_mib = 8192;
+    uint64_t memory_limit_mib = 0;
+    bool memory_limit_set = false;
     bool list_jobs = false;
     std::optional<std::string> shard_spec;
     Shard shard;
@@ -62,10 +65,13 @@ struct CliOptions {
 
 struct Output {
     const char* option;
-    const std::string* path;
+    const std::string* path;  ///< as given, for messages
     std::string (*render)(const RunResult&);
     const char* what;               ///< for "... written to PATH"
     bool only_on_failure = false;  ///< --report-on-failure: written only when a check failed or errored
+    /// Where the file goes: the path made absolute when the command starts, so
+    /// that a warp's chdir() in an in-process run does not move it.
+    std::string target{};
 };
 
 std::vector<Output> requested_outputs(const CliOptions& o) {
@@ -74,14 +80,26 @@ std::vector<Output> requested_outputs(const CliOptions& o) {
                               Output{"--report-on-failure", &o.report_on_failure_path, render_html, "HTML report", true},
                               Output{"--json", &o.json_path, render_json, "JSON results"},
                               Output{"--junit", &o.junit_path, render_junit, "JUnit XML"}})
-        if (!out.path->empty()) outputs.push_back(out);
+        if (!out.path->empty()) {
+            std::error_code ec;
+            const std::filesystem::path absolute = std::filesystem::absolute(*out.path, ec);
+            outputs.push_back(out);
+            outputs.back().target = *out.path == "-" || ec ? *out.path : absolute.string();
+        }
     return outputs;
+}
+
+/// Whether `a` and `b` both exist and are one file (through links, hard links too).
+bool same_file(const std::string& a, const std::string& b) {
+    struct stat sa {}, sb {};
+    return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev &&
+           sa.st_ino == sb.st_ino;
 }
 
 // Every output is probed before the run, so that a typo does not cost a whole
 // run: '-' (standard output) at most once, each path writable, no two outputs
-// landing in the same file. Returns the problem, or empty.
-std::string output_problem(const std::vector<Output>& outputs) {
+// landing in the same file, none of them a file to merge. Returns the problem, or empty.
+std::string output_problem(const std::vector<Output>& outputs, const std::vector<std::string>& inputs) {
     std::set<std::string> targets;
     int to_stdout = 0;
     for (const Output& out : outputs) {
@@ -93,6 +111,10 @@ std::string output_problem(const std::vector<Output>& outputs) {
             return fmt::format("cannot write '{}' ({}): {}", *out.path, out.option, why);
         if (!targets.insert(resolved_output_path(*out.path)).second)
             return fmt::format("'{}' ({}) is the same file as another output", *out.path, out.option);
+        for (const std::string& input : inputs)
+            if (same_file(*out.path, input))
+                return fmt::format("'{}' ({}) is the file to merge '{}': the merge would overwrite it", *out.path,
+                                   out.option, input);
     }
     return {};
 }
@@ -109,7 +131,7 @@ bool write_outputs(const std::vector<Output>& outputs, const RunResult& run, con
                 std::cout << out.render(run) << std::flush;
                 continue;
             }
-            write_file_atomically(*out.path, out.render(run));
+            write_file_atomically(out.target, out.render(run));
             notes << out.what << " written to " << *out.path << "\n";
         } catch (const std::exception& e) {
             std::cerr << program << ": " << out.option << ": " << e.what() << "\n";
@@ -155,18 +177,22 @@ CLI::Validator real_in(double min, double max, std::string unit = "") {
 
 void list_cases(const Registry& registry, const std::vector<Job>& jobs, std::ostream& out) {
     out << "Checks:\n";
-    for (const auto& c : registry.checks()) out << fmt::format("  {:<22} {}\n", c->name(), c->description());
+    for (const auto& c : registry.checks())
+        out << fmt::format("  {:<22} {}\n", terminal_text(c->name()), terminal_text(c->description()));
     out << "\nWarp cases (with the checks that apply):\n";
     const WarpCase* current = nullptr;
     for (const Job& job : jobs) {
         if (job.warp != current) {
             current = job.warp;
             const std::string flaw = registry.known_flaw(*current);
-            out << fmt::format("  {}\n      {}\n", current->name(), current->info().description);
-            if (!flaw.empty()) out << fmt::format("      known flaw (runs with --include-flawed): {}\n", flaw);
+            out << fmt::format("  {}\n      {}\n", terminal_text(current->name()),
+                               terminal_text(current->info().description));
+            if (!flaw.empty())
+                out << fmt::format("      known flaw (runs with --include-flawed): {}\n", terminal_text(flaw));
             out << "      checks:";
         }
-        out << " " << job.check->name() << (job.not_applicable.empty() ? "" : " (n/a: " + job.not_applicable + ")");
+        out << " " << terminal_text(job.check->name())
+            << (job.not_applicable.empty() ? "" : " (n/a: " + terminal_text(job.not_applicable) + ")");
         if (&job == &jobs.back() || (&job + 1)->warp != current) out << "\n";
     }
 }
@@ -177,7 +203,10 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
     app.add_option("--filter", o.filters,
                    "Run the cases whose name contains PATTERN (or matches it as a glob with * and ?; "
                    "a full case name selects exactly that case). Repeatable.")
-        ->type_name("PATTERN");
+        ->type_name("PATTERN")
+        // One pattern per --filter, taken whole: CLI11 would otherwise split a
+        // value in brackets at its commas ('[a=1,b=3]' as '[a=1' and 'b=3]').
+        ->allow_extra_args(false);
     app.add_option("--check", o.checks, "Run only this check (repeatable); see --list for names")->type_name("NAME");
     app.add_flag("--list", o.list, "List the checks and the warp cases (those selected by --filter), then exit");
     app.add_flag("--list-jobs", o.list_jobs,
@@ -240,13 +269,17 @@ void add_run_options(CLI::App& app, CliOptions& o) {
         ->each([&o](const std::string&) { o.run.time_budget_set = true; });
     app.add_flag("--no-isolation", o.no_isolation,
                  "Run the checks in this process instead of one worker process per check (for debuggers): a "
-                 "crash, exit() or endless loop in a warp then takes the whole run down");
+                 "crash or endless loop in a warp then takes the whole run down, and a warp's exit() ends it with "
+                 "status 1 and a message naming the check, without reports");
     app.add_option("--memory-limit", o.memory_limit_mib,
-                   fmt::format("Address space in MiB each check's worker may use, 0 (no limit) to {}; a check over "
-                               "it is an error. Not applied under AddressSanitizer", format_count(kMaxMemoryMib)))
+                   fmt::format("Address space in MiB that the run's worker processes may use together, 0 (no limit) "
+                               "to {}: the workers that run at once share it equally, and a check over its share is "
+                               "an error. Default: the machine's physical memory, at most 8192 MiB per worker. Not "
+                               "applied under AddressSanitizer",
+                               format_count(kMaxMemoryMib)))
         ->type_name("MIB")
         ->transform(count_in(0, kMaxMemoryMib, " (MiB)"))
-        ->capture_default_str();
+        ->each([&o](const std::string&) { o.memory_limit_set = true; });
     app.add_option("--max-float-bias", o.run.max_float_bias,
                    "Fail an exhaustive sweep when a float's count is off its ideal by more than this factor, 1 to 1e6")
         ->type_name("R")
@@ -323,7 +356,7 @@ std::string selection_problem(CliOptions& o, const Registry& registry) {
         const auto shard = parse_shard(*o.shard_spec);
         if (!shard)
             return fmt::format("--shard: '{}' is not a shard: give I/N, part I of N with 1 <= I <= N (e.g. 2/4)",
-                               *o.shard_spec);
+                               terminal_text(*o.shard_spec));
         o.shard = *shard;
     }
     for (const auto& name : o.checks)
@@ -335,6 +368,50 @@ std::string selection_problem(CliOptions& o, const Registry& registry) {
     }
     return {};
 }
+
+/// Whether all that was written to standard output got there; if not, says
+/// so on standard error. A pipe whose reader left early (`| head`) is the
+/// reader's choice, not an error: the exit status then still says what the
+/// checks said.
+bool stdout_written(const std::string& program, const char* what) {
+    errno = 0;
+    std::cout.flush();
+    const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+    const int error = errno;
+    struct stat out_stat {};
+    const bool to_pipe = fstat(STDOUT_FILENO, &out_stat) == 0 && S_ISFIFO(out_stat.st_mode);
+    if (!failed || to_pipe) return true;
+    std::cerr << program << ": could not write " << what << " to standard output"
+              << (error ? std::string(": ") + std::strerror(error) : std::string()) << "\n";
+    return false;
+}
+
+/// For an in-process run: what warps print to standard output goes to standard
+/// error while the checks run, so that standard output carries only the tool's
+/// own (a `--json -` stays parseable). Isolated runs capture it per job.
+class StdoutToStderr {
+public:
+    StdoutToStderr() {
+        std::cout.flush();
+        std::fflush(stdout);
+        saved_ = ::dup(STDOUT_FILENO);
+        if (saved_ >= 0) ::dup2(STDERR_FILENO, STDOUT_FILENO);
+    }
+    ~StdoutToStderr() {
+        std::cout.flush();
+        std::fflush(stdout);
+        if (saved_ < 0) return;
+        ::dup2(saved_, STDOUT_FILENO);
+        ::close(saved_);
+        std::cout.clear();  // a warp's failed write was not the tool's
+        std::clearerr(stdout);
+    }
+    StdoutToStderr(const StdoutToStderr&) = delete;
+    StdoutToStderr& operator=(const StdoutToStderr&) = delete;
+
+private:
+    int saved_ = -1;
+};
 
 /// The table's look: colour and width follow the terminal it goes to, if any.
 TableStyle table_style(const CliOptions& o, int fd) {
@@ -356,16 +433,8 @@ int present(const RunResult& run, const CliOptions& o, const std::vector<Output>
         std::any_of(outputs.begin(), outputs.end(), [](const Output& out) { return *out.path == "-"; });
     std::ostream& table = report_to_stdout ? std::cerr : std::cout;
     print_table(run, table, table_style(o, report_to_stdout ? STDERR_FILENO : STDOUT_FILENO));
-    if (!write_outputs(outputs, run, o.program_name, table)) return kExitUsage;
-    // A pipe whose reader left early (`| head`) is the reader's choice, not an
-    // error: the exit status then still says what the checks said.
-    std::cout.flush();
-    struct stat out_stat {};
-    const bool to_pipe = fstat(STDOUT_FILENO, &out_stat) == 0 && S_ISFIFO(out_stat.st_mode);
-    if (!to_pipe && (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout))) {
-        std::cerr << o.program_name << ": could not write the table to standard output\n";
+    if (!write_outputs(outputs, run, o.program_name, table) || !stdout_written(o.program_name, "the table"))
         return kExitUsage;
-    }
     return run.all_passed() ? kExitPass : kExitFail;
 }
 
@@ -380,19 +449,13 @@ int run_merge(const CliOptions& o, const std::vector<Output>& outputs, const std
     std::vector<ShardFile> shards;
     RunResult merged;
     try {
-        for (const std::string& path : o.merge_paths) {
-            std::ifstream in(path, std::ios::binary);
-            std::ostringstream text;
-            if (!(in && text << in.rdbuf())) throw MergeError(fmt::format("{}: cannot be read", path));
-            try {
-                shards.push_back({path, parse_json_results(text.str())});
-            } catch (const JsonInputError& e) {
-                throw MergeError(fmt::format("{}: {}", path, e.what()));
-            }
-        }
+        for (const std::string& path : o.merge_paths) shards.push_back(read_shard_file(path));
         merged = merge_shards(shards);
     } catch (const MergeError& e) {
         std::cerr << o.program_name << ": --merge: " << e.what() << "\n";
+        return kExitUsage;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "validate: --merge: out of memory reading the shards\n";
         return kExitUsage;
     }
     merged.info.command_line = command;
@@ -405,8 +468,9 @@ int run_selection(const CliOptions& o, const Registry& registry, const std::vect
     const std::vector<Job> all_jobs = select_jobs(registry, o.filters, o.checks, o.run);
     const std::vector<Job> jobs = shard_jobs(all_jobs, o.shard);
     if (o.list_jobs) {
-        for (const Job& job : jobs) std::cout << job.check->name() << '\t' << job.warp->name() << '\n';
-        return kExitPass;
+        for (const Job& job : jobs)
+            std::cout << terminal_text(job.check->name()) << '\t' << terminal_text(job.warp->name()) << '\n';
+        return stdout_written(o.program_name, "the job list") ? kExitPass : kExitUsage;
     }
     if (all_jobs.empty()) {
         std::cerr << o.program_name << ": the selected checks apply to none of the selected cases\n";
@@ -416,12 +480,16 @@ int run_selection(const CliOptions& o, const Registry& registry, const std::vect
     options.family_tests = statistical_tests(all_jobs);  // a shard is judged as part of the whole run
     Isolation isolation;
     isolation.enabled = !o.no_isolation;
-    isolation.memory_limit = o.memory_limit_mib << 20;
+    if (o.memory_limit_set) isolation.memory_budget = o.memory_limit_mib << 20;
     ProgressDisplay::Options progress;
     progress.mode = progress_mode(o.progress, isatty(STDERR_FILENO) == 1).value_or(ProgressMode::Off);
     progress.level = chi2::sidak_level(options.alpha, *options.family_tests);
     progress.program = o.program_name;
-    RunResult run = run_jobs(jobs, options, stderr_progress(std::move(progress)), isolation);
+    RunResult run = [&] {
+        std::optional<StdoutToStderr> warps_print_to_stderr;
+        if (o.no_isolation) warps_print_to_stderr.emplace();
+        return run_jobs(jobs, options, stderr_progress(std::move(progress)), isolation);
+    }();
     run.info.command_line = command;
     run.info.tool_version = WARPCHECK_VERSION;
     if (o.shard_spec) {
@@ -429,6 +497,9 @@ int run_selection(const CliOptions& o, const Registry& registry, const std::vect
         run.info.shard_count = o.shard.count;
         run.info.run_jobs = all_jobs.size();
     }
+    std::vector<JobName> whole_run;
+    for (const Job& job : all_jobs) whole_run.push_back({job.warp->name(), job.check->name()});
+    seal_run(run, whole_run);
     return present(run, o, outputs);
 }
 
@@ -480,6 +551,9 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     // A reader that closes early (`validate --all | head`) must not kill the run
     // before the reports are written; a failed write to stdout is reported below.
     std::signal(SIGPIPE, SIG_IGN);
+    // A report over the file size limit (ulimit -f) is a write error with a
+    // message, not a death that leaves the temporary file behind.
+    std::signal(SIGXFSZ, SIG_IGN);
     remove_temporary_files_on_signals();
     CliOptions o;
     if (argc > 0 && argv[0] && *argv[0]) {
@@ -497,7 +571,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     if (const auto done = parse(app, o, argc, argv)) return *done;
     const std::vector<Output> outputs = requested_outputs(o);
     std::string problem = selection_problem(o, registry);
-    if (problem.empty()) problem = output_problem(outputs);
+    if (problem.empty()) problem = output_problem(outputs, o.merge_paths);
     if (!problem.empty()) {
         std::cerr << o.program_name << ": " << problem << "\n";
         return kExitUsage;
@@ -507,7 +581,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
         RunOptions everything = o.run;  // list the known-flawed cases too, marked
         everything.include_flawed = true;
         list_cases(registry, select_jobs(registry, o.filters, o.checks, everything), std::cout);
-        return kExitPass;
+        return stdout_written(o.program_name, "the list") ? kExitPass : kExitUsage;
     }
     return run_selection(o, registry, outputs, command_line(argc, argv));
 }

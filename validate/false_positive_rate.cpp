@@ -94,7 +94,7 @@ constexpr PowerTarget kPowerTargets[] = {
     {"linear[a=1,b=3]", "unbinned", 0, "power_ad_tilt_eps"},
     {"linear[a=1,b=3]", "chi2", 0, "power_tilt_eps"},
     {"cosine_power_hemisphere[exponent=4]", "unbinned", 0, "power_ad_tilt_eps"},      // u.x -> cos theta
-    {"cosine_power_hemisphere[exponent=4]", "unbinned", 1, "power_kuiper_tilt_eps"},  // u.y -> phi
+    {"cosine_power_hemisphere[exponent=4]", "unbinned", 1, "power_ad_tilt_eps"},  // u.y -> phi (Kuiper and A^2)
     {"cosine_power_hemisphere[exponent=4]", "chi2", 0, "power_tilt_eps"},
 };
 

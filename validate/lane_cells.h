@@ -16,7 +16,7 @@
 namespace warpcheck {
 
 /// The cell of each lane's point (x, y, z as floats; z is 0 on the disk), or -1
-/// where the point is NaN or outside and Binning::bin must decide.
+/// where the point is NaN, outside or at a pole and Binning::bin must decide.
 WARPCHECK_LANE lanes::I64 lane_cells(const chi2::LanePlan& plan, lanes::F32 xf, lanes::F32 yf, lanes::F32 zf) {
     // Every condition is written inside its ?: so that the compiler keeps it a
     // vector mask (a comparison turned into an integer vector is done lane by lane).
@@ -46,8 +46,10 @@ WARPCHECK_LANE lanes::I64 lane_cells(const chi2::LanePlan& plan, lanes::F32 xf, 
     f = f >= 0.0 ? f : F64{};
     f = f >= static_cast<double>(plan.rows) ? F64{} + static_cast<double>(plan.rows - 1) : f;
     const I64 cell = __builtin_convertvector(f, I64) * plan.cols + col;
-    // Membership as Disk::bin_contains and SphericalCap::bin_contains (false for NaN).
+    // Membership as Disk::bin_contains and SphericalCap::bin_contains (false for
+    // NaN); a pole (x = y = 0) is left to Binning::bin, which sets it apart.
     I64 out = len2 <= plan.len2_hi ? cell : zero - 1;
+    out = hi > 0.0 ? out : zero - 1;
     if (plan.sphere) {
         // Both conditions in one mask: z - z_floor >= 0 exactly when z >= z_floor
         // (IEEE subtraction keeps the sign), and NaN fails either way.

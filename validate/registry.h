@@ -62,7 +62,7 @@ void register_builtin_cases(Registry& registry);
 void register_builtin_checks(Registry& registry);
 
 /// Idioms that fail by the rules (u * 2^-32 reaching 1.0, 23 random bits that
-/// never reach 1 - 2^-24, lerps reaching b or stepping down), registered and
+/// never reach 1 - 2^-24, lerps reaching b), registered and
 /// marked as known flaws. Not part of register_builtin_cases, so that every
 /// default check of every built-in case passes; validate adds them and runs
 /// them with --include-flawed or when one is named in full.

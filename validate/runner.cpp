@@ -1,6 +1,7 @@
 #include "validate/runner.h"
 
 #include <sys/utsname.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +9,9 @@
 #include <ctime>
 #include <atomic>
 #include <condition_variable>
+#include <cstdlib>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -17,6 +20,8 @@
 #include <fmt/format.h>
 
 #include "chi2/multiple_testing.h"
+#include "reports/terminal_table.h"
+#include "reports/text.h"
 #include "warpcheck/version.h"
 
 namespace warpcheck {
@@ -118,6 +123,18 @@ std::string utc_now() {
 }
 
 std::string shell_quote(const std::string& s) {
+    // A name a terminal would not show as it is (control bytes, invalid UTF-8)
+    // goes in bash's $'...' with every such byte as \xNN: the command then
+    // shows no raw control byte and still reruns the case.
+    if (terminal_text(s) != s) {
+        std::string q = "$'";
+        for (const char c : s) {
+            const auto byte = static_cast<unsigned char>(c);
+            if (byte < 0x20 || byte >= 0x7F) q += fmt::format("\\x{:02x}", byte);
+            else q += c == '\\' || c == '\'' ? std::string{'\\', c} : std::string(1, c);
+        }
+        return q + "'";
+    }
     std::string q = "'";
     for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
@@ -136,6 +153,62 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// An in-process run whose warp calls exit() or quick_exit() would end with the
+// warp's status (0 for exit(0)) and no report. While a run is on, a handler
+// says on standard error which check's warp it was and ends the process with
+// status 1 (kExitFail of validate/cli.h: a check could not run).
+struct ActiveRun {
+    const std::vector<Job>* jobs = nullptr;
+    const std::vector<std::atomic<bool>>* running = nullptr;
+};
+std::atomic<const ActiveRun*> g_active_run{nullptr};
+
+std::string exit_culprit(const ActiveRun& run) {
+    const void* tag = ThreadPool::current_tag();  // the job this thread works for (thread_pool.h)
+    const std::vector<Job>& jobs = *run.jobs;
+    const std::less<const void*> before;
+    if (tag && !before(tag, jobs.data()) && before(tag, jobs.data() + jobs.size())) {
+        const Job& job = *static_cast<const Job*>(tag);
+        return fmt::format("the warp of case {} called exit() during check {}", terminal_text(job.warp->name()),
+                           job.check->name());
+    }
+    std::string running;
+    for (std::size_t i = 0; i < jobs.size(); ++i)
+        if ((*run.running)[i])
+            running += fmt::format("\n  {} {}", jobs[i].check->name(), terminal_text(jobs[i].warp->name()));
+    return "exit() was called from a thread that runs no check; the checks running were:" + running;
+}
+
+extern "C" void report_exit_during_run() {
+    const ActiveRun* run = g_active_run.load();
+    if (!run) return;
+    const std::string text = fmt::format("validate: {}\nThe in-process run (--no-isolation) is abandoned and no "
+                                         "report is written; without --no-isolation that check is one ERROR row.\n",
+                                         exit_culprit(*run));
+    (void)!::write(STDERR_FILENO, text.data(), text.size());
+    ::_exit(1);
+}
+
+/// Reports an exit() during the run it spans (see above).
+class ExitDuringRunGuard {
+public:
+    ExitDuringRunGuard(const std::vector<Job>& jobs, const std::vector<std::atomic<bool>>& running)
+        : run_{&jobs, &running} {
+        static std::once_flag registered;
+        std::call_once(registered, [] {
+            std::atexit(report_exit_during_run);
+            std::at_quick_exit(report_exit_during_run);
+        });
+        g_active_run = &run_;
+    }
+    ~ExitDuringRunGuard() { g_active_run = nullptr; }
+    ExitDuringRunGuard(const ExitDuringRunGuard&) = delete;
+    ExitDuringRunGuard& operator=(const ExitDuringRunGuard&) = delete;
+
+private:
+    ActiveRun run_;
+};
+
 // Jobs on `threads` job threads of this process, which share one pool for the
 // work within a job, while the calling thread watches the clock. A check over
 // its budget can only be asked to stop (CheckContext::throw_if_cancelled) and
@@ -144,8 +217,9 @@ std::vector<CheckResult> run_jobs_in_process(const std::vector<Job>& jobs, const
                                              unsigned threads, const ProgressCallback& progress) {
     const std::size_t n = jobs.size();
     std::vector<CheckResult> results(n);
-    std::vector<std::atomic<bool>> cancel(n);
+    std::vector<std::atomic<bool>> cancel(n), active(n);
     std::vector<std::optional<Clock::time_point>> running(n);
+    const ExitDuringRunGuard exit_guard(jobs, active);
     std::mutex mutex;
     std::condition_variable changed;
     std::size_t next = 0, done = 0;
@@ -160,7 +234,11 @@ std::vector<CheckResult> run_jobs_in_process(const std::vector<Job>& jobs, const
                 running[i] = Clock::now();
             }
             const CheckContext ctx(options, pool, job_stream(*jobs[i].warp, *jobs[i].check, options.seed), &cancel[i]);
+            active[i] = true;
+            ThreadPool::set_current_tag(&jobs[i]);
             CheckResult r = run_job_here(jobs[i], ctx);
+            ThreadPool::set_current_tag(nullptr);
+            active[i] = false;
             std::lock_guard lock(mutex);
             r.seconds = std::chrono::duration<double>(Clock::now() - *running[i]).count();
             if (cancel[i]) {
@@ -202,6 +280,8 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
     run.info.seed = options.seed;
     run.info.threads = threads;
     run.info.samples = options.samples;
+    run.info.strict = options.strict;
+    run.info.max_float_bias = options.max_float_bias;
     run.info.compiler = WARPCHECK_COMPILER;
     run.info.machine = machine_description();
     run.info.started_at = utc_now();

@@ -4,11 +4,19 @@
 
 namespace warpcheck {
 
+namespace {
+thread_local const void* t_current_tag = nullptr;
+}  // namespace
+
+const void* ThreadPool::current_tag() { return t_current_tag; }
+void ThreadPool::set_current_tag(const void* tag) { t_current_tag = tag; }
+
 // One parallel_for call. Indices are handed out through `next`; `finished`
 // counts completed calls so the owner knows when the loop is over.
 struct ThreadPool::Loop {
     std::size_t n = 0;
     const std::function<void(std::size_t)>* body = nullptr;
+    const void* tag = nullptr;  // the starting thread's current_tag()
     std::atomic<std::size_t> next{0};
     std::atomic<std::size_t> finished{0};
     std::mutex error_mutex;
@@ -42,12 +50,15 @@ bool ThreadPool::run_one(Loop& loop) {
         skip = loop.error != nullptr;
     }
     if (!skip) {
+        const void* own_tag = t_current_tag;
+        t_current_tag = loop.tag;
         try {
             (*loop.body)(i);
         } catch (...) {
             std::lock_guard lock(loop.error_mutex);
             if (!loop.error) loop.error = std::current_exception();
         }
+        t_current_tag = own_tag;
     }
     if (loop.finished.fetch_add(1, std::memory_order_acq_rel) + 1 == loop.n) {
         std::lock_guard lock(loop.done_mutex);
@@ -84,6 +95,7 @@ void ThreadPool::parallel_for(std::size_t n, const std::function<void(std::size_
     auto loop = std::make_shared<Loop>();
     loop->n = n;
     loop->body = &body;
+    loop->tag = t_current_tag;
     {
         std::lock_guard lock(mutex_);
         loops_.push_back(loop);

@@ -37,6 +37,14 @@ public:
     /// (the remaining indices are skipped).
     void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body);
 
+    /// The tag of the work this thread is doing: what the thread set with
+    /// set_current_tag, or on a pool thread running part of a loop, the tag of
+    /// the thread that started the loop. So code on any thread can tell whose
+    /// work it runs (the runner tags each job, and a warp that calls exit()
+    /// from a pool thread is still named).
+    static const void* current_tag();
+    static void set_current_tag(const void* tag);
+
     /// parallel_for as the project's one loop type, for code that takes an
     /// executor (chi2, the exhaustive sweeps). The pool must outlive it.
     chi2::ParallelFor executor() {

@@ -139,7 +139,15 @@ struct WarpCaseInfo {
     /// Whether the inverse is expected to be exact on raw bits (invert returns
     /// the first input that maps to x) rather than within a tolerance.
     bool exact_inverse = false;
-    /// Cells of the chi-square test; zero fields take the domain's defaults (chi2/binning.h).
+    /// Cells of the chi-square test; zero fields take the domain's defaults
+    /// (chi2/binning.h: 32 x 32 on 2D domains, 200 on lines). Rarely needed:
+    /// the check merges cells that are narrower than the float resolution
+    /// allows, integrates jumps with a verified bound and finds support its
+    /// first nodes miss around the samples, so a discontinuous density or a
+    /// small light needs no finer grid. A finer grid sees local deviations
+    /// better and broad ones worse (Binning's constructor says why ~1000
+    /// cells); a half-line's or the real line's length scale and centre are
+    /// chosen from the warp unless set here.
     chi2::BinResolution chi2_resolution{};
     /// The case's monotone 1D views, each tabulated by the tabulated check and,
     /// on 2D domains, tested by the unbinned check: e.g. cos theta and the
@@ -150,6 +158,12 @@ struct WarpCaseInfo {
     /// Whether sample is the inversion method (Inversion): by default measured
     /// where no view claims it.
     Inversion inversion = Inversion::Measure;
+    /// The measure (length, area, solid angle) of the set where the density is
+    /// positive, when that is less than the domain's: a tabulated sampler with
+    /// empty buckets, an environment map with empty rows. 0: not declared.
+    /// inverse_pdf_mean tests E[1/pdf], which is this measure, against it
+    /// (undeclared: one-sided, against the domain's measure).
+    double support_measure = 0.0;
     /// Discrete cases only: the number of categories; sample returns an index
     /// of 0 .. categories - 1 and the pdf is a pmf over them. A discrete case
     /// leaves `domain` unset (0 here means a continuous case).

@@ -100,3 +100,44 @@ TEST(MarginalCdf, RowsAtTheOtherMarginalsQuantilesFindANarrowBand) {
 
 }  // namespace
 }  // namespace warpcheck::chi2
+namespace warpcheck::chi2 {
+namespace {
+
+/// 1.9 and 0.1 in turn on `bins` equal bins of [0, 1] (normalised for an even count).
+BatchPdf alternating(int bins) {
+    return [bins](std::span<const DomainPoint> p, std::span<double> f) {
+        for (std::size_t i = 0; i < p.size(); ++i) f[i] = static_cast<long>(p[i][0] * bins) % 2 == 0 ? 1.9 : 0.1;
+    };
+}
+double alternating_cdf(int bins, double x) {
+    const double k = std::floor(x * bins), start = k / bins;
+    const double pairs = std::floor(k / 2.0) * 2.0 / bins;
+    return static_cast<long>(k) % 2 == 1 ? pairs + 1.9 / bins + 0.1 * (x - start) : pairs + 1.9 * (x - start);
+}
+
+TEST(MarginalCdf, ProbesMeasureStructureWithinStripsThatStripPairsCannotSee) {
+    // 2 to 8 bins per strip: every strip holds the same mass, so the pair
+    // estimate is 0, while the CDF's true error is up to 4.4e-4. The probes
+    // inside the strips see it, and the stated error covers the true one.
+    for (int bins : {2048, 3072, 4096, 6144, 8192}) {
+        CdfRefinement r;
+        r.interpolation_target = kTarget;
+        r.max_strips = 8 * kStrips;
+        const MarginalCdf m = tabulate_marginal_cdf(strip_binning(Domain::interval(0.0, 1.0), 0, kStrips), 0,
+                                                    alternating(bins), quadrature(), serial_for, r);
+        double worst = 0.0;
+        for (int k = 0; k <= 1'000'000; ++k)
+            worst = std::max(worst, std::abs(m(k * 1e-6) - alternating_cdf(bins, k * 1e-6)));
+        std::printf("%d bins: true error %.3g, probes saw %.3g, stated %.3g\n", bins, worst,
+                    m.probed_interpolation_error, m.error_bound());
+        EXPECT_LE(worst, m.error_bound()) << bins;
+        EXPECT_GE(m.probed_interpolation_error, 0.75 * worst) << bins;
+        if (bins == 2048) {
+            EXPECT_GT(worst, 4e-4);
+            EXPECT_EQ(m.interpolation_error, kProbeMargin * m.probed_interpolation_error);  // the probes decided
+        }
+    }
+}
+
+}  // namespace
+}  // namespace warpcheck::chi2

@@ -117,6 +117,22 @@ TEST(AtomicFile, SpecialFilesAreRefused) {
     EXPECT_EQ(entries(dir.path()), 1u);
 }
 
+// Every name the folder takes can be written, its temporary name too (a name
+// of 243 to 255 bytes once passed the check and failed after the run), and a
+// longer one is refused by the check, before any run.
+TEST(AtomicFile, LongNamesAreWrittenOrRefusedByTheCheck) {
+    TempDir dir;
+    for (std::size_t length : {200u, 243u, 250u, 255u}) {
+        const std::string path = dir.file(std::string(length - 5, 'a') + ".json");
+        EXPECT_EQ(output_path_problem(path), "") << length;
+        EXPECT_NO_THROW(write_file_atomically(path, "x")) << length;
+        EXPECT_EQ(read_file(path), "x") << length;
+        fs::remove(path);
+    }
+    EXPECT_THAT(output_path_problem(dir.file(std::string(256, 'a'))), HasSubstr("longer than the 255 bytes"));
+    EXPECT_EQ(entries(dir.path()), 0u) << "the check leaves no file behind";
+}
+
 TEST(AtomicFile, EmptyPathIsAnError) { EXPECT_THROW(write_file_atomically("", "x"), ReportError); }
 
 }  // namespace

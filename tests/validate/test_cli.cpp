@@ -184,6 +184,32 @@ TEST(CliOutputs, DashIsStandardOutput) {
     EXPECT_EQ(r.output.rfind("{", 0), 0u) << "only the JSON on stdout: " << r.output.substr(0, 200);
 }
 
+// Output names are checked as the write will use them: one of 250 bytes (whose
+// temporary name is longer than 255) is written, one of 256 is refused before
+// the run. Both once failed after the run.
+TEST(CliOutputs, LongNamesAreWrittenOrRefusedBeforeTheRun) {
+    Scratch scratch;
+    const std::string fits = scratch / (std::string(245, 'a') + ".json");
+    const auto written = run_validate(std::string(kQuickRun) + "--json " + fits);
+    EXPECT_EQ(written.status, 0) << written.output;
+    EXPECT_NE(contents(fits).find("\"results\""), std::string::npos);
+    const auto refused = run_validate(std::string(kQuickRun) + "--json " + scratch / std::string(256, 'b'));
+    EXPECT_EQ(refused.status, 2) << refused.output;
+    EXPECT_NE(refused.output.find("the name is longer than the 255 bytes"), std::string::npos) << refused.output;
+    EXPECT_EQ(refused.output.find("roundtrip"), std::string::npos) << "no check ran: " << refused.output;
+}
+
+// The run's settings are in its JSON, --strict among them.
+TEST(CliOutputs, JsonRecordsStrict) {
+    for (const char* strict : {"", "--strict "}) {
+        const auto r = testing::run_command("{ " + std::string(WARPCHECK_VALIDATE_EXE) + " " + kQuickRun + strict +
+                                            "--json - 2>/dev/null; }");
+        ASSERT_EQ(r.status, 0) << r.output;
+        EXPECT_NE(r.output.find(*strict ? "\"strict\":true" : "\"strict\":false"), std::string::npos)
+            << strict << r.output.substr(0, 400);
+    }
+}
+
 TEST(Cli, HelpAndVersionExitZero) {
     const auto help = run_validate("--help");
     EXPECT_EQ(help.status, 0);

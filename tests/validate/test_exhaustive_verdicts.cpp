@@ -8,6 +8,7 @@
 #include <string>
 
 #include "sampling/float_bits.h"
+#include "sampling/interval.h"
 #include "support/builtin_case.h"
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
@@ -91,7 +92,9 @@ TEST(ExhaustiveRoundtripVerdicts, LinearWarpWithZeroDensityAtItsStartPasses) {
 TEST(ExhaustiveRoundtripVerdicts, LerpWobbleOfAFewUlpsPassesAndIsReported) {
     SKIP_FULL_FLOAT_SWEEP();
     // (1 - t) a + t b steps back by 1-2 ulps here and there; the old rule failed it.
-    const CheckResult r = roundtrip(builtin_case("lerp_blend[a=1,b=3]"));
+    // (Built here: being no flaw, lerp_blend[a=1,b=3] left the flawed catalogue in issue 22.)
+    const CheckResult r = roundtrip(*make_warp_case(info_1d("lerp_blend", chi2::Domain::interval(1, 3)),
+                                                    LerpInterval(1.0f, 3.0f, LerpInterval::Form::Blend)));
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     EXPECT_GT(*r.figure("steps_back"), 0.0);
     EXPECT_GE(*r.figure("max_step_back_ulps"), 1.0);

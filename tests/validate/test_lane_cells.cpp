@@ -1,6 +1,6 @@
 // lane_cells (validate/lane_cells.h) against Binning::bin, point by point: every point the
 // lanes classify must be in the cell bin() puts it in, and the points they
-// leave (-1) must be the ones bin() counts as NaN or outside.
+// leave (-1) must be the ones bin() counts as NaN, outside or at a pole.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -80,7 +80,9 @@ std::size_t disagreements(const Binning& b, const LanePlan& plan) {
             b.bin(std::span<const Point>(&p, 1), h);
             if (cells[l] < 0) {
                 ++unclassified;
-                bad += h.nan + h.outside != 1;
+                uint64_t poles = 0;
+                for (uint64_t c : h.poles) poles += c;
+                bad += h.nan + h.outside + poles != 1;
             } else {
                 bad += h.counts[static_cast<std::size_t>(cells[l])] != 1;
             }

@@ -62,7 +62,7 @@ TEST(PowerSimulation, StatedPowerOnTheHemisphereIsMet) {
     const auto& warp = testing::builtin_case("cosine_power_hemisphere[exponent=4]");
     const auto unbinned = make_unbinned_check();
     EXPECT_TRUE(consistent_with(
-        simulate_stated_power(warp, *unbinned, 1, "power_kuiper_tilt_eps", reduced_options(), kRuns), 0.9));
+        simulate_stated_power(warp, *unbinned, 1, "power_ad_tilt_eps", reduced_options(), kRuns), 0.9));
     const auto chi2 = make_chi2_check();
     EXPECT_TRUE(
         consistent_with(simulate_stated_power(warp, *chi2, 0, "power_tilt_eps", reduced_options(), kRuns), 0.9));

@@ -17,8 +17,10 @@
 #include "chi2/local_residual.h"
 #include "chi2/multiple_testing.h"
 #include "sampling/hemisphere.h"
+#include "sampling/sphere.h"
 #include "validate/check.h"
 #include "validate/checks/checks.h"
+#include "validate/runner.h"
 #include "validate/thread_pool.h"
 #include "validate/warp_case.h"
 
@@ -119,15 +121,119 @@ TEST(LocalResidual, CatchesAOneCellExcessThatPearsonMisses) {
 }
 
 TEST(UnbinnedCheck, SameFiguresForAnyThreadCount) {
-    const auto warp = cosine_claiming_power(0.0);
+    // An ordinary case and one tested against float bands (a tiny cone).
+    const auto cone = make_warp_case(
+        {"tiny_cone", {}, "", InputKind::Uniform2D, chi2::Domain::spherical_cap(0.99999)},
+        [](Point2f u) { return UniformCone(0.99999f).sample(u); }, [](Vector3f v) { return UniformCone(0.99999f).pdf(v); });
+    const auto cosine = cosine_claiming_power(0.0);
     const auto check = make_unbinned_check();
-    const CheckResult one = run_check(*check, *warp, 3, 1);
-    const CheckResult four = run_check(*check, *warp, 3, 4);
-    ASSERT_EQ(one.figures.size(), four.figures.size());
-    for (std::size_t i = 0; i < one.figures.size(); ++i) {
-        EXPECT_EQ(one.figures[i].name, four.figures[i].name);
-        EXPECT_EQ(std::bit_cast<uint64_t>(one.figures[i].value), std::bit_cast<uint64_t>(four.figures[i].value))
-            << one.figures[i].name;
+    for (const WarpCase* warp : {cosine.get(), cone.get()}) {
+        const CheckResult one = run_check(*check, *warp, 3, 1);
+        const CheckResult four = run_check(*check, *warp, 3, 4);
+        ASSERT_EQ(one.figures.size(), four.figures.size());
+        for (std::size_t i = 0; i < one.figures.size(); ++i) {
+            EXPECT_EQ(one.figures[i].name, four.figures[i].name);
+            EXPECT_EQ(std::bit_cast<uint64_t>(one.figures[i].value), std::bit_cast<uint64_t>(four.figures[i].value))
+                << one.figures[i].name;
+        }
+        EXPECT_EQ(one.summary, four.summary);
+    }
+}
+
+/// A hemisphere warp whose samples are NaN everywhere; its pdf NaN too, or
+/// the uniform hemisphere's.
+std::unique_ptr<WarpCase> nan_warp(const std::string& name, bool nan_pdf) {
+    WarpCaseInfo info;
+    info.family = name;
+    info.domain = chi2::Domain::hemisphere();
+    const float nan = std::nanf("");
+    return make_warp_case(
+        info, [nan](Point2f) { return Vector3f{nan, nan, nan}; },
+        [nan_pdf](Vector3f) { return nan_pdf ? std::nan("") : 1.0 / (2.0 * std::numbers::pi); });
+}
+
+TEST(UnbinnedVerdicts, EverySampleNaNIsAFailureThatSaysSo) {
+    // Today: an ERROR "the density integrates to nan" (NaN pdf), or a FAIL
+    // "p-value is NaN". Either way it must be a FAIL that names the cause,
+    // in the check and through the runner.
+    const auto check = make_unbinned_check();
+    for (bool nan_pdf : {true, false}) {
+        const auto warp = nan_warp(nan_pdf ? "all_nan" : "all_nan_samples", nan_pdf);
+        const CheckResult r = run_check(*check, *warp, 1);
+        EXPECT_EQ(r.verdict, Verdict::Fail) << r.summary;
+        EXPECT_EQ(r.summary, "every sample has a NaN coordinate");
+        EXPECT_NE(r.message.find("every sample has a NaN coordinate"), std::string::npos) << r.message;
+        EXPECT_FALSE(r.p_value.has_value());
+        RunOptions options;
+        options.samples = 100'000;
+        options.threads = 2;
+        const RunResult run = run_jobs({{warp.get(), check.get()}}, options);
+        EXPECT_EQ(run.results[0].verdict, Verdict::Fail);
+        EXPECT_EQ(run.results[0].summary, "every sample has a NaN coordinate");
+    }
+    // Some NaN samples among good ones are left out, counted, and carried into the band.
+    const auto warp = make_warp_case(
+        {"some_nan", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+        [](Point2f u) {
+            const float nan = std::nanf("");
+            return u.x < 0.01f ? Vector3f{nan, nan, nan} : UniformHemisphere{}.sample(u);
+        },
+        [](Vector3f v) { return UniformHemisphere{}.pdf(v); });
+    const CheckResult r = run_check(*check, *warp, 1);
+    EXPECT_GT(figure(r, "cos_theta_nan"), 9000.0);
+    EXPECT_NE(r.summary.find("samples without a cos theta left out"), std::string::npos) << r.summary;
+}
+
+/// The uniform hemisphere whose pdf claims 1.5 times its density: each
+/// marginal's tabulated total is 1.5, an error of 0.5 in the CDF, so no
+/// marginal can be tested (whether the pdf integrates to 1 is the chi2
+/// check's rule).
+std::unique_ptr<WarpCase> overweight_hemisphere() {
+    return make_warp_case({"overweight_hemisphere", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+                          [](Point2f u) { return UniformHemisphere{}.sample(u); },
+                          [](Vector3f v) { return 1.5 * UniformHemisphere{}.pdf(v); });
+}
+
+TEST(UnbinnedVerdicts, NothingTestedIsNotApplicableAndStillCountsInTheFamily) {
+    // Today: "pass" with the summary "not applicable: ...".
+    const auto check = make_unbinned_check();
+    const auto warp = overweight_hemisphere();
+    const CheckResult r = run_check(*check, *warp, 1);
+    EXPECT_EQ(r.verdict, Verdict::NotApplicable);
+    EXPECT_EQ(r.summary.rfind("not applicable: no marginal CDF accurate enough; untested: phi (CDF error 0.5)", 0), 0u)
+        << r.summary;
+    EXPECT_FALSE(r.p_value.has_value());
+    EXPECT_EQ(figure(r, "untested_marginals"), 2.0);
+    // The family is fixed before the results: the n/a row still counts, and
+    // the other row is judged at the level of two tests.
+    const auto fine = cosine_claiming_power(0.0);
+    RunOptions options;
+    options.samples = 100'000;
+    options.threads = 2;
+    const RunResult run = run_jobs({{warp.get(), check.get()}, {fine.get(), check.get()}}, options);
+    EXPECT_EQ(run.results[0].verdict, Verdict::NotApplicable);
+    EXPECT_FALSE(run.results[0].level.has_value());
+    EXPECT_EQ(run.results[1].verdict, Verdict::Pass);
+    EXPECT_EQ(run.info.statistical_tests, 2);
+    EXPECT_EQ(run.results[1].level, chi2::sidak_level(0.01, 2));
+    EXPECT_TRUE(run.all_passed());
+}
+
+TEST(UnbinnedVerdicts, NoRowSaysNaN) {
+    // Passing (exact, banded, with samples left out), not applicable, and
+    // failing-by-p-value rows alike write every number out, never "nan".
+    const auto check = make_unbinned_check();
+    const auto cone = make_warp_case(
+        {"tiny_cone", {}, "", InputKind::Uniform2D, chi2::Domain::spherical_cap(0.99999)},
+        [](Point2f u) { return UniformCone(0.99999f).sample(u); }, [](Vector3f v) { return UniformCone(0.99999f).pdf(v); });
+    const std::unique_ptr<WarpCase> warps[] = {cosine_claiming_power(0.0), cosine_claiming_power(0.2),
+                                               overweight_hemisphere()};
+    for (const WarpCase* w : {warps[0].get(), warps[1].get(), warps[2].get(), cone.get()}) {
+        const CheckResult r = run_check(*check, *w, 2);
+        EXPECT_TRUE(r.verdict == Verdict::Pass || r.verdict == Verdict::NotApplicable) << w->name();
+        std::string text = r.summary + " " + r.message;
+        std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+        EXPECT_EQ(text.find("nan"), std::string::npos) << w->name() << ": " << r.summary;
     }
 }
 

@@ -167,13 +167,19 @@ void register_flawed_interval_cases(Registry& registry) {
                                   "23 bits as the significand of [1,2), minus 1: the 2^-23 grid", UnitFloatBits{}),
                "never reaches 1 - 2^-24: ideal mass 2^-24 left out, more than one input's 2^-32 (issue 12)");
     // a + t (b - a) reaches b on all three (1, 64 and 3 values of t); the blend
-    // steps down on all three and reaches b on the last two.
+    // (1 - t) a + t b reaches b on the last two (66 and 2 values of t). The
+    // blend also steps down, by an ulp or two, on all three, which is no flaw:
+    // it is pbrt's Lerp, which nobody calls monotone in float, and it does not
+    // claim to be, so the exhaustive check reports its steps and fails only an
+    // output outside [a, b). On [1, 3] it stays inside: it passes every check,
+    // so it is not in this catalogue of failing idioms (it was, until issue 22).
     const std::pair<double, double> intervals[] = {{1.0, 3.0}, {100.0, 101.0}, {0.2, 0.3}};
-    for (const auto form : {LerpInterval::Form::Offset, LerpInterval::Form::Blend})
-        for (const auto& [a, b] : intervals)
-            add_flawed(lerp_case(form, a, b), form == LerpInterval::Form::Offset
-                                                  ? "rounding makes a + t (b - a) reach b, outside [a, b)"
-                                                  : "(1 - t) a + t b steps down, and can reach b");
+    for (const auto& [a, b] : intervals)
+        add_flawed(lerp_case(LerpInterval::Form::Offset, a, b), "rounding makes a + t (b - a) reach b, outside [a, b)");
+    for (const auto& [a, b] : {intervals[1], intervals[2]})
+        add_flawed(lerp_case(LerpInterval::Form::Blend, a, b),
+                   "rounding makes (1 - t) a + t b reach b, outside [a, b) (its steps down are reported, not failed: "
+                   "it does not claim to be monotone)");
 }
 
 }  // namespace warpcheck

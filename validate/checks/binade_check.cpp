@@ -11,23 +11,33 @@
 // full binade). A 257/255 alternation moves 1/512 of the mass from odd to even,
 // which at 2^23 samples in [0.5,1) is 11 standard deviations: hence at least
 // 2^24 samples, whatever --samples says below that.
-// Both statistics come from the engine (chi2/pearson.h): no degrees of freedom
-// gives a NaN p-value. A test without degrees of freedom (an interval inside
-// one binade) is left out of the combination; with none left the check's p is
-// NaN and fails. The two Pearson statistics give two p-values; the check reports
-// p = min(1, 2 min(p_mass, p_parity)) (Bonferroni over its two tests), which
-// the runner compares with its Šidák-corrected level.
+// Resolution (issue 22, chi2/resolution_test.h): the binary digits of
+// (x - a) / (b - a) down to 2^-20 must be fair coins. Tested where the halves
+// of every digit are unions of whole floats, so that the exact sampler (every
+// float with its spacing's probability) is exactly uniform in them: b - a a
+// power of two, a a multiple of (b - a) 2^-20, and no float spacing of [a, b]
+// wider than that ([0,1), [-3,5), [-1,-0.75) qualify; [0.001,1000) does not).
+// A sampler that keeps 16 random bits fails it, whatever its binade masses.
+// Both Pearson statistics come from the engine (chi2/pearson.h): no degrees of
+// freedom gives a NaN p-value. A test without degrees of freedom (an interval
+// inside one binade has no mass test) is left out of the combination and of
+// the row; with none left the check tested nothing and is n/a. The check
+// reports p = min(1, k min(p_i)) over its k tests (Bonferroni), which the
+// runner compares with its Šidák-corrected level.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "chi2/multiple_testing.h"
 #include "chi2/pearson.h"
 #include "chi2/power.h"
+#include "chi2/resolution_test.h"
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/input_chunks.h"
@@ -94,20 +104,38 @@ std::string cell_label(int key) {
 
 // ---- compute: counts per binade, a map-reduce over input chunks ----
 
+// The digits of (x - a) / (b - a) tested for resolution (see the top), or 0.
+int resolution_digits(double a, double b) {
+    const double width = b - a;
+    int exponent = 0;
+    if (!(std::frexp(width, &exponent) == 0.5)) return 0;  // not a power of two
+    const double grid = std::ldexp(width, -chi2::kResolutionDigits);
+    const auto largest = static_cast<float>(std::max(std::abs(a), std::abs(b)));
+    const double spacing = static_cast<double>(next_float_up(largest)) - static_cast<double>(largest);
+    return std::fmod(a, grid) == 0.0 && spacing <= grid ? chi2::kResolutionDigits : 0;
+}
+
 struct Counts {
     std::vector<uint64_t> in, even;
-    uint64_t outside = 0;
+    uint64_t outside = 0, nan = 0;  ///< outside [a, b) (NaN included), and NaN
+    chi2::DigitCounts digits;
 };
 
-// Adds every sample to its binade in `cells`; returns the samples outside [a,b).
-uint64_t count_binades(const WarpCase& warp, const CheckContext& ctx, uint64_t samples, std::vector<Cell>& cells) {
+/// Samples that are not in [a, b), and how many of them are NaN.
+struct Strays {
+    uint64_t outside = 0, nan = 0;
+};
+
+// Adds every sample to its binade in `cells` and (where digits > 0) its digits
+// to `digits`; returns the samples outside [a,b).
+Strays count_binades(const WarpCase& warp, const CheckContext& ctx, uint64_t samples, std::vector<Cell>& cells,
+                       chi2::DigitCounts& digits, bool test_digits) {
     const double a = warp.domain().a(), b = warp.domain().b();
     std::map<int, std::size_t> index;
     for (std::size_t k = 0; k < cells.size(); ++k) index[cells[k].key] = k;
     auto chunks = map_input_chunks<Counts>(ctx, warp.input_kind(), samples, false, [&](std::size_t, auto inputs) {
-        Counts c;
-        c.in.assign(cells.size(), 0);
-        c.even.assign(cells.size(), 0);
+        Counts c{std::vector<uint64_t>(cells.size(), 0), std::vector<uint64_t>(cells.size(), 0), 0, 0,
+                 chi2::DigitCounts(digits.digits())};
         std::vector<WarpOutput> x(inputs.size());
         warp.sample(inputs, x);
         for (const WarpOutput& o : x) {
@@ -115,22 +143,28 @@ uint64_t count_binades(const WarpCase& warp, const CheckContext& ctx, uint64_t s
             const auto it = (v >= a && v < b) ? index.find(binade_key(v)) : index.end();
             if (it == index.end()) {
                 ++c.outside;
+                c.nan += std::isnan(v);
                 continue;
             }
             ++c.in[it->second];
             c.even[it->second] += (float_to_bits(v) & 1u) == 0;
+            // x - a is exact in double unless |x| < 2^-29 |a|, which can move x
+            // across the grid line at 0 only from within 2^-53 |a| of it.
+            if (test_digits) c.digits.add((static_cast<double>(v) - a) / (b - a));
         }
         return c;
     });
-    uint64_t outside = 0;
+    Strays strays;
     for (const Counts& c : chunks) {  // chunk order: the sums do not depend on the threads
-        outside += c.outside;
+        strays.outside += c.outside;
+        strays.nan += c.nan;
+        digits.merge(c.digits);
         for (std::size_t k = 0; k < c.in.size(); ++k) {
             cells[k].observed += c.in[k];
             cells[k].even += c.even[k];
         }
     }
-    return outside;
+    return strays;
 }
 
 // ---- the two statistics ----
@@ -146,7 +180,13 @@ struct ParityTest {
 struct Tests {
     chi2::PearsonResult mass;
     ParityTest parity;
-    double p_value = 0.0;  ///< Bonferroni over the two; NaN if either is NaN
+    chi2::ResolutionTest resolution;  ///< digits 0: not tested
+    int tests = 0;         ///< how many of the three have something to test
+    double p_value = 0.0;  ///< Bonferroni over those; NaN if any is NaN or none is left
+
+    bool mass_tested() const { return mass.dof >= 1; }
+    bool parity_tested() const { return parity.cells >= 1; }
+    bool resolution_tested() const { return resolution.digits >= 1; }
 };
 
 chi2::PearsonResult test_mass(const std::vector<Cell>& cells, double n) {
@@ -179,17 +219,20 @@ ParityTest test_parity(const std::vector<Cell>& cells) {
     return t;
 }
 
-// Bonferroni over the tests that have degrees of freedom. A test without any
-// (an interval inside one binade has a single mass term) tests nothing and is
-// left out, visibly (its p-value stays NaN in the figures); with neither left
-// the combined p is NaN, which fails.
-Tests test_binades(const std::vector<Cell>& cells, double n) {
+// Bonferroni over the tests that have something to test. A test without any
+// (an interval inside one binade has a single mass term) is left out, visibly
+// (its p-value stays NaN in the figures); with none left the combined p is NaN
+// and the check reports that it tested nothing.
+Tests test_binades(const std::vector<Cell>& cells, double n, const chi2::DigitCounts& digits, bool test_digits) {
     Tests t;
     t.mass = test_mass(cells, n);
     t.parity = test_parity(cells);
+    if (test_digits) t.resolution = chi2::resolution_test(digits);
     std::vector<double> ps;
-    if (t.mass.dof >= 1) ps.push_back(t.mass.p_value);
-    if (t.parity.cells >= 1) ps.push_back(t.parity.p_value);
+    if (t.mass_tested()) ps.push_back(t.mass.p_value);
+    if (t.parity_tested()) ps.push_back(t.parity.p_value);
+    if (t.resolution_tested()) ps.push_back(t.resolution.p_value);
+    t.tests = static_cast<int>(ps.size());
     t.p_value = ps.empty() ? std::numeric_limits<double>::quiet_NaN() : 1.0;
     for (double p : ps) {
         if (std::isnan(p)) {  // a NaN test makes a NaN check: it fails
@@ -203,13 +246,25 @@ Tests test_binades(const std::vector<Cell>& cells, double n) {
 
 // ---- judge ----
 
+// "binade mass 0.3, parity 0.7, resolution 0.5 (2^-20)": the tests that ran, no NaN.
+std::string tests_text(const Tests& t) {
+    std::vector<std::string> parts;
+    if (t.mass_tested()) parts.push_back(fmt::format("binade mass {:.3g}", t.mass.p_value));
+    if (t.parity_tested()) parts.push_back(fmt::format("parity {:.3g}", t.parity.p_value));
+    if (t.resolution_tested())
+        parts.push_back(fmt::format("resolution {:.3g} (2^-{})", t.resolution.p_value, t.resolution.digits));
+    std::string text;
+    for (const std::string& part : parts) text += (text.empty() ? "" : ", ") + part;
+    if (!t.mass_tested()) text += "; one binade: no mass test";
+    return text;
+}
+
 // Fail on any sample outside [a,b): no tolerance, a float sampler must stay in
 // its interval exactly. Otherwise the runner compares p with its corrected level
-// (a NaN p, no degrees of freedom, fails there).
-CheckResult judge(const Tests& t, uint64_t outside, uint64_t samples, double a, double b) {
+// (a NaN p fails there); a check with nothing to test is n/a.
+CheckResult judge(const Tests& t, const Strays& strays, uint64_t samples, double a, double b) {
     CheckResult r;
     r.samples = samples;
-    r.p_value = t.p_value;
     r.figures = {{"samples", static_cast<double>(samples)},
                  {"mass_chi2", t.mass.statistic},
                  {"mass_dof", static_cast<double>(t.mass.dof)},
@@ -217,31 +272,52 @@ CheckResult judge(const Tests& t, uint64_t outside, uint64_t samples, double a, 
                  {"parity_chi2", t.parity.statistic},
                  {"parity_dof", static_cast<double>(t.parity.cells)},
                  {"parity_p_value", t.parity.p_value},
-                 {"outside", static_cast<double>(outside)}};
-    r.summary = fmt::format("p {:.3g} (binade mass {:.3g}, parity {:.3g})", t.p_value, t.mass.p_value,
-                            t.parity.p_value);
-    if (outside > 0) {
+                 {"resolution_digits", static_cast<double>(t.resolution.digits)},
+                 {"resolution_p_value", t.resolution_tested() ? t.resolution.p_value : std::nan("")},
+                 {"resolution_worst_digit", static_cast<double>(t.resolution.worst_digit)},
+                 {"outside", static_cast<double>(strays.outside)},
+                 {"nan_samples", static_cast<double>(strays.nan)}};
+    if (strays.outside > 0) {
         r.verdict = Verdict::Fail;
-        r.message = fmt::format("{} of {} samples lie outside [{}, {})", outside, samples, a, b);
+        std::vector<std::string> why;
+        if (strays.nan > 0) why.push_back(fmt::format("{} of {} samples are NaN", strays.nan, samples));
+        if (strays.outside > strays.nan)
+            why.push_back(
+                fmt::format("{} of {} samples lie outside [{}, {})", strays.outside - strays.nan, samples, a, b));
+        r.message = why.size() == 1 ? why[0] : why[0] + "; " + why[1];
+        r.summary = r.message;
         return r;
     }
+    if (t.tests == 0) {
+        r.verdict = Verdict::NotApplicable;
+        r.summary = "not applicable: the interval holds one binade and too few floats for the parity and "
+                    "resolution tests";
+        return r;
+    }
+    r.p_value = t.p_value;
+    r.summary = fmt::format("p {:.3g} ({})", t.p_value, tests_text(t));
     r.verdict = Verdict::Pass;  // the runner applies the corrected level to p
-    if (t.parity.cells > 0 && t.parity.p_value < 1e-3)
+    if (t.parity_tested() && t.parity.p_value < 1e-3)
         r.message = fmt::format("largest parity deviation in binade {}", cell_label(t.parity.worst_key));
+    if (t.resolution_tested() && t.resolution.p_value < 1e-3)
+        r.message += fmt::format("{}digit {} of (x - a) / (b - a) set in {:.4g} of the samples",
+                                 r.message.empty() ? "" : "; ", t.resolution.worst_digit,
+                                 t.resolution.worst_ones_fraction);
     return r;
 }
 
 // ---- stated power (chi2/power.h's noncentral chi-square) ----
 
 // The deviations each test detects with 90% probability at its share of the
-// planned level (Bonferroni over the tests with degrees of freedom): for the
-// mass test, a relative excess d of the largest binade's mass, the rest scaled
-// down to keep the total (noncentrality N p d^2 / (1 - p)); for the parity
-// test, a shift s of every tested binade's even share f (noncentrality
-// sum_b n_b s^2 / (f (1 - f))).
+// planned level (Bonferroni over the tests that ran): for the mass test, a
+// relative excess d of the largest binade's mass, the rest scaled down to keep
+// the total (noncentrality N p d^2 / (1 - p)); for the parity test, a shift s
+// of every tested binade's even share f (noncentrality sum_b n_b s^2 /
+// (f (1 - f))); for the resolution test, a shift s of one digit's share of
+// ones from 1/2 at its Sidak share of the test's level (noncentrality 4 N s^2).
+// A test that did not run has no power (NaN in the figures, absent from the row).
 void add_power(CheckResult& r, const Tests& t, const std::vector<Cell>& cells, double n, const RunOptions& options) {
-    const int tests = (t.mass.dof >= 1) + (t.parity.cells >= 1);
-    const double level = power_level(options, 1) / std::max(tests, 1);
+    const double level = power_level(options, 1) / std::max(t.tests, 1);
     double largest = 0.0, parity_weight = 0.0;
     for (const Cell& c : cells) {
         largest = std::max(largest, c.probability);
@@ -250,14 +326,26 @@ void add_power(CheckResult& r, const Tests& t, const std::vector<Cell>& cells, d
             parity_weight += n * c.probability / (c.even_fraction * (1.0 - c.even_fraction));
     }
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const double mass_lambda = chi2::pearson_noncentrality_for_power(t.mass.dof, level);
-    const double parity_lambda = chi2::pearson_noncentrality_for_power(t.parity.cells, level);
-    const double mass = t.mass.dof >= 1 ? std::sqrt(mass_lambda * (1.0 - largest) / (n * largest)) : nan;
-    const double parity = t.parity.cells >= 1 ? std::sqrt(parity_lambda / parity_weight) : nan;
+    const double mass = t.mass_tested() ? std::sqrt(chi2::pearson_noncentrality_for_power(t.mass.dof, level) *
+                                                    (1.0 - largest) / (n * largest))
+                                        : nan;
+    const double parity =
+        t.parity_tested() ? std::sqrt(chi2::pearson_noncentrality_for_power(t.parity.cells, level) / parity_weight)
+                          : nan;
+    const double digit_level = chi2::sidak_level(level, std::max(t.resolution.digits, 1));
+    const double digit = t.resolution_tested()
+                             ? std::sqrt(chi2::pearson_noncentrality_for_power(1.0, digit_level) / (4.0 * n))
+                             : nan;
     r.figures.insert(r.figures.end(), {{"power_mass_relative_excess", mass},
                                        {"power_parity_shift", parity},
+                                       {"power_digit_shift", digit},
                                        {"power_level", level}});
-    r.summary += fmt::format("; 90% power: largest binade {:+.2g}, even share {:+.2g}", mass, parity);
+    if (r.verdict != Verdict::Pass) return;  // a failure's row names the failure, an n/a row why
+    std::string text;
+    if (t.mass_tested()) text += fmt::format("largest binade {:+.2g}", mass);
+    if (t.parity_tested()) text += fmt::format("{}even share {:+.2g}", text.empty() ? "" : ", ", parity);
+    if (t.resolution_tested()) text += fmt::format("{}a digit's share {:+.2g}", text.empty() ? "" : ", ", digit);
+    if (!text.empty()) r.summary += "; 90% power: " + text;
 }
 
 // ---- evidence: a table of binades and a plot of observed / expected ----
@@ -293,8 +381,8 @@ public:
     std::string name() const override { return "binade"; }
     bool statistical() const override { return true; }
     std::string description() const override {
-        return "64-bit float samplers: chi-square of the mass per binade and of the significand parity within "
-               "binades (at least 2^24 samples)";
+        return "64-bit float samplers: chi-square of the mass per binade, of the significand parity within "
+               "binades and of the binary digits down to 2^-20 (at least 2^24 samples)";
     }
     bool applies_to(const WarpCase& warp) const override {
         return warp.input_kind() == InputKind::Bits64 && warp.domain().is<chi2::Interval>();
@@ -304,9 +392,11 @@ public:
         const double a = warp.domain().a(), b = warp.domain().b();
         std::vector<Cell> cells = cells_of(a, b);
         const uint64_t samples = std::max(ctx.options().samples, kMinSamples);
-        const uint64_t outside = count_binades(warp, ctx, samples, cells);
-        const Tests tests = test_binades(cells, static_cast<double>(samples));
-        CheckResult r = judge(tests, outside, samples, a, b);
+        const bool test_digits = resolution_digits(a, b) > 0;
+        chi2::DigitCounts digits;
+        const Strays strays = count_binades(warp, ctx, samples, cells, digits, test_digits);
+        const Tests tests = test_binades(cells, static_cast<double>(samples), digits, test_digits);
+        CheckResult r = judge(tests, strays, samples, a, b);
         add_power(r, tests, cells, static_cast<double>(samples), ctx.options());
         add_evidence(r, cells, static_cast<double>(samples));
         return r;

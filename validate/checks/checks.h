@@ -40,7 +40,8 @@ std::unique_ptr<Check> make_weight_check();
 /// "weight_mean": the mean weight against the integral of eval over the domain (t-test).
 std::unique_ptr<Check> make_weight_mean_check();
 /// "inverse_pdf_mean": for a sampler that returns its pdf and has no pdf
-/// function, the mean of 1/pdf against the domain's measure (t-test).
+/// function, the mean of 1/pdf against the declared support's measure
+/// (WarpCaseInfo::support_measure), or one-sided against the domain's (t-test).
 std::unique_ptr<Check> make_inverse_pdf_mean_check();
 /// "pmf": a discrete case's pmf is finite, non-negative and sums to 1.
 std::unique_ptr<Check> make_pmf_check();

@@ -117,6 +117,7 @@ Table worst_cells(const chi2::Binning& b, const chi2::Chi2Outcome& o) {
 chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const chi2::Binning& binning) {
     chi2::Chi2Options options;
     options.resolution = binning.resolution();
+    options.strict = ctx.options().strict;
     const InputKind kind = warp.input_kind();
     const chi2::BatchPdf pdf = [&](std::span<const chi2::DomainPoint> points, std::span<double> density) {
         std::vector<WarpOutput> x(points.size());
@@ -141,10 +142,37 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
                                ctx.executor());
 }
 
+/// The largest band relative to its cell's Poisson deviation, sqrt(E).
+double band_in_sd(const chi2::Chi2Outcome& o) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < o.band.size(); ++i)
+        if (o.expected[i] > 0.0) worst = std::max(worst, o.band[i] / std::sqrt(o.expected[i]));
+    return worst;
+}
+
+/// What the row says besides the statistic: what the expected counts are
+/// uncertain by, and any allowance the verdict used.
+std::string notes(const chi2::Chi2Outcome& o) {
+    std::string s;
+    const double band = band_in_sd(o);
+    // A noncentrality of 1 moves the critical value by about 1, a fiftieth of
+    // the statistic's deviation at 1000 cells: below that the bands cost no
+    // power worth a word; above it, say what the expected counts are uncertain by.
+    if (o.pearson.noncentrality >= 1.0)
+        s += fmt::format("; expected counts uncertain by up to {:.2g} sd (float resolution, quadrature): noncentrality {:.3g}",
+                         band, o.pearson.noncentrality);
+    if (o.float_noise_used)
+        s += fmt::format("; integral {:.7g}: off 1 by the pdf's float rounding (allowance {:.2g})", o.integrals.total,
+                         o.float_noise_allowance);
+    if (o.reintegrated_cells > 0) s += fmt::format("; {} cells integrated again around samples", o.reintegrated_cells);
+    return s;
+}
+
 /// The judge part. The rules that need no significance level (NaN or outside
-/// samples, hits where the density integrates to zero, a density that does not
-/// integrate to 1 within the quadrature's error bound) are decided by the
-/// engine and fail here; the p-value is judged by the runner at the
+/// samples, hits where the density is zero, a density that does not
+/// integrate to 1 within the quadrature's verified bound and its float noise)
+/// are decided by the engine and fail here, before any error (an error must
+/// never hide a failure); the p-value is judged by the runner at the
 /// Sidak-corrected level of the whole run (its size: the family-wise alpha).
 void judge(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual& local) {
     // Pearson's statistic and the largest cell residual, one p-value (chi2/min_p.h).
@@ -152,14 +180,16 @@ void judge(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual
     if (o.dof() >= 1)
         r.p_value = chi2::weighted_min_p({o.p_value(), local_p}, {1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare});
     r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}; 90% power: tilt {:.2g}", o.statistic(), o.dof(),
-                            o.p_value(), r.figure("power_tilt_eps").value_or(std::nan("")));
-    if (!o.errors.empty()) {
-        r.verdict = Verdict::Error;
-        r.message = join_reasons(o.errors);
-    } else if (!o.failures.empty()) {
+                            o.p_value(), r.figure("power_tilt_eps").value_or(std::nan(""))) +
+                notes(o);
+    if (!o.failures.empty()) {
         r.verdict = Verdict::Fail;
         r.summary = o.failures.front();
         r.message = join_reasons(o.failures);
+        r.p_value.reset();  // decided without a level: no p-value line for it
+    } else if (!o.errors.empty()) {
+        r.verdict = Verdict::Error;
+        r.message = join_reasons(o.errors);
     } else {
         r.verdict = Verdict::Pass;
     }
@@ -178,6 +208,14 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
         {"integral_tolerance", o.integral_tolerance},
         {"integration_error", o.integrals.error_total},
         {"integration_error_ratio", o.integrals.worst_error_ratio},
+        {"unconverged_cells", static_cast<double>(o.integrals.unconverged_cells)},
+        {"verification_mismatches", static_cast<double>(o.integrals.verification_mismatches)},
+        {"reintegrated_cells", static_cast<double>(o.reintegrated_cells)},
+        {"float_noise", o.integrals.float_noise_total},
+        {"float_noise_allowance", o.float_noise_allowance},
+        {"edge_band", o.edge_band_total},
+        {"band_max_sd", band_in_sd(o)},
+        {"noncentrality", o.pearson.noncentrality},
         {"quadrature_evaluations", static_cast<double>(o.integrals.evaluations)},
         {"cells", static_cast<double>(binning.cell_count())},
         {"cells_used", static_cast<double>(o.pearson.terms)},
@@ -219,6 +257,16 @@ void add_plots(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& 
     r.tables.push_back(worst_cells(binning, o));
 }
 
+/// The largest cell residual against the same bands as Pearson's statistic.
+chi2::LocalResidual local_residual(const chi2::Chi2Outcome& o, uint64_t samples) {
+    std::vector<double> lower(o.expected.size()), upper(o.expected.size());
+    for (std::size_t i = 0; i < lower.size(); ++i) {
+        lower[i] = std::max(0.0, o.expected[i] - o.band[i]);
+        upper[i] = o.expected[i] + o.band[i];
+    }
+    return chi2::largest_cell_residual(o.histogram.counts, o.expected, lower, upper, samples);
+}
+
 class Chi2Check final : public Check {
 public:
     std::string name() const override { return "chi2"; }
@@ -229,11 +277,11 @@ public:
     bool applies_to(const WarpCase& warp) const override { return warp.has_pdf() && !warp.is_discrete(); }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
-        const chi2::Binning binning(warp.domain(), line_resolution(warp));
+        const chi2::Binning binning(warp.domain(), chi2::float_aware_resolution(warp.domain(), line_resolution(warp),
+                                                                               ctx.options().samples));
         const chi2::Chi2Outcome outcome = compute(warp, ctx, binning);
         CheckResult r;
-        const chi2::LocalResidual local =
-            chi2::largest_cell_residual(outcome.histogram.counts, outcome.expected, ctx.options().samples);
+        const chi2::LocalResidual local = local_residual(outcome, ctx.options().samples);
         add_figures(r, outcome, local, binning, ctx.options());
         judge(r, outcome, local);
         add_plots(r, outcome, binning, warp.name());

@@ -7,14 +7,32 @@
 // cos/sin of a radius-1 point); directions may differ from unit length by 1e-5
 // (float normalisation loses a few ulps; a missing normalisation is off by far
 // more); intervals and boxes are closed and exact. A zero density is accepted
-// only for samples exactly on the domain's boundary, where a density can vanish
+// for samples exactly on the domain's boundary, where a density can vanish
 // legitimately (the cosine hemisphere at z = 0, reached from u.x = 0); how many
 // were accepted that way is reported.
+//
+// Supports smaller than the domain (a triangle light inside its bounding
+// square, an environment map's empty rows): a correct warp's float arithmetic
+// rounds some samples a few ulps across the edge of its density's support,
+// where its float pdf is 0. Such a sample is accepted (and counted) when the
+// pdf is positive at a point within kProbeUlps float spacings of the domain's
+// extent of it in every coordinate, probed along every sign direction (3^d - 1
+// of them, so that a straight edge is crossed towards the support whichever
+// way it runs). A warp that puts real mass where its pdf is 0 has samples there
+// far from any positive pdf, which still fail; and the accepted random samples
+// may number at most a Poisson bound (see kRoundedAcrossEdgeRate), edge inputs
+// counted apart. --strict withholds the allowance: every such sample fails.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <vector>
 
 #include <fmt/format.h>
 
+#include "chi2/count_bounds.h"
+#include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/formatting.h"
@@ -23,6 +41,27 @@
 namespace warpcheck {
 namespace {
 
+/// How far a zero-pdf sample's neighbours are probed: kProbeUlps float
+/// spacings at the domain's extent (Domain::slack's scale) in each coordinate.
+/// A float warp computes a coordinate from terms as large as the domain (a
+/// lerp over it, (bucket + du) / n) in a handful of roundings of half such a
+/// spacing each, so 4 is the error of about eight of them; a sample a wrong
+/// warp puts where its pdf is 0 lies, but for a set of vanishing measure,
+/// further from any positive pdf.
+constexpr int kProbeUlps = 4;
+/// The per-sample rate of samples a correct warp rounds across its support's
+/// edge, for the count bound: only samples whose exact value lies within a
+/// few spacings of an edge can be rounded across it, a band that holds about
+/// 2^-24 of the samples per spacing along an edge that is the image of a line
+/// of inputs (2^-24 is the largest input spacing). 2^-16 allows 256 such
+/// line-spacings, a table with dozens of boundaries between empty and full
+/// rows, while a warp that puts mass on an edge itself (clamping onto it)
+/// puts a fixed fraction of its samples there. 15 per 10^6 samples.
+constexpr double kRoundedAcrossEdgeRate = 0x1p-16;
+/// The chance that a correct warp's count exceeds the bound (the round trip's
+/// other-preimage bound uses the same): far below any run's level.
+constexpr double kBoundTail = 1e-9;
+
 struct Example {
     WarpInput input;
     WarpOutput output{};
@@ -30,14 +69,19 @@ struct Example {
 };
 
 struct Stats {
-    uint64_t count = 0;
+    uint64_t count = 0, random_count = 0;
     Tally<Example> nan_sample, outside, bad_pdf, zero_pdf;
     uint64_t boundary_zero = 0;
+    Tally<Example> rounded_random;  ///< pdf 0 within kProbeUlps of a positive pdf: random inputs
+    uint64_t rounded_edges = 0;     ///< the same among the edge inputs
     double min_pdf = std::numeric_limits<double>::infinity();
     double max_pdf = 0.0;
 
     void merge(const Stats& o) {
         count += o.count;
+        random_count += o.random_count;
+        rounded_random.merge(o.rounded_random);
+        rounded_edges += o.rounded_edges;
         nan_sample.merge(o.nan_sample);
         outside.merge(o.outside);
         bad_pdf.merge(o.bad_pdf);
@@ -54,31 +98,94 @@ bool finite_point(const chi2::DomainPoint& p, int dims) {
     return true;
 }
 
-/// Sorts one sample into the kinds of violation (or none).
-void classify(Stats& s, const chi2::Domain& domain, uint64_t index, const Example& e) {
+/// Sorts one sample into the kinds of violation (or none); a zero pdf inside
+/// the domain and off its boundary is left to the probe (returns true).
+bool classify(Stats& s, const chi2::Domain& domain, uint64_t index, const Example& e) {
     ++s.count;
     const chi2::DomainPoint p = to_domain_point(e.output);
     if (!finite_point(p, domain.point_dimension())) {
         s.nan_sample.add(index, e);
-        return;
+        return false;
     }
-    if (!domain.contains(p)) s.outside.add(index, e);
+    const bool inside = domain.contains(p);
+    if (!inside) s.outside.add(index, e);
     if (!std::isfinite(e.pdf) || e.pdf < 0.0) {
         s.bad_pdf.add(index, e);
     } else if (e.pdf == 0.0) {
         if (domain.on_boundary(p)) ++s.boundary_zero;
+        else if (inside) return true;
         else s.zero_pdf.add(index, e);
     } else {
         s.min_pdf = std::min(s.min_pdf, e.pdf);
         s.max_pdf = std::max(s.max_pdf, e.pdf);
     }
+    return false;
+}
+
+/// The probe's step in each coordinate: the float spacing just below the
+/// domain's extent, the largest a coordinate inside it has (or at the
+/// coordinate itself, where that is larger: unbounded lines).
+std::array<float, 3> probe_steps(const chi2::Domain& domain, const WarpOutput& x) {
+    const chi2::Domain::Slack slack = domain.slack();
+    const double extent[3] = {slack.x, slack.y, slack.x};  // a direction's z has the x slack (unit scale)
+    std::array<float, 3> step{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const float scale = std::max(std::abs(x[k]), static_cast<float>(extent[k] / chi2::kDomainTolerance));
+        step[k] = scale - next_float_down(scale);
+    }
+    return step;
+}
+
+/// The points probed for a positive pdf around x: 1 to kProbeUlps steps
+/// along each of the 3^d - 1 sign directions of its d coordinates.
+std::vector<WarpOutput> probe_points(const chi2::Domain& domain, const WarpOutput& x) {
+    const int dims = domain.point_dimension();
+    const std::array<float, 3> step = probe_steps(domain, x);
+    std::vector<WarpOutput> out;
+    int directions = 1;
+    for (int k = 0; k < dims; ++k) directions *= 3;
+    for (int d = 0; d < directions; ++d) {
+        std::array<int, 3> sign{};
+        for (int k = 0, rest = d; k < dims; ++k, rest /= 3) sign[static_cast<std::size_t>(k)] = rest % 3 - 1;
+        if (sign == std::array<int, 3>{}) continue;
+        for (int j = 1; j <= kProbeUlps; ++j) {
+            WarpOutput y = x;
+            for (std::size_t k = 0; k < 3; ++k) y[k] += static_cast<float>(sign[k] * j) * step[k];
+            out.push_back(y);
+        }
+    }
+    return out;
+}
+
+/// Whether the pdf is positive (and finite) at one of x's probed neighbours.
+bool positive_nearby(const WarpCase& warp, const WarpOutput& x) {
+    const std::vector<WarpOutput> probes = probe_points(warp.domain(), x);
+    std::vector<double> pdf(probes.size());
+    warp.pdf(probes, pdf);
+    return std::any_of(pdf.begin(), pdf.end(), [](double v) { return v > 0.0 && std::isfinite(v); });
+}
+
+/// One chunk of samples with their pdfs, classified.
+Stats classify_chunk(const WarpCase& warp, std::size_t chunk, std::span<const WarpInput> inputs,
+                     std::span<const WarpOutput> x, std::span<const double> pdf) {
+    const chi2::Domain& domain = warp.domain();
+    Stats s;
+    if (chunk > 0) s.random_count = inputs.size();
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        const uint64_t index = chunk * kInputChunkSize + i;
+        const Example e{inputs[i], x[i], pdf[i]};
+        if (!classify(s, domain, index, e)) continue;
+        // A zero pdf inside the domain: rounded across the support's edge, or a violation.
+        if (!warp.has_pdf() || !positive_nearby(warp, x[i])) s.zero_pdf.add(index, e);
+        else if (chunk == 0) ++s.rounded_edges;
+        else s.rounded_random.add(index, e);
+    }
+    return s;
 }
 
 Stats compute(const WarpCase& warp, const CheckContext& ctx) {
-    const chi2::Domain& domain = warp.domain();
     auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, true,
                                          [&](std::size_t chunk, std::span<const WarpInput> inputs) {
-        Stats s;
         std::vector<WarpOutput> x(inputs.size());
         std::vector<double> pdf(inputs.size());
         if (warp.has_pdf()) {
@@ -87,11 +194,14 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx) {
         } else {
             warp.sample_with_value(inputs, x, pdf);  // the pdf that sample returns
         }
-        for (std::size_t i = 0; i < inputs.size(); ++i)
-            classify(s, domain, chunk * kInputChunkSize + i, {inputs[i], x[i], pdf[i]});
-        return s;
+        return classify_chunk(warp, chunk, inputs, x, pdf);
     });
     return merge_in_order(parts);
+}
+
+/// How many random samples may have pdf 0 next to a positive pdf (see kRoundedAcrossEdgeRate).
+uint64_t rounded_bound(const Stats& s) {
+    return chi2::poisson_count_bound(static_cast<double>(s.random_count) * kRoundedAcrossEdgeRate, kBoundTail);
 }
 
 struct Finding {
@@ -107,9 +217,30 @@ std::vector<Finding> findings(const Stats& s, const chi2::Domain& domain) {
             {&s.zero_pdf, "samples with pdf 0 inside the domain"}};
 }
 
+/// The rule for zero pdfs next to a positive one (see the top): over the
+/// bound, or any under --strict, fails. Empty when it passes.
+std::string rounded_problem(const Stats& s, bool strict, InputKind kind, int dims) {
+    const uint64_t all = s.rounded_random.count + s.rounded_edges, bound = rounded_bound(s);
+    if (all == 0 || (!strict && s.rounded_random.count <= bound)) return {};
+    std::string text =
+        strict ? fmt::format("{} samples with pdf 0 within {} float spacings of a positive pdf (float rounding at "
+                             "the edge of the support; --strict withholds this allowance)",
+                             all, kProbeUlps)
+               : fmt::format("{} of {} random samples have pdf 0 within {} float spacings of a positive pdf, more "
+                             "than the {} that float rounding at the edge of the support explains: the warp puts "
+                             "mass on the edge where its pdf is 0",
+                             s.rounded_random.count, s.random_count, kProbeUlps, bound);
+    if (s.rounded_random.first) {
+        const Example& e = *s.rounded_random.first;
+        text += fmt::format(" (e.g. u = {} -> x = {})", format_input(e.input, kind), format_output(e.output, dims));
+    }
+    return text;
+}
+
 /// The verdict: any sample of any kind of violation fails; there is no
-/// tolerance on counts, since a correct warp produces none.
-void judge_and_explain(CheckResult& r, const Stats& s, const WarpCase& warp) {
+/// tolerance on counts, since a correct warp produces none, except for the
+/// zero pdfs that float rounding at the support's edge explains (bounded).
+void judge_and_explain(CheckResult& r, const Stats& s, const WarpCase& warp, bool strict) {
     const int dims = warp.domain().point_dimension();
     const InputKind kind = warp.input_kind();
     Table examples{"First violation of each kind", {"violation", "count", "input u", "sample(u)", "pdf"}, {}};
@@ -122,15 +253,19 @@ void judge_and_explain(CheckResult& r, const Stats& s, const WarpCase& warp) {
         examples.rows.push_back({f.what, std::to_string(f.tally->count), format_input(e.input, kind),
                                  format_output(e.output, dims), fmt::format("{:.6g}", e.pdf)});
     }
+    if (std::string rounded = rounded_problem(s, strict, kind, dims); !rounded.empty())
+        problems.push_back(std::move(rounded));
     r.verdict = problems.empty() ? Verdict::Pass : Verdict::Fail;
     if (problems.empty()) {
         r.summary = fmt::format("pdf in [{:.3g}, {:.3g}]", s.min_pdf, s.max_pdf);
         if (s.boundary_zero > 0) r.summary += fmt::format(", {} zero on boundary", s.boundary_zero);
+        const uint64_t rounded = s.rounded_random.count + s.rounded_edges;
+        if (rounded > 0) r.summary += fmt::format(", {} zero at the support's edge (float rounding)", rounded);
         return;
     }
     r.summary = problems.front().substr(0, problems.front().find(" (e.g."));
     r.message = join_reasons(problems);
-    r.tables.push_back(std::move(examples));
+    if (!examples.rows.empty()) r.tables.push_back(std::move(examples));
 }
 
 void add_figures(CheckResult& r, const Stats& s) {
@@ -142,7 +277,10 @@ void add_figures(CheckResult& r, const Stats& s) {
                  {"zero_pdf", static_cast<double>(s.zero_pdf.count)},
                  {"zero_pdf_on_boundary", static_cast<double>(s.boundary_zero)},
                  {"min_pdf", s.min_pdf},
-                 {"max_pdf", s.max_pdf}};
+                 {"max_pdf", s.max_pdf},
+                 {"zero_pdf_rounded_random", static_cast<double>(s.rounded_random.count)},
+                 {"zero_pdf_rounded_edge_inputs", static_cast<double>(s.rounded_edges)},
+                 {"zero_pdf_rounded_bound", static_cast<double>(rounded_bound(s))}};
 }
 
 class ConsistencyCheck final : public Check {
@@ -157,7 +295,7 @@ public:
         const Stats stats = compute(warp, ctx);
         CheckResult r;
         add_figures(r, stats);
-        judge_and_explain(r, stats, warp);
+        judge_and_explain(r, stats, warp, ctx.options().strict);
         return r;
     }
 };

@@ -5,8 +5,10 @@
 //                  chosen, and the counts per category fit the pmf (Pearson,
 //                  small categories pooled, in the run's family);
 //   remapped_u:    the u that a sampler returns for reuse (DiscreteSample) lies
-//                  in [0,1) and is uniform, overall (Kolmogorov-Smirnov) and
-//                  within each category (chi-square over 16 bins per category).
+//                  in [0,1) and is uniform, overall (Kolmogorov-Smirnov),
+//                  within each category (chi-square over 16 bins per category)
+//                  and at every resolution down to 2^-20 (chi2/resolution_test.h:
+//                  a u cut to 10 bits passes the other two).
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -16,6 +18,7 @@
 
 #include "chi2/min_p.h"
 #include "chi2/pearson.h"
+#include "chi2/resolution_test.h"
 #include "chi2/unbinned.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
@@ -183,17 +186,32 @@ private:
     static void judge(CheckResult& r, const Counted& c, const std::vector<double>& pmf, InputKind kind) {
         const std::vector<double> expected = expected_counts(pmf, static_cast<double>(r.samples));
         std::vector<double> observed, used;  // categories of pmf 0 are judged by the rule below, not by Pearson
-        for (std::size_t k = 0; k < pmf.size(); ++k)
-            if (pmf[k] > 0.0) observed.push_back(c.counts[k]), used.push_back(expected[k]);
+        std::size_t invalid = 0;
+        for (std::size_t k = 0; k < pmf.size(); ++k) {
+            if (pmf[k] > 0.0 && std::isfinite(pmf[k])) observed.push_back(c.counts[k]), used.push_back(expected[k]);
+            invalid += !(pmf[k] >= 0.0 && std::isfinite(pmf[k]));
+        }
         const chi2::PearsonResult p = chi2::pearson_test(observed, used);
         r.figures = {{"statistic", p.statistic}, {"dof", static_cast<double>(p.dof)},
                      {"p_value", p.p_value},     {"pooled_categories", static_cast<double>(p.small_cells)},
                      {"outside", static_cast<double>(c.tallies.outside.count)},
-                     {"zero_pmf_chosen", static_cast<double>(c.tallies.zero_chosen.count)}};
-        r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}", p.statistic, p.dof, p.p_value);
+                     {"zero_pmf_chosen", static_cast<double>(c.tallies.zero_chosen.count)},
+                     {"invalid_pmf", static_cast<double>(invalid)}};
+        // With fewer than two categories of positive pmf the counts have no
+        // degrees of freedom: only the indices are tested, and the row says so.
+        r.summary = p.dof >= 1 ? fmt::format("chi2 {:.1f} dof {} p {:.3g}", p.statistic, p.dof, p.p_value)
+                               : fmt::format("indices only: {} category of positive pmf, no degrees of freedom",
+                                             observed.size());
         r.verdict = Verdict::Pass;
         if (p.dof >= 1) r.p_value = p.p_value;
         std::vector<std::string> problems;
+        // The counts cannot be judged against a pmf that is not a pmf (the pmf check names the categories).
+        if (invalid > 0)
+            problems.push_back(fmt::format("{} of {} categories have a NaN, infinite or negative pmf: the counts "
+                                           "cannot be tested against it",
+                                           invalid, pmf.size()));
+        else if (observed.empty())
+            problems.push_back("no category has a positive pmf: the counts cannot be tested against it");
         if (c.tallies.outside.count > 0)
             problems.push_back(fmt::format("{} samples are not a category of 0..{} ({})", c.tallies.outside.count,
                                            pmf.size() - 1, first_example(c.tallies.outside, kind)));
@@ -266,6 +284,17 @@ chi2::PearsonResult conditional_test(const std::vector<std::atomic<uint64_t>>& t
     return chi2::pearson_test(observed, expected);
 }
 
+/// The digits of the remapped u tested for resolution: down to 2^-20
+/// (chi2::kResolutionDigits), but no finer than a remap of a float u can keep:
+/// choosing one of n categories uses ceil(log2 n) of the 24 bits that u has in
+/// [0.5, 1) (pbrt's alias table rounds u n to a float, whose spacing there is
+/// 2^-(24 - ceil(log2 n))), so a correct remap keeps 24 - ceil(log2 n).
+int remap_digits(std::size_t categories) {
+    int used = 0;
+    while ((std::size_t{1} << used) < categories) ++used;
+    return std::clamp(24 - used, 1, chi2::kResolutionDigits);
+}
+
 Plot remapped_histogram(const std::vector<double>& sorted_u, const std::string& name) {
     Plot p;
     p.kind = Plot::Kind::Bars;
@@ -284,8 +313,8 @@ public:
     std::string name() const override { return "remapped_u"; }
     bool statistical() const override { return true; }
     std::string description() const override {
-        return "discrete cases returning a remapped u: it lies in [0,1) and is uniform, overall (KS) and within each "
-               "category (chi-square), Sidak-corrected";
+        return "discrete cases returning a remapped u: it lies in [0,1) and is uniform, overall (KS), within each "
+               "category (chi-square) and down to 2^-20 (binary digits), Sidak-corrected";
     }
     bool applies_to(const WarpCase& warp) const override {
         return is_discrete_case(warp) && warp.sample_returns() == SampleReturns::IndexAndRemappedU;
@@ -299,20 +328,35 @@ public:
         chi2::sort_unit_values(part.u);
         const chi2::UnbinnedStatistics ks = chi2::unbinned_statistics(part.u);
         const double ks_p = ks.p_value(chi2::UnbinnedTest::KolmogorovSmirnov);
+        const chi2::ResolutionTest res = chi2::resolution_test(part.u, remap_digits(pmf.size()));
         CheckResult r;
         r.samples = part.u.size();
-        r.figures = {{"ks", ks.ks()}, {"ks_p_value", ks_p}, {"outside", static_cast<double>(part.outside.count)}};
-        double p = ks_p;
+        r.figures = {{"ks", ks.ks()}, {"ks_p_value", ks_p}, {"outside", static_cast<double>(part.outside.count)},
+                     {"resolution_digits", static_cast<double>(res.digits)},
+                     {"resolution_p_value", res.p_value},
+                     {"resolution_worst_digit", static_cast<double>(res.worst_digit)},
+                     {"resolution_worst_ones_fraction", res.worst_ones_fraction}};
+        double conditional_p = 1.0;
+        bool conditional_tested = false;
         if (conditional) {
             const chi2::PearsonResult c = conditional_test(table, pmf, static_cast<double>(r.samples));
             r.figures.insert(r.figures.end(), {{"conditional_chi2", c.statistic},
                                                {"conditional_dof", static_cast<double>(c.dof)},
                                                {"conditional_p_value", c.p_value}});
-            // Two tests of the same samples, one p-value: weighted Bonferroni, half the level each.
-            if (c.dof >= 1) p = chi2::weighted_min_p({ks_p, c.p_value}, {0.5, 0.5});
+            conditional_tested = c.dof >= 1;
+            conditional_p = c.p_value;
         }
+        // Three (or two) tests of the same samples, one p-value: weighted
+        // Bonferroni, an equal share of the level each (valid whatever their
+        // dependence); a NaN among them (too few samples) makes it NaN, which fails.
+        const double p = conditional_tested ? chi2::weighted_min_p({ks_p, conditional_p, res.p_value},
+                                                                   {1.0 / 3, 1.0 / 3, 1.0 / 3})
+                                            : chi2::weighted_min_p({ks_p, res.p_value}, {0.5, 0.5});
         r.p_value = p;
-        r.summary = fmt::format("KS p {:.3g}, combined p {:.3g}", ks_p, p);
+        r.summary = fmt::format("KS p {:.3g}, resolution p {:.3g} (2^-{}", ks_p, res.p_value, res.digits);
+        if (res.p_value < 1e-3)
+            r.summary += fmt::format(": digit {} set in {:.3g} of samples", res.worst_digit, res.worst_ones_fraction);
+        r.summary += fmt::format("), combined p {:.3g}", p);
         r.verdict = Verdict::Pass;
         if (part.outside.count > 0) {
             r.verdict = Verdict::Fail;

@@ -8,14 +8,20 @@
 //    that disagrees with what sample draws (a mixture whose lobe-selection
 //    probability differs between sample and pdf) biases it.
 //  - inverse_pdf_mean: for a sampler that returns its pdf and has no pdf
-//    function, E[1 / pdf(X)] is the measure of the density's support: the
-//    domain's measure, since a correct warp's density is positive on its
-//    domain. A returned pdf that is off by a factor anywhere moves the mean.
+//    function, E[1 / pdf(X)] is the measure of the density's support. A case
+//    whose support is smaller than its domain (empty buckets of a table, an
+//    environment map's empty rows) declares it (WarpCaseInfo::support_measure)
+//    and is tested against it, two-sided. Undeclared, the support is known
+//    only to lie in the domain, so E[1/pdf] <= the domain's measure is tested
+//    one-sided (a pdf too small somewhere fails; one too large passes unless
+//    the support is declared), and the row says so. A returned pdf that is off
+//    by a factor anywhere moves the mean.
 // The t-test needs a finite variance of the estimator: E[w^2] = integral of
 // eval^2 / pdf, and E[1/pdf^2] = integral of 1/pdf, finite when the pdf stays
 // away from 0 where eval is not 0 (where it does not, the test is not valid).
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
@@ -66,8 +72,16 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx, Estimator which) {
 
 struct Reference {
     double value = 0.0;
-    double error = 0.0;  ///< quadrature error estimate (0 for a measure)
+    double error = 0.0;      ///< quadrature error estimate (0 for a measure)
+    bool one_sided = false;  ///< an upper bound only: the support's measure is not declared
 };
+
+/// E[1/pdf]'s reference: the declared support's measure, or else the domain's as an upper bound.
+Reference support_measure(const WarpCase& warp) {
+    const double declared = warp.info().support_measure;
+    if (declared > 0.0) return {declared, 0.0, false};
+    return {warp.domain().measure(), 0.0, true};
+}
 
 /// The integral of eval over the domain, by the chi-square engine's quadrature.
 Reference integral_of_eval(const WarpCase& warp, const CheckContext& ctx) {
@@ -83,21 +97,35 @@ Reference integral_of_eval(const WarpCase& warp, const CheckContext& ctx) {
     return {integrals.total, integrals.error_total};
 }
 
-void judge(CheckResult& r, const Stats& s, const chi2::MeanTest& t, Estimator which) {
+/// What the mean is compared with, in words.
+std::string reference_text(Estimator which, const Reference& ref) {
+    if (which == Estimator::Weight) return "the integral of eval";
+    return ref.one_sided ? "at most the domain's measure (support not declared: one-sided)"
+                         : "the declared support's measure";
+}
+
+void judge(CheckResult& r, const Stats& s, const chi2::MeanTest& t, Estimator which, const Reference& ref) {
     const char* what = which == Estimator::Weight ? "mean weight" : "mean 1/pdf";
-    const char* of = which == Estimator::Weight ? "the integral of eval" : "the domain's measure";
     r.p_value = t.p_value;  // judged by the runner at the run's corrected level
-    r.summary = fmt::format("{} {:.6g} vs {:.6g} (t = {:.2f})", what, t.mean, t.reference, t.t);
+    r.summary = fmt::format("{} {:.6g} vs {}{:.6g} (t = {:.2f}{})", what, t.mean, ref.one_sided ? "<= " : "",
+                            t.reference, t.t, ref.one_sided ? ", one-sided: support not declared" : "");
     r.verdict = Verdict::Pass;
     if (s.invalid > 0) {
         r.verdict = Verdict::Fail;
-        r.summary = fmt::format("{} samples with a non-finite {}", s.invalid,
+        r.summary = fmt::format("{} of {} samples with a non-finite {}", s.invalid, s.invalid + s.moments.n,
                                 which == Estimator::Weight ? "weight" : "1/pdf");
         r.message = r.summary + " (the estimator is then undefined)";
         return;
     }
     r.message = fmt::format("{} {:.9g} estimates {} {:.9g}: difference {:.3g} = {:.2f} standard errors "
-                            "({} samples)", what, t.mean, of, t.reference, t.mean - t.reference, t.t, s.moments.n);
+                            "({} samples)", what, t.mean, reference_text(which, ref), t.reference,
+                            t.mean - t.reference, t.t, s.moments.n);
+}
+
+/// The one-sided p-value of H0: E <= reference (large means reject), from the two-sided test's.
+double upper_p_value(const chi2::MeanTest& t) {
+    if (std::isnan(t.p_value)) return t.p_value;
+    return t.t > 0.0 ? 0.5 * t.p_value : 1.0 - 0.5 * t.p_value;
 }
 
 class ImportanceCheck final : public Check {
@@ -108,20 +136,22 @@ public:
     std::string description() const override {
         return which_ == Estimator::Weight
                    ? "the mean weight against the integral of eval over the domain (t-test, Sidak-corrected)"
-                   : "without a pdf function: the mean of 1/pdf (returned) against the domain's measure (t-test)";
+                   : "without a pdf function: the mean of 1/pdf (returned) against the declared support's measure, "
+                     "or one-sided against the domain's (t-test)";
     }
     bool applies_to(const WarpCase& warp) const override {
-        if (!std::isfinite(warp.domain().measure()) || warp.is_discrete()) return false;
+        if (warp.is_discrete()) return false;
+        if (!std::isfinite(warp.domain().measure()) && !(warp.info().support_measure > 0.0)) return false;
         if (which_ == Estimator::Weight) return warp.sample_returns() == SampleReturns::PointAndWeight;
         return warp.sample_returns() == SampleReturns::PointAndPdf && !warp.has_pdf();
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const Stats s = compute(warp, ctx, which_);
-        const Reference ref =
-            which_ == Estimator::Weight ? integral_of_eval(warp, ctx) : Reference{warp.domain().measure(), 0.0};
+        const Reference ref = which_ == Estimator::Weight ? integral_of_eval(warp, ctx) : support_measure(warp);
         const double uncertainty = std::hypot(ref.error, kRoundingAllowance * std::abs(ref.value));
-        const chi2::MeanTest t = chi2::mean_test(s.moments, ref.value, uncertainty);
+        chi2::MeanTest t = chi2::mean_test(s.moments, ref.value, uncertainty);
+        if (ref.one_sided) t.p_value = upper_p_value(t);
         CheckResult r;
         r.samples = s.moments.n + s.invalid;
         r.figures = {{"samples", static_cast<double>(r.samples)},
@@ -131,8 +161,9 @@ public:
                      {"standard_error", t.standard_error},
                      {"t", t.t},
                      {"p_value", t.p_value},
-                     {"invalid_samples", static_cast<double>(s.invalid)}};
-        judge(r, s, t, which_);
+                     {"invalid_samples", static_cast<double>(s.invalid)},
+                     {"one_sided", ref.one_sided ? 1.0 : 0.0}};
+        judge(r, s, t, which_, ref);
         return r;
     }
 

@@ -1,0 +1,129 @@
+#include "chi2/float_band.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+
+namespace warpcheck::chi2 {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// The float `steps` floats above c (below for negative steps), by integer
+/// steps on the float's bit pattern read as an ordered integer (negative
+/// floats counted down from zero): the same as `steps` calls of nextafter,
+/// without them. Infinity and NaN stay as they are; the largest float steps
+/// up to infinity.
+float step_floats(float c, int steps) {
+    if (!std::isfinite(c)) return c;
+    const auto bits = std::bit_cast<int32_t>(c);
+    const int64_t ordered = bits < 0 ? -static_cast<int64_t>(bits & 0x7fffffff) : bits;
+    const int64_t moved = ordered + steps;
+    constexpr int64_t kInfinity = 0x7f800000;
+    if (moved >= kInfinity) return std::numeric_limits<float>::infinity();
+    if (moved <= -kInfinity) return -std::numeric_limits<float>::infinity();
+    return std::bit_cast<float>(moved < 0 ? static_cast<int32_t>((-moved) | 0x80000000LL) : static_cast<int32_t>(moved));
+}
+
+}  // namespace
+
+FloatResolution::FloatResolution(const Binning& binning, int axis, int steps)
+    : binning_(binning), axis_(axis), steps_(steps) {
+    if (steps < 1) throw std::invalid_argument("FloatResolution: steps must be at least 1");
+    if (axis < 0 || axis >= binning.parameter_dimension())
+        throw std::invalid_argument("FloatResolution: no such parameter");
+    const Domain& d = binning.domain();
+    if (d.azimuthal()) {
+        kind_ = axis == 0 ? Kind::Azimuth : d.is<Disk>() ? Kind::RadiusSquared : Kind::Coordinate;
+        coordinate_ = 2;  // z = cos theta of spherical caps
+    } else {
+        coordinate_ = axis;  // x of lines and boxes, y of boxes
+        mapped_ = d.unbounded_line();
+    }
+}
+
+double FloatResolution::of_coordinate(float c) const {
+    if (!mapped_) return static_cast<double>(c);
+    return binning_.parameters_of({static_cast<double>(c), 0.0, 0.0})[0];
+}
+
+double FloatResolution::value(const std::array<float, 3>& p) const {
+    const double x = p[0], y = p[1];
+    switch (kind_) {
+        case Kind::Azimuth: return x == 0.0 && y == 0.0 ? std::nan("") : exact_phi(x, y);
+        case Kind::RadiusSquared: return x * x + y * y;
+        case Kind::Coordinate: break;
+    }
+    return of_coordinate(p[static_cast<std::size_t>(coordinate_)]);
+}
+
+ParameterBand FloatResolution::band(const std::array<float, 3>& p) const {
+    ParameterBand b;
+    b.value = value(p);
+    const double s = static_cast<double>(steps_);
+    switch (kind_) {
+        case Kind::Azimuth: {
+            const double h = s * 0x1p-23;
+            b.lo = b.value - h;
+            b.hi = b.value + h;
+            b.wraps = b.lo < 0.0 || b.hi >= kTwoPi;
+            return b;
+        }
+        case Kind::RadiusSquared: {
+            const double h = 2.0 * s * 0x1p-23 * b.value;
+            b.lo = b.value - h;
+            b.hi = b.value + h;
+            return b;
+        }
+        case Kind::Coordinate: break;
+    }
+    const float c = p[static_cast<std::size_t>(coordinate_)];
+    b.lo = of_coordinate(step_floats(c, -steps_));
+    b.hi = of_coordinate(step_floats(c, steps_));
+    // A parameter that the map leaves undefined beyond the largest float (a
+    // line's t of infinity) bounds nothing on that side.
+    if (std::isnan(b.lo) && !std::isnan(b.value)) b.lo = -kInf;
+    if (std::isnan(b.hi) && !std::isnan(b.value)) b.hi = kInf;
+    return b;
+}
+
+double FloatResolution::half_width_at(double t) const {
+    const double s = static_cast<double>(steps_);
+    switch (kind_) {
+        case Kind::Azimuth: return s * 0x1p-23;
+        case Kind::RadiusSquared: return 2.0 * s * 0x1p-23 * t;
+        case Kind::Coordinate: break;
+    }
+    const double x = mapped_ ? binning_.point_at(t, 0.5)[0] : t;
+    std::array<float, 3> p = {0.0f, 0.0f, 0.0f};
+    p[static_cast<std::size_t>(coordinate_)] = static_cast<float>(x);
+    const ParameterBand b = band(p);
+    return std::max(b.hi - b.value, b.value - b.lo);
+}
+
+double largest_band_probability(const FloatResolution& resolution, const MarginalCdf& cdf) {
+    double largest = 0.0;
+    for (std::size_t j = 0; j + 1 < cdf.edges.size(); ++j) {
+        const double width = cdf.edges[j + 1] - cdf.edges[j];
+        if (!(width > 0.0)) continue;
+        const double density = (cdf.cdf[j + 1] - cdf.cdf[j]) / width;
+        const double h = std::max(resolution.half_width_at(cdf.edges[j]), resolution.half_width_at(cdf.edges[j + 1]));
+        largest = std::max(largest, density * h);
+    }
+    return largest;
+}
+
+std::string FloatResolution::describe() const {
+    const std::string n = std::to_string(steps_);
+    switch (kind_) {
+        case Kind::Azimuth: return "phi within " + n + " 2^-23";
+        case Kind::RadiusSquared: return "r^2 within " + n + " 2^-22 of itself";
+        case Kind::Coordinate: break;
+    }
+    return n + (steps_ == 1 ? " float step of " : " float steps of ") + "xyz"[coordinate_];
+}
+
+}  // namespace warpcheck::chi2
