@@ -54,7 +54,10 @@ const std::vector<std::pair<std::string_view, std::vector<Spec>>> kSpecs = {
           {"outside_domain", "samples outside the domain", Rule::Zero},
           {"non_finite_or_negative_pdf", "samples with a NaN, infinite or negative pdf", Rule::Zero},
           {"zero_pdf", "samples with pdf 0 inside the domain", Rule::Zero},
-          {"zero_pdf_on_boundary", "samples with pdf 0 on the boundary (allowed)", Rule::Counted}}},
+          {"zero_pdf_on_boundary", "samples with pdf 0 on the boundary (allowed)", Rule::Counted},
+          {"zero_pdf_rounded_random", "random samples with pdf 0 beside a positive pdf (float rounding; any fails under --strict)",
+           Rule::AtMost, "zero_pdf_rounded_bound"},
+          {"zero_pdf_rounded_edge_inputs", "edge inputs with pdf 0 beside a positive pdf", Rule::Counted}}},
         {"roundtrip",
          {{"max_error", "largest |invert(sample(u)) \u2212 u| not excused", Rule::AtMost, "tolerance"},
           {"failures", "inputs beyond the tolerance, not excused", Rule::Zero},
@@ -73,7 +76,7 @@ const std::vector<std::pair<std::string_view, std::vector<Spec>>> kSpecs = {
           {"rounded_to_one", "u rounded to 1 (excused; fails under --strict)", Rule::Counted}}},
         {"exhaustive",
          {{"outside_inputs", "inputs whose output is outside [a, b)", Rule::Zero},
-          {"mass_outside_reach", "ideal mass outside the outputs' reach", Rule::AtMost, "input_resolution"},
+          {"mass_outside_reach", "ideal mass outside the outputs' reach", Rule::AtMost, "reach_allowance"},
           {"non_monotone_steps", "steps down (fail if the sampler claims to be monotone)", Rule::Counted},
           {"max_float_bias", "largest float bias factor (fails only beyond --max-float-bias)", Rule::Counted},
           {"unreached_above_one_input", "floats never produced whose ideal exceeds one input", Rule::Counted}}},
@@ -195,8 +198,8 @@ void shared_p_lines(const CheckResult& r, double level, std::vector<JudgedLine>&
 
 std::string combined_name(std::string_view check) {
     if (check == "chi2") return "p-value: min(Pearson / 0.8, residual / 0.2), at most 1";
-    if (check == "unbinned") return "p-value: smallest judged p, \u0160id\u00e1k-corrected over the marginals";
-    if (check == "binade" || check == "remapped_u") return "p-value: the smaller test's, times the number of tests";
+    if (check == "unbinned") return "p-value: smallest judged p, \u0160id\u00e1k-corrected over the judged tests";
+    if (check == "binade" || check == "remapped_u") return "p-value: the smallest test's, times the number of tests, at most 1";
     return "p-value";
 }
 
@@ -211,7 +214,8 @@ void p_value_lines(const CheckResult& r, std::vector<JudgedLine>& out) {
     if (r.check_name == "unbinned") unbinned_p_lines(r, level, out);
     if (r.check_name == "binade")
         shared_p_lines(r, level, out, {{"mass_p_value", "mass per binade: Pearson p-value"},
-                                       {"parity_p_value", "significand parity: Pearson p-value"}});
+                                       {"parity_p_value", "significand parity: Pearson p-value"},
+                                       {"resolution_p_value", "binary digits of (x \u2212 a) / (b \u2212 a): p-value"}});
     if (r.check_name == "remapped_u")
         shared_p_lines(r, level, out, {{"ks_p_value", "remapped u: KS p-value"},
                                        {"conditional_p_value", "u within each category: Pearson p-value"}});
@@ -243,12 +247,15 @@ const std::vector<std::pair<std::string_view, CheckLegend>> kLegends = {
       "min(p_X\u00b2 / 0.8, p_cell / 0.2), weighted Bonferroni: Pearson gets 80% of the level, the largest "
       "residual (its exact binomial p, \u0160id\u00e1k over the cells) 20%. The summary's p is Pearson's alone."}},
     {"unbinned",
-     {"The empirical CDF of each marginal against the CDF of the pdf: Kuiper on an azimuth, Anderson\u2013Darling "
-      "elsewhere (KS is shown, not judged); a marginal whose CDF is not accurate enough is left untested.",
-      "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged marginals. The summary's \u201cmin p\u201d is "
+     {"The empirical CDF of each marginal against the CDF of the pdf: Anderson\u2013Darling on every marginal, and "
+      "Kuiper too on an azimuth (KS is shown, not judged); where float resolution and the CDF's error could shift the "
+      "CDF, each sample is tested within its band (conservative p); a marginal whose CDF is not accurate enough is "
+      "left untested.",
+      "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged tests. The summary's \u201cmin p\u201d is "
       "before the correction."}},
-    {"binade", {"Pearson's X\u00b2 of the mass per binade and of the significand parity within binades.",
-                "min(1, 2 \u00d7 min p) over the two tests (Bonferroni)."}},
+    {"binade", {"Pearson's X\u00b2 of the mass per binade and of the significand parity within binades, and where "
+                "the interval allows, of each binary digit of (x \u2212 a) / (b \u2212 a).",
+                "min(1, k \u00d7 min p) over the k tests made (Bonferroni)."}},
     {"discrete_chi2", {"Pearson's X\u00b2 of the category counts against the pmf; a category of pmf 0 chosen fails.",
                        "Pearson's p-value."}},
     {"remapped_u", {"The remapped u: overall KS against uniform, and a X\u00b2 of u within each category.",
@@ -261,10 +268,13 @@ const std::vector<std::pair<std::string_view, CheckLegend>> kLegends = {
                    ""}},
     {"exhaustive_roundtrip", {"Every float u of [0, 1): the round trip, a monotone sample(u), a finite positive pdf.", ""}},
     {"exhaustive", {"Every input: outputs outside [a, b), steps down of a monotone sampler and a reach leaving more "
-                    "than one input's mass fail; the bias of single floats is reported.", ""}},
+                    "mass out than one input's (monotone) or than independent draws leave at 1e-9 (hash) fail; the "
+                    "bias of single floats is reported.", ""}},
     {"tabulated", {"sample(u) and pdf against the inversion method on a 65536-bucket table of the density: each "
                    "error over its tolerance.", ""}},
-    {"consistency", {"Every sample lies in the domain and has a finite, positive pdf: counts must be 0.", ""}},
+    {"consistency", {"Every sample lies in the domain and has a finite, positive pdf: counts must be 0, but for a pdf "
+                     "of 0 on the boundary, and one beside a positive pdf (float rounding at a support's edge) within "
+                     "its Poisson bound.", ""}},
     {"sample_pdf", {"The pdf that sample returns against pdf(x), within float rounding.", ""}},
     {"weight", {"The weight that sample returns against eval(x) / pdf(x), within float rounding.", ""}},
     {"pmf", {"The pmf is finite, non-negative and sums to 1 within float rounding.", ""}},

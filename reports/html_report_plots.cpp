@@ -172,9 +172,9 @@ std::string plot_note(const CheckResult& r, std::size_t index) {
                "stands at the tolerance's place in its decade. Right of it: inputs that missed the tolerance, failures "
                "unless excused (counted in the Judged table).";
     if (r.check_name == "unbinned" && plot.kind == Plot::Kind::Lines)
-        return "Judged per marginal: Kuiper's V = D\u207a + D\u207b (the ringed highest and lowest points) on an azimuth, "
-               "Anderson\u2013Darling's A\u00b2 elsewhere (the integral of the squared curve over F(1 \u2212 F); its "
-               "largest term is ringed). The \u00b1KS lines are for scale: KS is not judged.";
+        return "Judged per marginal: Anderson\u2013Darling's A\u00b2 (the integral of the squared curve over "
+               "F(1 \u2212 F); its largest term is ringed), and on an azimuth Kuiper's V = D\u207a + D\u207b too (the "
+               "ringed highest and lowest points). The \u00b1KS lines are for scale: KS is not judged.";
     if (r.check_name == "chi2" && (plot.kind == Plot::Kind::Heatmaps || plot.kind == Plot::Kind::Points)) {
         const auto z = single_cell_limit(r);
         return fmt::format("Residual r = (observed \u2212 expected) / \u221aexpected per cell: noise stays within about \u00b14. "

@@ -240,7 +240,7 @@ TEST(JudgedLines, APValueOfAnotherRuleIsShownWholeAndNaNIsNeverWithin) {
 TEST(JudgedLines, UnbinnedJudgesEachMarginalAtItsSidakShareOfTheLevel) {
     const auto lines = html::judged_lines(unbinned_row());
     EXPECT_THAT(quantities(lines), ElementsAre("phi: Kuiper V = 0.0012, p-value", "cos theta: Anderson\u2013Darling A\u00b2 = 6.65, p-value",
-                                               "p-value: smallest judged p, \u0160id\u00e1k-corrected over the marginals"));
+                                               "p-value: smallest judged p, \u0160id\u00e1k-corrected over the judged tests"));
     EXPECT_EQ(lines[0].limit, "\u2265 3.64e-05 (level, \u0160id\u00e1k over 2)");
     EXPECT_EQ(lines[1].value, "0.01");
 }
@@ -256,6 +256,33 @@ TEST(JudgedLines, ToleranceRulesCountsAndExcusesOfARoundTrip) {
     ASSERT_TRUE(excused);
     EXPECT_EQ(excused->limit, "counted");
     EXPECT_EQ(excused->state, html::JudgedLine::State::Reported);
+}
+
+TEST(JudgedLines, ConsistencyBoundsTheZeroPdfsOfFloatRoundingByTheirPoissonBound) {
+    CheckResult r = row("triangle", "consistency", Verdict::Pass);
+    r.figures = {{"zero_pdf", 0}, {"zero_pdf_rounded_random", 12}, {"zero_pdf_rounded_edge_inputs", 3}, {"zero_pdf_rounded_bound", 44}};
+    const auto* rounded = line_starting(html::judged_lines(r), "random samples with pdf 0 beside a positive pdf");
+    ASSERT_TRUE(rounded);
+    EXPECT_EQ(rounded->limit, "\u2264 44");
+    EXPECT_EQ(rounded->state, html::JudgedLine::State::Within);
+    r.figures[1].value = 45;  // one past the bound: the check fails, and so does the line
+    EXPECT_EQ(line_starting(html::judged_lines(r), "random samples with pdf 0")->state, html::JudgedLine::State::Beyond);
+    EXPECT_EQ(line_starting(html::judged_lines(r), "edge inputs with pdf 0")->state, html::JudgedLine::State::Reported);
+}
+
+TEST(JudgedLines, BinadeSharesTheLevelOverTheTestsItMade) {
+    CheckResult r = p_row("unit_double", "binade", std::min(1.0, 3 * 1e-5));
+    r.figures = {{"mass_p_value", 0.4}, {"parity_p_value", 0.2}, {"resolution_p_value", 1e-5}};
+    auto lines = html::judged_lines(r);
+    const auto* digits = line_starting(lines, "binary digits");
+    ASSERT_TRUE(digits);
+    EXPECT_EQ(digits->limit, "\u2265 2.43e-05 (level / 3)");
+    EXPECT_EQ(digits->state, html::JudgedLine::State::Beyond);
+    r.figures[2].value = std::numeric_limits<double>::quiet_NaN();  // the digits not tested: two tests share the level
+    r.p_value = 0.4;
+    lines = html::judged_lines(r);
+    EXPECT_EQ(line_starting(lines, "binary digits"), nullptr);
+    EXPECT_EQ(line_starting(lines, "mass per binade")->limit, "\u2265 3.64e-05 (level / 2)");
 }
 
 TEST(JudgedLines, UnknownChecksGetTheGenericToleranceRules) {
@@ -276,7 +303,7 @@ TEST(HtmlReport, EveryRowHasItsJudgedTableAndTheLegendExplainsEachPValue) {
     EXPECT_THAT(html, ContainsRegex("<tr class=\"beyond\"><td>Pearson X\u00b2 = 968.6 on 1023 dof: p-value</td><td class=\"val\">1.00e-09</td>"));
     EXPECT_THAT(html, HasSubstr("min(p_X\u00b2 / 0.8, p_cell / 0.2)"));
     EXPECT_THAT(html, HasSubstr("The summary&#39;s p is Pearson&#39;s alone."));
-    EXPECT_THAT(html, HasSubstr("1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged marginals"));
+    EXPECT_THAT(html, HasSubstr("1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged tests"));
     EXPECT_THAT(xml_problem(html), IsEmpty());
 }
 
