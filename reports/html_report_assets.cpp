@@ -49,7 +49,7 @@ ul.weakest li { padding: 1px 0; break-inside: avoid; } ul.weakest .wm { display:
 .toolbar select, .toolbar button { font: inherit; font-size: 13px; padding: 4px 9px; border: 1px solid var(--line); border-radius: 6px; background: var(--soft); cursor: pointer; }
 .toolbar button[aria-pressed=true] { background: #2b3137; color: #fff; border-color: #2b3137; }
 .toolbar .shown { color: var(--muted); font-size: 12.5px; margin-left: auto; }
-.cols, details.r > summary { display: grid; grid-template-columns: 66px minmax(200px, 2.2fr) 104px 118px minmax(150px, 2fr) 64px 58px;
+.cols, details.r > summary { display: grid; grid-template-columns: 76px minmax(200px, 2.2fr) 104px 118px minmax(150px, 2fr) 64px 58px;
   gap: 0 10px; align-items: baseline; padding: 4px 10px 4px 8px; }
 .cols { color: var(--muted); font-size: 12px; font-weight: 600; border-bottom: 2px solid var(--line); }
 .cols span:nth-child(n+6) { text-align: right; }
@@ -114,7 +114,7 @@ dl.figures dt { color: var(--muted); overflow-wrap: anywhere; } dl.figures dd { 
 footer { color: var(--muted); font-size: 12px; padding-top: 20px; padding-bottom: 30px; }
 @media (max-width: 900px) {
   .cols { display: none; }
-  details.r > summary { grid-template-columns: 66px 1fr 90px; }
+  details.r > summary { grid-template-columns: 76px 1fr 90px; }
   summary .key { grid-column: 2 / span 2; } summary .t { display: none; }
   .run-info { grid-template-columns: max-content 1fr; } .run-info dd.wide { grid-column: auto; }
 }
