@@ -16,6 +16,7 @@ warpcheck_require(CLI11 libcli11-dev)
 warpcheck_require(fmt libfmt-dev)
 warpcheck_require(nlohmann_json nlohmann-json3-dev)
 warpcheck_require(Threads libc6-dev)
+warpcheck_require(ZLIB zlib1g-dev)                # the HTML report's images and packed evidence
 if(WARPCHECK_BUILD_TESTS)
   warpcheck_require(GTest "libgtest-dev libgmock-dev")
   warpcheck_require(benchmark libbenchmark-dev)

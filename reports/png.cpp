@@ -2,32 +2,15 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
+
+#include <zlib.h>
 
 namespace warpcheck {
 namespace {
 
-std::uint32_t crc32(std::string_view bytes) {
-    static const auto table = [] {
-        std::array<std::uint32_t, 256> t{};
-        for (std::uint32_t n = 0; n < 256; ++n) {
-            std::uint32_t c = n;
-            for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            t[n] = c;
-        }
-        return t;
-    }();
-    std::uint32_t c = 0xFFFFFFFFu;
-    for (char byte : bytes) c = table[(c ^ static_cast<std::uint8_t>(byte)) & 0xFF] ^ (c >> 8);
-    return c ^ 0xFFFFFFFFu;
-}
-
-std::uint32_t adler32(std::string_view bytes) {
-    std::uint32_t a = 1, b = 0;
-    for (char byte : bytes) {
-        a = (a + static_cast<std::uint8_t>(byte)) % 65521u;
-        b = (b + a) % 65521u;
-    }
-    return (b << 16) | a;
+std::uint32_t crc32_of(std::string_view bytes) {
+    return static_cast<std::uint32_t>(::crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size())));
 }
 
 void put_u32(std::string& out, std::uint32_t v) {
@@ -42,36 +25,18 @@ void put_chunk(std::string& out, std::string_view type, std::string_view data) {
     std::string typed(type);
     typed += data;
     out += typed;
-    put_u32(out, crc32(typed));
-}
-
-/// A zlib stream of `raw` in stored deflate blocks (at most 65535 bytes each).
-std::string zlib_stored(std::string_view raw) {
-    std::string out;
-    out += '\x78';  // deflate, 32 KB window
-    out += '\x01';  // no preset dictionary, fastest; (0x78 * 256 + 0x01) % 31 == 0
-    std::size_t offset = 0;
-    do {
-        const std::size_t length = std::min<std::size_t>(raw.size() - offset, 65535);
-        const bool last = offset + length == raw.size();
-        out += static_cast<char>(last ? 1 : 0);  // BFINAL, BTYPE = 00 (stored)
-        out += static_cast<char>(length & 0xFF);
-        out += static_cast<char>(length >> 8);
-        out += static_cast<char>(~length & 0xFF);
-        out += static_cast<char>((~length >> 8) & 0xFF);
-        out.append(raw.substr(offset, length));
-        offset += length;
-    } while (offset < raw.size());
-    put_u32(out, adler32(raw));
-    return out;
+    put_u32(out, crc32_of(typed));
 }
 
 }  // namespace
 
 std::string encode_palette_png(int width, int height, const std::vector<std::uint8_t>& indices,
-                               const std::array<Rgba, 256>& palette) {
+                               const std::vector<Rgba>& palette) {
     if (width <= 0 || height <= 0 || indices.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
         throw std::invalid_argument("encode_palette_png: size does not match the pixels");
+    if (palette.empty() || palette.size() > 256 ||
+        std::any_of(indices.begin(), indices.end(), [&](std::uint8_t i) { return i >= palette.size(); }))
+        throw std::invalid_argument("encode_palette_png: the palette has 1 to 256 entries and covers every index");
 
     std::string png = "\x89PNG\r\n\x1a\n";
     std::string header;
@@ -90,7 +55,8 @@ std::string encode_palette_png(int width, int height, const std::vector<std::uin
         trns += static_cast<char>(c.a);
     }
     put_chunk(png, "PLTE", plte);
-    put_chunk(png, "tRNS", trns);
+    while (!trns.empty() && static_cast<std::uint8_t>(trns.back()) == 255) trns.pop_back();  // absent entries are opaque
+    if (!trns.empty()) put_chunk(png, "tRNS", trns);
 
     std::string raw;
     raw.reserve(indices.size() + static_cast<std::size_t>(height));
@@ -99,9 +65,19 @@ std::string encode_palette_png(int width, int height, const std::vector<std::uin
         const auto row = indices.begin() + static_cast<std::ptrdiff_t>(y) * width;
         raw.append(row, row + width);
     }
-    put_chunk(png, "IDAT", zlib_stored(raw));
+    put_chunk(png, "IDAT", zlib_compress(raw));
     put_chunk(png, "IEND", {});
     return png;
+}
+
+std::string zlib_compress(std::string_view bytes) {
+    uLongf size = compressBound(static_cast<uLong>(bytes.size()));
+    std::string out(size, '\0');
+    const int status = compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(bytes.data()),
+                                 static_cast<uLong>(bytes.size()), Z_BEST_COMPRESSION);
+    if (status != Z_OK) throw std::runtime_error("zlib_compress: zlib failed with status " + std::to_string(status));
+    out.resize(size);
+    return out;
 }
 
 std::string base64(std::string_view bytes) {

@@ -276,50 +276,78 @@ std::vector<Point> points_of(const Series& s, bool log_x, bool log_y) {
 
 bool valid(const Point& p) { return !std::isnan(p.x) && !std::isnan(p.y); }
 
-/// Appends "M x y L x y ..." for a line through `points`, broken at invalid
-/// points. Long monotonic series keep, per pixel column, the first, lowest,
-/// highest and last point: the drawing is the same, the file much smaller.
+/// Path data in whole pixels, relative after the first point of each piece
+/// ("M12 40l1-2 1 0 ..."): a plot's curves are a few pixels apart at most, and
+/// whole pixels halve the size of a report with hundreds of curves. Points that
+/// fall on the pixel of the point before are left out.
+class PathWriter {
+public:
+    explicit PathWriter(std::string& d) : d_(d) {}
+    void move_to(double x, double y) { put(x, y, false); }
+    void line_to(double x, double y) { put(x, y, pen_down_); }
+    void lift() { pen_down_ = false; }
+
+private:
+    void put(double x, double y, bool relative) {
+        const long ix = std::lround(std::isfinite(x) ? x : 0.0), iy = std::lround(std::isfinite(y) ? y : 0.0);
+        if (relative && ix == x_ && iy == y_) return;
+        if (relative) {
+            if (!in_line_) d_ += 'l';
+            append_signed(ix - x_, true);
+            append_signed(iy - y_, false);
+            in_line_ = true;
+        } else {
+            d_ += fmt::format("M{} {}", ix, iy);
+            in_line_ = false;
+        }
+        x_ = ix, y_ = iy;
+        pen_down_ = true;
+    }
+    /// A number of a relative pair: a minus sign separates it from the one
+    /// before, otherwise a space does (not needed right after the command letter).
+    void append_signed(long v, bool first) {
+        if (v >= 0 && !(first && d_.back() == 'l')) d_ += ' ';
+        d_ += std::to_string(v);
+    }
+
+    std::string& d_;
+    long x_ = 0, y_ = 0;
+    bool pen_down_ = false, in_line_ = false;
+};
+
+/// Appends the path of a line through `points`, broken at invalid points. A
+/// series sorted in x keeps, per pixel column, its first, lowest, highest and
+/// last point: the drawing is the same, the file much smaller.
 void append_line_path(std::string& d, const std::vector<Point>& points, const Axis& ax, const Axis& ay) {
-    bool pen_down = false;
+    PathWriter path(d);
     double column = std::numeric_limits<double>::quiet_NaN();
     std::vector<std::pair<double, double>> bucket;  // pixel positions in the current column
-    const bool decimate = points.size() > 4 * static_cast<std::size_t>(std::abs(ax.to - ax.from)) &&
-                          std::is_sorted(points.begin(), points.end(), [](const Point& a, const Point& b) {
+    const bool decimate = points.size() > 8 && std::is_sorted(points.begin(), points.end(), [](const Point& a, const Point& b) {
                               return valid(a) && valid(b) && a.x < b.x;
                           });
-    const auto emit = [&](double x, double y) {
-        d += pen_down ? 'L' : 'M';
-        d += px(x);
-        d += ' ';
-        d += px(y);
-        pen_down = true;
-    };
     const auto flush = [&] {
         if (bucket.empty()) return;
         if (bucket.size() <= 4) {
-            for (auto [x, y] : bucket) emit(x, y);
+            for (auto [x, y] : bucket) path.line_to(x, y);
         } else {
             auto [lo, hi] = std::minmax_element(bucket.begin() + 1, bucket.end() - 1,
                                                 [](auto a, auto b) { return a.second < b.second; });
-            emit(bucket.front().first, bucket.front().second);
-            if (lo < hi) {
-                emit(lo->first, lo->second), emit(hi->first, hi->second);
-            } else {
-                emit(hi->first, hi->second), emit(lo->first, lo->second);
-            }
-            emit(bucket.back().first, bucket.back().second);
+            path.line_to(bucket.front().first, bucket.front().second);
+            if (lo > hi) std::swap(lo, hi);
+            path.line_to(lo->first, lo->second), path.line_to(hi->first, hi->second);
+            path.line_to(bucket.back().first, bucket.back().second);
         }
         bucket.clear();
     };
     for (const Point& p : points) {
         if (!valid(p)) {
             flush();
-            pen_down = false;
+            path.lift();
             continue;
         }
         const double x = ax.map(p.x), y = ay.map(p.y);
         if (!decimate) {
-            emit(x, y);
+            path.line_to(x, y);
             continue;
         }
         if (std::floor(x) != column) {
@@ -368,42 +396,45 @@ double append_legend(std::string& svg, const std::vector<LegendItem>& items, dou
     return items.empty() ? 0.0 : y - top + row_height + 4.0;
 }
 
+/// The grid lines of an x-y plot area: major ones in one path, minor ones
+/// (fainter) in another; minor lines are left out on long log axes.
+void append_grid(std::string& svg, const Axis& ax, const Axis& ay) {
+    std::string major, minor;
+    for (const Tick& t : ay.ticks) {
+        if (!t.major && ay.log && ay.ticks.size() > 24) continue;
+        (t.major ? major : minor) += fmt::format("M{} {}H{}", px(ax.from), px(ay.map(t.value)), px(ax.to));
+    }
+    for (const Tick& t : ax.ticks) {
+        if (!t.major && ax.log && ax.ticks.size() > 24) continue;
+        (t.major ? major : minor) += fmt::format("M{} {}V{}", px(ax.map(t.value)), px(ay.to), px(ay.from));
+    }
+    if (!major.empty()) svg += fmt::format("<path d=\"{}\" stroke=\"{}\"/>", major, kGridColor);
+    if (!minor.empty()) svg += fmt::format("<path d=\"{}\" stroke=\"{}\" stroke-opacity=\"0.5\"/>", minor, kGridColor);
+}
+
 /// Grid, ticks, tick labels and axis labels of an x-y plot area.
 void append_axes(std::string& svg, const Axis& ax, const Axis& ay, const std::vector<std::string>& x_label,
                  const std::vector<std::string>& y_label, double y_label_x) {
     const double left = ax.from, right = ax.to, bottom = ay.from, top = ay.to;
-    svg += fmt::format("<g stroke=\"{}\" stroke-width=\"1\">", kGridColor);
-    for (const Tick& t : ay.ticks) {
-        if (!t.major && ay.log && ay.ticks.size() > 24) continue;
-        const double y = ay.map(t.value);
-        svg += fmt::format("<path d=\"M{} {}H{}\"{}/>", px(left), px(y), px(right), t.major ? "" : " stroke-opacity=\"0.5\"");
-    }
-    for (const Tick& t : ax.ticks) {
-        if (!t.major && ax.log && ax.ticks.size() > 24) continue;
-        const double x = ax.map(t.value);
-        svg += fmt::format("<path d=\"M{} {}V{}\"{}/>", px(x), px(top), px(bottom), t.major ? "" : " stroke-opacity=\"0.5\"");
-    }
-    svg += "</g>";
+    append_grid(svg, ax, ay);
     if (!ay.log && ay.lo < 0.0 && ay.hi > 0.0)  // the zero line, where differences are read against
-        svg += fmt::format("<path d=\"M{} {}H{}\" stroke=\"{}\" stroke-width=\"1\"/>", px(left), px(ay.map(0.0)), px(right),
-                           kAxisColor);
-    svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"{}\"/>", px(left), px(top),
-                       px(right - left), px(bottom - top), kAxisColor);
-    svg += "<g text-anchor=\"middle\">";
+        svg += fmt::format("<path d=\"M{} {}H{}\" stroke=\"{}\"/>", px(left), px(ay.map(0.0)), px(right), kAxisColor);
+    std::string ticks = fmt::format("M{} {}H{}V{}H{}z", px(left), px(top), px(right), px(bottom), px(left));
+    std::string labels = "<g text-anchor=\"middle\">";
     for (const Tick& t : ax.ticks) {
         const double x = ax.map(t.value);
-        svg += fmt::format("<path d=\"M{} {}v{}\" stroke=\"{}\"/>", px(x), px(bottom), t.major ? 4 : 2, kAxisColor);
+        ticks += fmt::format("M{} {}v{}", px(x), px(bottom), t.major ? 4 : 2);
         if (!t.label.markup.empty())
-            svg += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>", px(x), px(bottom + 16), t.label.markup);
+            labels += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>", px(x), px(bottom + 16), t.label.markup);
     }
-    svg += "</g><g text-anchor=\"end\">";
+    labels += "</g><g text-anchor=\"end\">";
     for (const Tick& t : ay.ticks) {
         const double y = ay.map(t.value);
-        svg += fmt::format("<path d=\"M{} {}h-{}\" stroke=\"{}\"/>", px(left), px(y), t.major ? 4 : 2, kAxisColor);
+        ticks += fmt::format("M{} {}h-{}", px(left), px(y), t.major ? 4 : 2);
         if (!t.label.markup.empty())
-            svg += fmt::format("<text x=\"{}\" y=\"{}\" dy=\"0.35em\">{}</text>", px(left - 7), px(y), t.label.markup);
+            labels += fmt::format("<text x=\"{}\" y=\"{}\" dy=\"0.35em\">{}</text>", px(left - 7), px(y), t.label.markup);
     }
-    svg += "</g>";
+    svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\"/>", ticks, kAxisColor) + labels + "</g>";
     if (!x_label.empty()) svg += axis_label(x_label, (left + right) / 2, bottom + 34, false);
     if (!y_label.empty()) svg += axis_label(y_label, y_label_x, (top + bottom) / 2, true);
 }
@@ -451,7 +482,19 @@ void widen_for_bars(XyData& data, bool log_x, bool log_y) {
         data.x.lo -= spacing / 2, data.x.hi += spacing / 2;
 }
 
-XyData xy_data(const Plot& plot) {
+/// The axes also take in the limits and highlights the report adds, so that a
+/// tolerance beyond every error still shows, and where it lies.
+void widen_for_annotations(XyData& data, const Plot& plot, const SvgOptions& options) {
+    const auto shows = [](double v, bool log) { return std::isfinite(v) && (!log || v > 0.0); };
+    for (const LimitLine& l : options.limits) {
+        if (l.vertical && shows(l.value, plot.log_x)) data.x.add(l.value);
+        if (!l.vertical && shows(l.value, plot.log_y)) data.y.add(l.value);
+    }
+    for (const Highlight& h : options.highlights)
+        if (shows(h.x, plot.log_x) && shows(h.y, plot.log_y)) data.x.add(h.x), data.y.add(h.y);
+}
+
+XyData xy_data(const Plot& plot, const SvgOptions& options) {
     XyData data;
     for (const Series& s : plot.series) {
         data.series.push_back(points_of(s, plot.log_x, plot.log_y));
@@ -460,6 +503,8 @@ XyData xy_data(const Plot& plot) {
             if (valid(p)) data.y.add(p.y);
         }
     }
+    // Annotations first: the half bar of padding then also keeps a limit past every bar inside the frame.
+    if (!data.x.empty() && !data.y.empty()) widen_for_annotations(data, plot, options);
     if (plot.kind == Plot::Kind::Bars) widen_for_bars(data, plot.log_x, plot.log_y);
     if (plot.kind == Plot::Kind::Points && !data.x.empty() && !plot.log_x) {
         const double pad = (data.x.hi - data.x.lo) * 0.02;
@@ -510,11 +555,18 @@ XyFrame xy_frame(const Plot& plot, const Axis& ay, double width, double height) 
     return frame;
 }
 
-/// A round dot at each valid point, as one path of zero-length segments.
+/// A round dot at each valid point, as one path of zero-length segments
+/// (whole pixels; a dot on the pixel of another is drawn once).
 std::string dot_marks(const std::vector<Point>& points, const Axis& ax, const Axis& ay) {
     std::string marks;
-    for (const Point& p : points)
-        if (valid(p)) marks += fmt::format("M{} {}h0", px(ax.map(p.x)), px(ay.map(p.y)));
+    std::vector<std::pair<long, long>> drawn;
+    for (const Point& p : points) {
+        if (!valid(p)) continue;
+        const std::pair<long, long> at{std::lround(ax.map(p.x)), std::lround(ay.map(p.y))};
+        if (std::find(drawn.end() - std::min<std::ptrdiff_t>(std::ssize(drawn), 8), drawn.end(), at) != drawn.end()) continue;
+        drawn.push_back(at);
+        marks += fmt::format("M{} {}h0", at.first, at.second);
+    }
     return marks;
 }
 
@@ -558,20 +610,20 @@ BarLayout bar_layout(const Plot& plot, const XyData& data, const Axis& ax, const
     return bars;
 }
 
-/// Series `i` as filled bars: its slot of a group, or centred on x.
+/// Series `i` as filled bars, one path: its slot of a group, or centred on x.
 void append_filled_bars(std::string& svg, const std::vector<Point>& points, std::size_t i, const BarLayout& bars,
                         const Axis& ax, const Axis& ay) {
     const double full = std::max(bars.pixel_spacing * 0.8, 1.0);
     const double w = bars.grouped ? full / static_cast<double>(bars.n_series) : full;
     const double offset = bars.grouped ? -full / 2 + w * static_cast<double>(i) : -w / 2;
-    svg += fmt::format("<g fill=\"{}\"{}>", series_color(i), bars.grouped ? "" : " fill-opacity=\"0.8\"");
+    std::string d;
     for (const Point& p : points) {
         if (!valid(p)) continue;
         const double y0 = ay.map(bars.base), y1 = ay.map(p.y);
-        svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>", px(ax.map(p.x) + offset), px(std::min(y0, y1)),
-                           px(w), px(std::max(std::abs(y1 - y0), 0.5)));
+        const double height = std::max(std::abs(y1 - y0), 0.5);
+        d += fmt::format("M{} {}h{}v{}h-{}z", px(ax.map(p.x) + offset), px(std::min(y0, y1)), px(w), px(height), px(w));
     }
-    svg += "</g>";
+    svg += fmt::format("<path d=\"{}\" fill=\"{}\"{}/>", d, series_color(i), bars.grouped ? "" : " fill-opacity=\"0.8\"");
 }
 
 /// A series over dense bars: a step outline, one bar wide at each point.
@@ -607,8 +659,49 @@ void append_xy_series(std::string& svg, const Plot& plot, const XyData& data, co
     }
 }
 
+constexpr const char* kLimitColor = "#c62828";
+
+/// Text with a white halo, readable over curves and grid lines.
+std::string halo_text(double x, double y, std::string_view anchor, const std::string& text) {
+    return fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"{}\" fill=\"{}\" stroke=\"#fff\" stroke-width=\"3\" "
+                       "paint-order=\"stroke\" font-weight=\"600\">{}</text>",
+                       px(x), px(y), anchor, kLimitColor, escaped(text));
+}
+
+/// The limits as dashed lines across the plot area, each labelled at its end.
+void append_limits(std::string& svg, const std::vector<LimitLine>& limits, const Axis& ax, const Axis& ay) {
+    for (const LimitLine& l : limits) {
+        const Axis& along = l.vertical ? ax : ay;
+        if (!along.shows(l.value)) continue;
+        const double at = along.map(l.value);
+        svg += fmt::format("<path d=\"M{0} {1}{2}{3}\" stroke=\"{4}\" stroke-width=\"1.6\" stroke-dasharray=\"6 3\"/>",
+                           px(l.vertical ? at : ax.from), px(l.vertical ? ay.to : at), l.vertical ? 'V' : 'H',
+                           px(l.vertical ? ay.from : ax.to), kLimitColor);
+        if (l.label.empty()) continue;
+        if (l.vertical) {
+            const bool right_half = at > (ax.from + ax.to) / 2;
+            svg += halo_text(right_half ? at - 4 : at + 4, ay.to + 13, right_half ? "end" : "start", l.label);
+        } else {
+            svg += halo_text(ax.to - 4, at - 4, "end", l.label);
+        }
+    }
+}
+
+/// The highlights as rings, each labelled beside it (to the left in the right half).
+void append_highlights(std::string& svg, const std::vector<Highlight>& highlights, const Axis& ax, const Axis& ay) {
+    for (const Highlight& h : highlights) {
+        if (!ax.shows(h.x) || !ay.shows(h.y)) continue;
+        const double x = ax.map(h.x), y = ay.map(h.y);
+        svg += fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"6\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\"/>", px(x),
+                           px(y), kLimitColor);
+        const bool right_half = x > (ax.from + ax.to) / 2;
+        const double label_y = y < ay.to + 20 ? y + 18 : y - 9;
+        if (!h.label.empty()) svg += halo_text(right_half ? x - 9 : x + 9, label_y, right_half ? "end" : "start", h.label);
+    }
+}
+
 std::string render_xy(const Plot& plot, const SvgOptions& options) {
-    const XyData data = xy_data(plot);
+    const XyData data = xy_data(plot, options);
     Axis ax = x_axis_of(data.x, plot.log_x);
     Axis ay = make_axis(data.y, plot.log_y, true, 6);
     const XyFrame frame = xy_frame(plot, ay, options.width, options.height);
@@ -623,6 +716,8 @@ std::string render_xy(const Plot& plot, const SvgOptions& options) {
                            px((frame.left + frame.right) / 2), px((frame.top + frame.bottom) / 2), kAxisColor);
     } else {
         append_xy_series(svg, plot, data, ax, ay);
+        append_limits(svg, options.limits, ax, ay);
+        append_highlights(svg, options.highlights, ax, ay);
     }
     return svg + "</svg>";
 }
@@ -639,6 +734,7 @@ struct Scale {
     ColorMap map = ColorMap::Sequential;
     double lo = 0.0, hi = 1.0;
     std::vector<std::string> members;  ///< labels of the heatmaps that use it
+    std::vector<const ScaleMark*> marks;  ///< values marked on its colour bar
     double t(double v) const { return (v - lo) / (hi - lo); }
 };
 
@@ -653,18 +749,25 @@ ColorMap resolve(const Heatmap& h) {
     return negative && positive ? ColorMap::Diverging : ColorMap::Sequential;
 }
 
+/// Colour levels of a heatmap's image: 128 steps of its scale (a step is under
+/// 1% of the range, below what the eye tells apart in a map of noise, and half
+/// the palette keeps a report of a hundred heatmaps small).
+constexpr int kColorLevels = 128;
+
 /// The data URL of a heatmap's image: one pixel per cell, row 0 at the bottom,
-/// cells without a value transparent (the hatching behind them shows).
+/// cells without a value transparent (palette entry 0; the hatching behind
+/// them shows).
 std::string heatmap_image(const Heatmap& h, const Scale& scale) {
-    std::array<Rgba, 256> palette{};
-    for (int i = 0; i < 255; ++i) palette[static_cast<std::size_t>(i)] = color_at(scale.map, i / 254.0);
-    palette[255] = {0, 0, 0, 0};
+    std::vector<Rgba> palette(kColorLevels + 1);
+    palette[0] = {0, 0, 0, 0};
+    for (int i = 0; i < kColorLevels; ++i) palette[static_cast<std::size_t>(i + 1)] = color_at(scale.map, i / (kColorLevels - 1.0));
     std::vector<std::uint8_t> pixels(h.values.size());
     for (int r = 0; r < h.rows; ++r) {
         for (int c = 0; c < h.cols; ++c) {
             const double v = h.values[static_cast<std::size_t>(r) * static_cast<std::size_t>(h.cols) + static_cast<std::size_t>(c)];
-            std::uint8_t index = 255;
-            if (!std::isnan(v)) index = static_cast<std::uint8_t>(std::lround(std::clamp(scale.t(v), 0.0, 1.0) * 254.0));
+            std::uint8_t index = 0;
+            if (!std::isnan(v))
+                index = static_cast<std::uint8_t>(1 + std::lround(std::clamp(scale.t(v), 0.0, 1.0) * (kColorLevels - 1)));
             pixels[static_cast<std::size_t>(h.rows - 1 - r) * static_cast<std::size_t>(h.cols) + static_cast<std::size_t>(c)] = index;
         }
     }
@@ -697,6 +800,15 @@ double append_color_bar(std::string& svg, const Scale& scale, const std::string&
                            kAxisColor, px(tx), px(bar_top + 25), t.label.markup);
     }
     svg += "</g>";
+    for (const ScaleMark* m : scale.marks) {
+        const double v = std::abs(m->value);
+        for (double value : scale.map == ColorMap::Diverging ? std::vector<double>{-v, v} : std::vector<double>{m->value}) {
+            if (!(value >= lo && value <= hi)) continue;
+            svg += fmt::format("<path d=\"M{} {}v16\" stroke=\"{}\" stroke-width=\"2\"/>", px(x + scale.t(value) * width),
+                               px(bar_top - 3), kLimitColor);
+        }
+        if (!m->label.empty()) svg += halo_text(x, bar_top + 40, "start", m->label);
+    }
     return 48.0;
 }
 
@@ -738,7 +850,7 @@ void settle_scale(Scale& s) {
     }
 }
 
-SharedScales shared_scales(const std::vector<Heatmap>& maps) {
+SharedScales shared_scales(const std::vector<Heatmap>& maps, const std::vector<ScaleMark>& marks) {
     SharedScales shared;
     shared.scale_of.assign(maps.size(), 0);
     for (std::size_t i = 0; i < maps.size(); ++i) {
@@ -746,12 +858,18 @@ SharedScales shared_scales(const std::vector<Heatmap>& maps) {
         const ColorMap map = resolve(maps[i]);
         auto it = std::find_if(shared.scales.begin(), shared.scales.end(), [&](const Scale& s) { return s.map == map; });
         if (it == shared.scales.end()) {
-            shared.scales.push_back({map, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), {}});
+            shared.scales.push_back({map, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), {}, {}});
             it = shared.scales.end() - 1;
         }
         shared.scale_of[i] = static_cast<std::size_t>(it - shared.scales.begin());
         it->members.push_back(maps[i].label.empty() ? fmt::format("map {}", i + 1) : maps[i].label);
         widen_scale(*it, maps[i], shared.any_missing);
+    }
+    for (const ScaleMark& m : marks) {
+        if (m.heatmap >= maps.size() || !well_formed(maps[m.heatmap]) || !std::isfinite(m.value)) continue;
+        Scale& scale = shared.scales[shared.scale_of[m.heatmap]];
+        scale.marks.push_back(&m);
+        scale.lo = std::min(scale.lo, m.value), scale.hi = std::max(scale.hi, m.value);
     }
     for (Scale& s : shared.scales) settle_scale(s);
     return shared;
@@ -862,10 +980,32 @@ void append_heatmap_legends(std::string& svg, const SharedScales& shared, const 
     }
 }
 
+/// Rings the highlighted cells of well-formed heatmaps, labelled beside the ring.
+void append_cell_highlights(std::string& svg, const Plot& plot, const SvgOptions& options, const PanelGrid& g) {
+    for (const CellHighlight& c : options.cells) {
+        if (c.heatmap >= plot.heatmaps.size() || !well_formed(plot.heatmaps[c.heatmap])) continue;
+        const Heatmap& h = plot.heatmaps[c.heatmap];
+        if (c.row < 0 || c.row >= h.rows || c.col < 0 || c.col >= h.cols) continue;
+        const double cell_w = g.panel_width / h.cols, cell_h = g.panel_height / h.rows;
+        const double x = g.panel_x(c.heatmap) + (c.col + 0.5) * cell_w;
+        const double y = g.panel_y(c.heatmap) + (h.rows - c.row - 0.5) * cell_h;
+        const double r = std::max({6.0, cell_w * 0.75, cell_h * 0.75});
+        svg += fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"none\" stroke=\"#111\" stroke-width=\"2\"/>"
+                           "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"none\" stroke=\"#fff\" stroke-width=\"1\"/>",
+                           px(x), px(y), px(r), px(x), px(y), px(r + 1.5));
+        if (c.label.empty()) continue;
+        const bool right_half = x > g.panel_x(c.heatmap) + g.panel_width / 2;
+        const bool top_half = y < g.panel_y(c.heatmap) + g.panel_height / 2;
+        svg += halo_text(right_half ? x - r - 3 : x + r + 3, top_half ? y + r + 12 : y - r - 4, right_half ? "end" : "start",
+                         c.label);
+    }
+}
+
 std::string render_heatmaps(const Plot& plot, const SvgOptions& options) {
     const auto& maps = plot.heatmaps;
-    const SharedScales shared = shared_scales(maps);
-    const PanelGrid grid = panel_grid(plot);
+    const SharedScales shared = shared_scales(maps, options.scale_marks);
+    PanelGrid grid = panel_grid(plot);
+    if (!options.scale_marks.empty()) grid.height += 14.0;  // the marks' labels below the colour bars
     const std::string hatch = options.id_prefix + "-nan";
     std::string svg = svg_open(grid.width, grid.height, plot.title);
     svg += hatch_pattern(hatch);
@@ -877,6 +1017,7 @@ std::string render_heatmaps(const Plot& plot, const SvgOptions& options) {
         else
             svg += malformed_note(maps[i], x0, y0, grid);
     }
+    append_cell_highlights(svg, plot, options, grid);
     append_heatmap_legends(svg, shared, grid, options.id_prefix, hatch);
     if (maps.empty())
         svg += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">no heatmaps</text>", px(grid.margin_left), px(grid.margin_top + 20),

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Renders the sample HTML report in headless Chromium: the page must load without
 # a single console message (no script error, nothing blocked), the inline script
-# must have run, and a screenshot is left for people to look at.
+# must have run, its search and filters must work on every row (render_harness.html),
+# and a screenshot is left for people to look at.
 #
 #   render_check.sh TEST_REPORTS_BINARY OUTPUT_DIR
 #
@@ -23,7 +24,7 @@ if [ -z "$browser" ]; then
 fi
 
 report="$out/report.html"
-rm -f "$report" "$out/report.png" "$out/console.log" "$out/dom.html"
+rm -f "$report" "$out/report.png" "$out/console.log" "$out/dom.html" "$out/harness.html"
 WARPCHECK_SAMPLE_REPORT="$report" "$test_binary" --gtest_filter=SampleReport.WritesForRendering > /dev/null
 [ -s "$report" ] || { echo "render_check: the sample report was not written"; exit 1; }
 
@@ -50,6 +51,20 @@ if grep -Eq '<button[^>]*data-open="all"[^>]*hidden' "$out/dom.html"; then
   echo "render_check: the inline script did not run"
   status=1
 fi
+
+# The reader's use of it: search, the verdict, check and family filters, a
+# packed row opened (render_harness.html drives the report in a frame and
+# writes what it found as JSON into its #result).
+cp "$(dirname "$0")/render_harness.html" "$out/render_harness.html"
+timeout 60 "$browser" "${flags[@]}" --allow-file-access-from-files --virtual-time-budget=20000 \
+  --dump-dom "file://$out/render_harness.html?report.html" > "$out/harness.html" 2> /dev/null \
+  || { echo "render_check: chromium failed on the harness"; exit 1; }
+result=$(sed -n 's:.*<pre id="result">\(.*\)</pre>.*:\1:p' "$out/harness.html")
+echo "render_check: harness $result"
+case "$result" in
+  *'"ok":true'*) ;;
+  *) echo "render_check: the harness found problems (or did not finish)"; status=1 ;;
+esac
 
 timeout 60 "$browser" "${flags[@]}" --screenshot="$out/report.png" --window-size=1400,2200 "file://$report" \
   > /dev/null 2>&1 || { echo "render_check: screenshot failed"; exit 1; }

@@ -70,12 +70,13 @@ TEST(Png, Base64MatchesTheStandardVectors) {
 }
 
 TEST(Png, DecodesWithAnIndependentInflater) {
-    // 300 x 250 pixels: more than one stored block (65535 bytes).
+    // 300 x 250 pixels of a pattern, with a transparent first palette entry.
     const int w = 300, h = 250;
     std::vector<std::uint8_t> pixels(static_cast<std::size_t>(w * h));
     for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<std::uint8_t>(i * 7 % 256);
-    std::array<Rgba, 256> palette{};
+    std::vector<Rgba> palette(256);
     for (int i = 0; i < 256; ++i) palette[static_cast<std::size_t>(i)] = {static_cast<std::uint8_t>(i), 0, 0, 255};
+    palette[0].a = 0;
     const std::string png = encode_palette_png(w, h, pixels, palette);
     ASSERT_EQ(png.substr(0, 8), "\x89PNG\r\n\x1a\n");
     if (std::system("/usr/bin/python3 -c 'import zlib' > /dev/null 2>&1") != 0) GTEST_SKIP() << "no python3 to cross-check";
@@ -84,17 +85,19 @@ TEST(Png, DecodesWithAnIndependentInflater) {
     // Python's zlib checks the Adler-32 of the stream; the script checks each chunk's CRC.
     const std::string script =
         "import struct, sys, zlib\n"
-        "d = open(sys.argv[1], 'rb').read(); i = 8; idat = b''\n"
+        "d = open(sys.argv[1], 'rb').read(); i = 8; idat = b''; trns = None\n"
         "while i < len(d):\n"
         "    n, = struct.unpack('>I', d[i:i+4]); t = d[i+4:i+8]; body = d[i+8:i+8+n]\n"
         "    assert struct.unpack('>I', d[i+8+n:i+12+n])[0] == zlib.crc32(t + body), t\n"
         "    if t == b'IHDR': w, h = struct.unpack('>II', body[:8])\n"
         "    if t == b'IDAT': idat += body\n"
+        "    if t == b'tRNS': trns = body\n"
         "    i += 12 + n\n"
         "raw = zlib.decompress(idat)\n"
         "assert len(raw) == h * (w + 1)\n"
         "px = b''.join(raw[r*(w+1)+1:(r+1)*(w+1)] for r in range(h))\n"
-        "assert all(px[k] == k * 7 % 256 for k in range(w * h))\n";
+        "assert all(px[k] == k * 7 % 256 for k in range(w * h))\n"
+        "assert trns == b'\\x00', trns  # only the transparent first entry\n";
     std::ofstream(dir.file("check.py")) << script;
     EXPECT_EQ(std::system(("/usr/bin/python3 " + dir.file("check.py") + " " + dir.file("x.png")).c_str()), 0);
 }
@@ -148,7 +151,9 @@ TEST(SvgPlot, LongSeriesAreThinnedToThePixelColumns) {
 
 TEST(SvgPlot, HeatmapsShareScalesAndMarkMissingCells) {
     const Plot maps = sample_chi2_fail(8, 16).plots[0];
-    const std::string svg = render_svg(maps, {"t0", 640, 320});
+    SvgOptions options;
+    options.id_prefix = "t0";
+    const std::string svg = render_svg(maps, options);
     EXPECT_THAT(xml_problem(svg), IsEmpty());
     EXPECT_EQ(count_of(svg, "<image "), 3u);
     EXPECT_EQ(count_of(svg, "<linearGradient "), 2u);  // observed+expected share one, residuals the other

@@ -1,0 +1,88 @@
+// The parts of the HTML report (reports/html_report.cpp), each in its own file:
+//  - html_report_assets.cpp: the style sheet and the script;
+//  - html_report_judged.cpp: what each check judges, read from its figures:
+//    the quantities against their limits, the legend of each check's p-value,
+//    and the limits and points the report draws into a check's plots;
+//  - html_report_row.cpp: the order of the rows (failures, then the weakest)
+//    and the details of one row.
+// Internal to reports/: nothing here is installed as an interface.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "reports/result.h"
+#include "reports/svg_plot.h"
+
+namespace warpcheck::html {
+
+/// The page's style sheet and its script (search, filters, unpacking).
+std::string_view style_sheet();
+std::string_view script();
+
+/// One quantity a check judged, against its limit: a line of a row's
+/// "Judged" table. NaN is never within its limit.
+struct JudgedLine {
+    std::string quantity;  ///< e.g. "Pearson X² = 968.6 on 1023 dof: p-value"
+    std::string value;     ///< e.g. "0.887"
+    std::string limit;     ///< e.g. "≥ 5.83e-05 (0.8 × level)"; "counted" for a figure that is reported only
+    enum class State { Within, Beyond, Reported } state = State::Within;
+};
+
+/// What `r` was judged on, from its p-value, level and figures: the check's
+/// own rules where this file knows the check, then every `*_over_tolerance`
+/// figure and every figure `X` with an `X_tolerance` (as the terminal's margin).
+std::vector<JudgedLine> judged_lines(const CheckResult& r);
+
+/// How a check's verdict is formed: what it judges, and what its p-value is
+/// and is compared with (empty for a check without a p-value). Empty `judged`
+/// for a check this file does not know.
+struct CheckLegend {
+    std::string judged;
+    std::string p_value;
+};
+CheckLegend check_legend(std::string_view check);
+
+/// The share of a chi-square check's level that its largest cell residual
+/// gets (chi2/local_residual.h, kLocalLevelShare); Pearson's statistic has the
+/// rest. The report uses it only where a row's p-value agrees with it.
+inline constexpr double kChi2LocalShare = 0.2;
+
+/// The judged test of each marginal of an unbinned row, from the check's table
+/// of tests (columns "marginal", "test", "judged"): (marginal label, short
+/// test name: "ad", "kuiper", "ks").
+std::vector<std::pair<std::string, std::string>> judged_unbinned_tests(const CheckResult& r);
+
+/// What the report draws into plot `index` of `r`: the limit its judged
+/// quantity is compared with, the points that failed or decide the statistic.
+void annotate_plot(const CheckResult& r, std::size_t index, SvgOptions& options);
+
+/// A sentence under plot `index` of `r` saying what is judged in it and what
+/// the drawn limits mean; empty if there is nothing to say.
+std::string plot_note(const CheckResult& r, std::size_t index);
+
+/// How close a row came to its limit, as the terminal's margin column reads it
+/// (reports/terminal_table.h: row_margin): level / p for a statistical row,
+/// error / tolerance otherwise, the larger when a row has both; 1 at the
+/// limit. Empty when the row has neither.
+std::optional<double> closeness(const CheckResult& r);
+
+/// The rows in the order the report shows them: grouped by family (the case
+/// name before '['), families with failures first, then errors, then by their
+/// weakest row; within a family failures, errors, passes from the closest to
+/// its limit, then n/a. Ties keep registry order.
+struct FamilyGroup {
+    std::string family;
+    std::vector<std::size_t> rows;  ///< indices into RunResult::results
+};
+std::vector<FamilyGroup> family_groups(const RunResult& run);
+
+/// The details of row `index`: message, facts, rerun command, the judged
+/// quantities, plots with their limits, tables, and every figure behind a toggle.
+std::string row_body(const RunResult& run, std::size_t index);
+
+}  // namespace warpcheck::html
