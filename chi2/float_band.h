@@ -74,6 +74,7 @@ private:
     double of_coordinate(float c) const;
 
     Binning binning_;
+    int axis_ = 0;  ///< which parameter (read by Kind::Probed)
     int steps_ = 1;
     Kind kind_ = Kind::Coordinate;
     int coordinate_ = 0;
