@@ -9,7 +9,8 @@
 // more); intervals and boxes are closed and exact. A zero density is accepted
 // for samples exactly on the domain's boundary, where a density can vanish
 // legitimately (the cosine hemisphere at z = 0, reached from u.x = 0); how many
-// were accepted that way is reported.
+// were accepted that way is reported, and among random inputs they are bounded
+// as the samples rounded across a support's edge are (see boundary_problem).
 //
 // Supports smaller than the domain (a triangle light inside its bounding
 // square, an environment map's empty rows): a correct warp's float arithmetic
@@ -72,6 +73,7 @@ struct Stats {
     uint64_t count = 0, random_count = 0;
     Tally<Example> nan_sample, outside, bad_pdf, zero_pdf;
     uint64_t boundary_zero = 0;
+    Tally<Example> boundary_random;  ///< the boundary zeros among random inputs (bounded as rounded_random)
     Tally<Example> rounded_random;  ///< pdf 0 within kProbeUlps of a positive pdf: random inputs
     uint64_t rounded_edges = 0;     ///< the same among the edge inputs
     double min_pdf = std::numeric_limits<double>::infinity();
@@ -87,6 +89,7 @@ struct Stats {
         bad_pdf.merge(o.bad_pdf);
         zero_pdf.merge(o.zero_pdf);
         boundary_zero += o.boundary_zero;
+        boundary_random.merge(o.boundary_random);
         min_pdf = std::min(min_pdf, o.min_pdf);
         max_pdf = std::max(max_pdf, o.max_pdf);
     }
@@ -100,7 +103,7 @@ bool finite_point(const chi2::DomainPoint& p, int dims) {
 
 /// Sorts one sample into the kinds of violation (or none); a zero pdf inside
 /// the domain and off its boundary is left to the probe (returns true).
-bool classify(Stats& s, const chi2::Domain& domain, uint64_t index, const Example& e) {
+bool classify(Stats& s, const chi2::Domain& domain, uint64_t index, const Example& e, bool random) {
     ++s.count;
     const chi2::DomainPoint p = to_domain_point(e.output);
     if (!finite_point(p, domain.point_dimension())) {
@@ -112,8 +115,12 @@ bool classify(Stats& s, const chi2::Domain& domain, uint64_t index, const Exampl
     if (!std::isfinite(e.pdf) || e.pdf < 0.0) {
         s.bad_pdf.add(index, e);
     } else if (e.pdf == 0.0) {
-        if (domain.on_boundary(p)) ++s.boundary_zero;
-        else if (inside) return true;
+        if (domain.on_boundary(p)) {
+            ++s.boundary_zero;
+            if (random) s.boundary_random.add(index, e);
+        } else if (inside) {
+            return true;
+        }
         else s.zero_pdf.add(index, e);
     } else {
         s.min_pdf = std::min(s.min_pdf, e.pdf);
@@ -174,7 +181,7 @@ Stats classify_chunk(const WarpCase& warp, std::size_t chunk, std::span<const Wa
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         const uint64_t index = chunk * kInputChunkSize + i;
         const Example e{inputs[i], x[i], pdf[i]};
-        if (!classify(s, domain, index, e)) continue;
+        if (!classify(s, domain, index, e, chunk > 0)) continue;
         // A zero pdf inside the domain: rounded across the support's edge, or a violation.
         if (!warp.has_pdf() || !positive_nearby(warp, x[i])) s.zero_pdf.add(index, e);
         else if (chunk == 0) ++s.rounded_edges;
@@ -219,6 +226,23 @@ std::vector<Finding> findings(const Stats& s, const chi2::Domain& domain) {
 
 /// The rule for zero pdfs next to a positive one (see the top): over the
 /// bound, or any under --strict, fails. Empty when it passes.
+/// Random samples on the boundary with pdf 0: the boundary has no measure, so
+/// a correct warp lands there (with the density's zero) only by rounding from
+/// within a few float spacings of it, the band kRoundedAcrossEdgeRate bounds;
+/// a warp that clamps onto its rim where its pdf is 0 (a tiny cap sampled a
+/// few floats too wide) puts a fixed fraction there, and each such sample has
+/// an infinite weight f / pdf. Edge inputs (u.x = 0 onto z = 0) are apart.
+std::string boundary_problem(const Stats& s, InputKind kind, int dims) {
+    const uint64_t bound = rounded_bound(s);
+    if (s.boundary_random.count <= bound) return {};
+    std::string text = fmt::format("{} of {} random samples lie on the domain's boundary with pdf 0, more than the {} "
+                                   "that float rounding onto it explains: the warp puts mass where its pdf is 0",
+                                   s.boundary_random.count, s.random_count, bound);
+    const Example& e = *s.boundary_random.first;
+    text += fmt::format(" (e.g. u = {} -> x = {})", format_input(e.input, kind), format_output(e.output, dims));
+    return text;
+}
+
 std::string rounded_problem(const Stats& s, bool strict, InputKind kind, int dims) {
     const uint64_t all = s.rounded_random.count + s.rounded_edges, bound = rounded_bound(s);
     if (all == 0 || (!strict && s.rounded_random.count <= bound)) return {};
@@ -255,6 +279,8 @@ void judge_and_explain(CheckResult& r, const Stats& s, const WarpCase& warp, boo
     }
     if (std::string rounded = rounded_problem(s, strict, kind, dims); !rounded.empty())
         problems.push_back(std::move(rounded));
+    if (std::string boundary = boundary_problem(s, kind, dims); !boundary.empty())
+        problems.push_back(std::move(boundary));
     r.verdict = problems.empty() ? Verdict::Pass : Verdict::Fail;
     if (problems.empty()) {
         r.summary = fmt::format("pdf in [{:.3g}, {:.3g}]", s.min_pdf, s.max_pdf);
@@ -276,6 +302,7 @@ void add_figures(CheckResult& r, const Stats& s) {
                  {"non_finite_or_negative_pdf", static_cast<double>(s.bad_pdf.count)},
                  {"zero_pdf", static_cast<double>(s.zero_pdf.count)},
                  {"zero_pdf_on_boundary", static_cast<double>(s.boundary_zero)},
+                 {"zero_pdf_on_boundary_random", static_cast<double>(s.boundary_random.count)},
                  {"min_pdf", s.min_pdf},
                  {"max_pdf", s.max_pdf},
                  {"zero_pdf_rounded_random", static_cast<double>(s.rounded_random.count)},
