@@ -76,11 +76,11 @@
 
 #include "paired_timing.h"
 #include "sampling/hash.h"
-#include "validate/external.h"
+#include "validate/api/external.h"
 
 #include "sampling/unit_float.h"
-#include "validate/exhaustive_sweep.h"
-#include "validate/thread_pool.h"
+#include "validate/api/exhaustive_sweep.h"
+#include "validate/api/thread_pool.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include <chi2/domain_kinds.h>
-#include <validate/external.h>
+#include <validate/api/external.h>
 
 namespace {
 

@@ -2,7 +2,7 @@
 // through validate/register17.h alone; the program links warpcheck::main.
 #include <cmath>
 
-#include <validate/register17.h>
+#include <validate/api/register17.h>
 
 static_assert(__cplusplus == 201703L, "this file proves that registration compiles as C++17");
 

@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include <validate/external.h>
+#include <validate/api/external.h>
 
 #include "power_warp.h"
 

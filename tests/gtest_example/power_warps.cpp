@@ -2,7 +2,7 @@
 // (warpcheck::main), its GoogleTest binary and its ctest tests.
 #include "power_warp.h"
 
-#include <validate/external.h>
+#include <validate/api/external.h>
 
 namespace {
 

@@ -2,7 +2,7 @@
 // registration, and assertions on a warp object with its case info.
 #include <gtest/gtest.h>
 
-#include <validate/external.h>
+#include <validate/api/external.h>
 #include <validate/gtest/warpcheck_gtest.h>
 
 #include "power_warp.h"

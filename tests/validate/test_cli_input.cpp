@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "validate/check.h"
-#include "validate/cli_input.h"
-#include "validate/warp_case.h"
+#include "validate/api/check.h"
+#include "validate/cli/cli_input.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
-#include "validate/external.h"
+#include "validate/api/external.h"
 
 namespace warpcheck {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "chi2/binning.h"
-#include "validate/lane_cells.h"
+#include "validate/lanes/lane_cells.h"
 #include "sampling/pcg32.h"
 
 #pragma GCC diagnostic ignored "-Wpsabi"  // lane vectors between inline test helpers

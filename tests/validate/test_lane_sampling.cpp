@@ -13,11 +13,11 @@
 #include "chi2/chi2_test.h"
 #include "sampling/hemisphere.h"
 #include "support/builtin_case.h"
-#include "validate/check.h"
+#include "validate/api/check.h"
 #include "validate/checks/checks.h"
-#include "validate/lane_sampling.h"
-#include "validate/thread_pool.h"
-#include "validate/warp_case.h"
+#include "validate/lanes/lane_sampling.h"
+#include "validate/api/thread_pool.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 namespace {

@@ -9,9 +9,9 @@
 
 #include "support/builtin_case.h"
 #include "validate/checks/checks.h"
-#include "validate/power_simulation.h"
-#include "validate/registry.h"
-#include "validate/runner.h"
+#include "validate/trust/power_simulation.h"
+#include "validate/api/registry.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "support/model_visitors.h"
-#include "validate/result_codec.h"
+#include "validate/run/result_codec.h"
 
 namespace warpcheck {
 namespace {

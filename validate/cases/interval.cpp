@@ -17,8 +17,8 @@
 #include "sampling/interval.h"
 #include "sampling/pcg32.h"
 #include "sampling/unit_float.h"
-#include "validate/exhaustive_sweep.h"
-#include "validate/registry.h"
+#include "validate/api/exhaustive_sweep.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

@@ -25,7 +25,7 @@
 #include "validate/checks/evidence.h"
 #include "validate/checks/line_resolution.h"
 #include "validate/checks/power_level.h"
-#include "validate/lane_sampling.h"
+#include "validate/lanes/lane_sampling.h"
 
 namespace warpcheck {
 namespace {

@@ -35,7 +35,7 @@
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
-#include "validate/exhaustive_sweep.h"
+#include "validate/api/exhaustive_sweep.h"
 
 namespace warpcheck {
 namespace {
