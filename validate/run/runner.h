@@ -14,17 +14,10 @@
 #include "validate/api/registry.h"
 #include "reports/progress_callback.h"
 #include "reports/result.h"
+#include "validate/run/job.h"
 #include "validate/run/worker.h"
 
 namespace warpcheck {
-
-struct Job {
-    const WarpCase* warp = nullptr;
-    const Check* check = nullptr;
-    /// Non-empty: the check does not apply (Check::not_applicable_because); the
-    /// job is not run and its row is NotApplicable with this reason.
-    std::string not_applicable{};
-};
 
 /// The stream of one (case, check) job: a function of the names and the seed only.
 StreamId job_stream(const WarpCase& warp, const Check& check, uint64_t seed);

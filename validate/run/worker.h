@@ -15,10 +15,9 @@
 #include "reports/progress_callback.h"
 #include "reports/result.h"
 #include "validate/api/check.h"
+#include "validate/run/job.h"
 
 namespace warpcheck {
-
-struct Job;
 
 /// How the runner keeps warps apart from the run.
 struct Isolation {
