@@ -1,7 +1,7 @@
 # Installs warpcheck as a CMake package: find_package(warpcheck) gives
 # warpcheck::validate (the library), warpcheck::main (a ready main() for
 # programs that validate their own warps), warpcheck::register17 (the include
-# path of validate/register17.h, for C++17 files that register warps),
+# path of validate/api/register17.h, for C++17 files that register warps),
 # warpcheck::sampling (the warps), warpcheck::reports (the report writers),
 # warpcheck::results (the result model), warpcheck::gtest (GoogleTest
 # assertions, validate/gtest/warpcheck_gtest.h) and the CMake function

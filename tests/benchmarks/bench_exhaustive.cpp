@@ -181,7 +181,7 @@ uint64_t counter_array_loop() {
 }
 
 // hashed_unit's block function, from the case an external program registers
-// (validate/external.h).
+// (validate/api/external.h).
 warpcheck::FloatBlockFn hashed_unit_sweep_fn() {
     const auto warp = warpcheck::make_u32_float_case(
         {.family = "hashed_unit", .domain = warpcheck::chi2::Domain::interval(0, 1)}, warpcheck::Monotone::NotClaimed,

@@ -1,5 +1,5 @@
 // A renderer that compiles as C++17 registers its warps in its own files
-// through validate/register17.h alone; the program links warpcheck::main.
+// through validate/api/register17.h alone; the program links warpcheck::main.
 #include <cmath>
 
 #include <validate/api/register17.h>

@@ -60,7 +60,7 @@ expect_fail phong_mixture_wrong weight_mean
 expect_fail alias_table_wrong remapped_u
 expect_fail renderer_unit_float_swapped exhaustive
 
-# A C++17 translation unit registers its warps through validate/register17.h.
+# A C++17 translation unit registers its warps through validate/api/register17.h.
 "$work/build/validate_my_warps17" --all --samples 200000 --color never | tee "$work/all17.txt"
 grep -q "logistic_cxx17\[mu=-3,s=0.25\]" "$work/all17.txt"
 echo "external example: built against the installed package and passed"

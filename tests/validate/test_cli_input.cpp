@@ -1,5 +1,5 @@
 // Reading numbers as people type them, stating limits in words, and "did you
-// mean" suggestions (validate/cli_input.h), and the shortest decimal of a
+// mean" suggestions (validate/cli/cli_input.h), and the shortest decimal of a
 // float parameter in a case name.
 #include <cstdlib>
 

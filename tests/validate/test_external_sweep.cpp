@@ -1,5 +1,5 @@
 // The exhaustive check's fast path opened to external samplers
-// (validate/external.h): a renderer's u32 -> float and u64 -> float samplers,
+// (validate/api/external.h): a renderer's u32 -> float and u64 -> float samplers,
 // monotone by claim or not.
 #include <gtest/gtest.h>
 

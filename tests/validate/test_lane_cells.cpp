@@ -1,4 +1,4 @@
-// lane_cells (validate/lane_cells.h) against Binning::bin, point by point: every point the
+// lane_cells (validate/lanes/lane_cells.h) against Binning::bin, point by point: every point the
 // lanes classify must be in the cell bin() puts it in, and the points they
 // leave (-1) must be the ones bin() counts as NaN, outside or at a pole.
 #include <gtest/gtest.h>

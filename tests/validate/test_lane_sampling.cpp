@@ -1,4 +1,4 @@
-// The vectorised chi-square path (validate/lane_sampling.h) against the scalar
+// The vectorised chi-square path (validate/lanes/lane_sampling.h) against the scalar
 // one: for every built-in case with a lane form, on both code paths (AVX-512
 // where the processor has it, and the portable build), the histogram equals
 // the one chi2::sample_histogram builds from draw_inputs and WarpCase::sample,

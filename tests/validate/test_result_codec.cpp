@@ -1,4 +1,4 @@
-// The worker codec (validate/result_codec.h): a result decoded is the result
+// The worker codec (validate/run/result_codec.h): a result decoded is the result
 // encoded, every member of every type and every bit of every double (NaN
 // payloads and signs, infinities, -0, subnormals), for every verdict.
 #include <gtest/gtest.h>

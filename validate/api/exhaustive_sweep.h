@@ -48,7 +48,7 @@ public:
 /// A warp case that also offers its sampler to the exhaustive sweep: it forwards
 /// sample/pdf/invert to an ordinary case and adds the block function. Built by
 /// the interval cases and by make_u32_float_case / make_u64_float_case
-/// (validate/external.h).
+/// (validate/api/external.h).
 class SweepableWarpCase final : public WarpCase, public SweepableCase {
 public:
     SweepableWarpCase(std::unique_ptr<WarpCase> inner, FloatBlockFn fn, uint64_t inputs, std::string grid,

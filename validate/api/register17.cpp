@@ -1,4 +1,4 @@
-// The C++17 registration header's functions (validate/register17.h), compiled
+// The C++17 registration header's functions (validate/api/register17.h), compiled
 // as C++20 with the rest of warpcheck: each converts the plain description to
 // a WarpCaseInfo and wraps the callables in a WarpCase.
 #include "validate/api/register17.h"

@@ -23,10 +23,10 @@
 #include <vector>
 
 namespace warpcheck {
-class Registry;  // defined in validate/registry.h (C++20); only referred to here
+class Registry;  // defined in validate/api/registry.h (C++20); only referred to here
 }  // namespace warpcheck
 
-/// Defined by the program that links warpcheck::main (as in validate/external.h).
+/// Defined by the program that links warpcheck::main (as in validate/api/external.h).
 void warpcheck_register(warpcheck::Registry& registry);
 
 namespace warpcheck::cxx17 {
@@ -69,7 +69,7 @@ struct Domain {
     static Domain hemisphere() { return spherical_cap(0.0); }
 };
 
-/// A monotone 1D view of the warp for the tabulated check (validate/warp_case.h,
+/// A monotone 1D view of the warp for the tabulated check (validate/api/warp_case.h,
 /// MonotoneMarginal, says what each field means).
 struct View {
     int input_coordinate = 0;

@@ -15,7 +15,7 @@ class Registry {
 public:
     /// Adds a case; a second case with the same name is an error (names are how
     /// streams are seeded and how --filter finds a case), and so is a case
-    /// declared inconsistently (validate/case_validation.h): the message names
+    /// declared inconsistently (validate/api/case_validation.h): the message names
     /// the case and every problem.
     void add_case(std::unique_ptr<WarpCase> warp);
     void add_check(std::unique_ptr<Check> check);

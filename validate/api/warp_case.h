@@ -168,7 +168,7 @@ struct WarpCaseInfo {
     /// of 0 .. categories - 1 and the pdf is a pmf over them. A discrete case
     /// leaves `domain` unset (0 here means a continuous case).
     std::size_t categories = 0;
-    /// Built-in 2D warps only: the warp's lane form (validate/lane_sampling.h),
+    /// Built-in 2D warps only: the warp's lane form (validate/lanes/lane_sampling.h),
     /// which the chi-square check uses to draw, warp and bin 24 samples at a
     /// time. It must give the same bits as sample(); leave it empty otherwise.
     const LaneSampler* lanes = nullptr;

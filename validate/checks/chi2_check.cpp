@@ -124,7 +124,7 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
         for (std::size_t i = 0; i < points.size(); ++i) x[i] = to_warp_output(points[i]);
         warp.pdf(x, density);
     };
-    // The same histogram, 24 samples at a time (validate/lane_sampling.h), where
+    // The same histogram, 24 samples at a time (validate/lanes/lane_sampling.h), where
     // the processor has AVX-512; elsewhere the scalar chunks below, which beat
     // the lanes' portable build (28-31 against 20-24 M samples/s per core here).
     if (warp.info().lanes && kind == InputKind::Uniform2D && binning.lane_plan() && avx512_available()) {

@@ -141,7 +141,7 @@ bool write_outputs(const std::vector<Output>& outputs, const RunResult& run, con
     return ok;
 }
 
-// Counts and real numbers are read by validate/cli_input.h (1e6, 10M and
+// Counts and real numbers are read by validate/cli/cli_input.h (1e6, 10M and
 // 1_000_000 for counts; the range said in words). A transform rewrites a
 // count as plain digits for CLI11 to store. No description: --help shows the
 // ranges in the options' own text instead of validator names.
@@ -229,7 +229,7 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
                  "that returns 1 for u within a float of 1, fails instead of passing with its size and count");
 }
 
-// The limits, stated once here and in validate/cli_input.h (samples and
+// The limits, stated once here and in validate/cli/cli_input.h (samples and
 // alpha, shared with the WARPCHECK_* variables); the README says them too.
 constexpr unsigned kMaxThreads = 1024;
 constexpr double kMinBudget = 0.1, kMaxBudget = 86400.0;

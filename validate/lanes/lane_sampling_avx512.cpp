@@ -1,4 +1,4 @@
-// The AVX-512 build of the lockstep loops (validate/lane_kernels.h): this whole
+// The AVX-512 build of the lockstep loops (validate/lanes/lane_kernels.h): this whole
 // file is compiled for x86-64-v4 with -fno-math-errno (validate/CMakeLists.txt),
 // and only called where avx512_available() says the processor has it.
 #include "validate/lanes/lane_kernels.h"

@@ -39,7 +39,7 @@ ShardFile read_shard_file(const std::string& path);
 ///
 /// Each shard is checked before it is used, and any disagreement throws
 /// MergeError naming the file and, where there is one, the row:
-/// - it is a shard with a digest of its run (validate/run_digest.h), and the
+/// - it is a shard with a digest of its run (validate/run/run_digest.h), and the
 ///   shards share it and every setting it covers: shards of different
 ///   selections or settings are refused, even with the same number of jobs;
 /// - each row matches its own digest (an edited verdict, figure or name);

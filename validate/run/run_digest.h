@@ -1,4 +1,4 @@
-// Digests that let `validate --merge` check its shards (validate/merge.h). A
+// Digests that let `validate --merge` check its shards (validate/run/merge.h). A
 // run's digest covers what decides its figures and verdicts: the tool version,
 // seed, sample count, family alpha, --strict, --max-float-bias, the number of
 // statistical tests and the whole run's (case, check) list in order, all shards

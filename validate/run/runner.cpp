@@ -156,7 +156,7 @@ using Clock = std::chrono::steady_clock;
 // An in-process run whose warp calls exit() or quick_exit() would end with the
 // warp's status (0 for exit(0)) and no report. While a run is on, a handler
 // says on standard error which check's warp it was and ends the process with
-// status 1 (kExitFail of validate/cli.h: a check could not run).
+// status 1 (kExitFail of validate/cli/cli.h: a check could not run).
 struct ActiveRun {
     const std::vector<Job>* jobs = nullptr;
     const std::vector<std::atomic<bool>>* running = nullptr;

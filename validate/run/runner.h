@@ -51,7 +51,7 @@ int statistical_tests(const std::vector<Job>& jobs);
 
 /// Runs the jobs and returns their results in job order. Exceptions from a check
 /// become Error results; the run goes on. With isolation, so do crashes, exits,
-/// runaway allocation and checks over their CPU time budget (validate/worker.h);
+/// runaway allocation and checks over their CPU time budget (validate/run/worker.h);
 /// without, a check over its budget is asked to stop and waited for. Statistical
 /// results get their verdict from the Šidák-corrected level over all results
 /// that carry a p-value. The figures are the same either way.

@@ -2,8 +2,8 @@
 // that crashes, aborts, calls exit(), spins forever, allocates without bound,
 // prints, or starts processes of its own costs one ERROR row (or a table of its
 // output) instead of the run. The parent stays single-threaded (it forks, so it
-// must): it hands jobs to a supervisor process (validate/worker_supervisor.h),
-// which forks the workers, and reads their results (validate/result_codec.h)
+// must): it hands jobs to a supervisor process (validate/run/worker_supervisor.h),
+// which forks the workers, and reads their results (validate/run/result_codec.h)
 // and their output back over pipes.
 #pragma once
 

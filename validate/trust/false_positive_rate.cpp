@@ -13,7 +13,7 @@
 // that tilt for two cases (the 1D linear warp, and the cos theta and phi
 // marginals of a Phong lobe on the hemisphere) over --runs seeds and says
 // whether 90% lies in each detection rate's exact 95% interval
-// (validate/power_simulation.h).
+// (validate/trust/power_simulation.h).
 #include <iostream>
 #include <map>
 #include <stdexcept>
