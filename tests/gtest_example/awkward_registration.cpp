@@ -21,7 +21,7 @@ warpcheck::WarpCaseInfo power_info(const char* family, std::vector<warpcheck::Pa
             .params = std::move(params),
             .description = "density 3 x^2 on [0,1]",
             .input = warpcheck::InputKind::Uniform1D,
-            .domain = warpcheck::chi2::Domain::interval(0, 1)};
+            .domain = warpcheck::Domain::interval(0, 1)};
 }
 
 }  // namespace

@@ -16,7 +16,7 @@ warpcheck::WarpCaseInfo lobe(float n) {
             .params = {{"n", n}},
             .description = "density (n+1) x^n on [0,1]",
             .input = warpcheck::InputKind::Uniform1D,
-            .domain = warpcheck::chi2::Domain::interval(0, 1)};
+            .domain = warpcheck::Domain::interval(0, 1)};
 }
 
 TEST(PowerWarp, CubicLobe) { EXPECT_WARP_PASSES(warpcheck::make_warp_case(lobe(3), PowerWarp{3})); }

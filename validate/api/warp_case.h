@@ -20,6 +20,13 @@
 
 namespace warpcheck {
 
+// The domain a case description names, in warpcheck's own namespace, so that a
+// renderer writes warpcheck::Domain::hemisphere() and needs no chi2/ header:
+// the domain (chi2/domain.h) and the azimuth in [0, 2 pi) that its spherical
+// kinds bin by, for a marginal on phi (chi2/domain_kinds.h).
+using chi2::Domain;
+using chi2::exact_phi;
+
 struct LaneSampler;
 
 /// What a warp consumes.
