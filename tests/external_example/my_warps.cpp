@@ -48,7 +48,7 @@ void register_linear(warpcheck::Registry& registry) {
     }
 }
 
-// ---- Samplers that return more than a point (README, "Samplers that return more than a point") ----
+// ---- Samplers that return more than a point (validate/api/README.md, "Samplers that return more than a point") ----
 // Each kind is registered correct and as a wrong twin; the twins are marked as
 // known flaws, so `--all` runs the correct ones and run_example.sh runs each
 // twin by name and asserts that the check meant to catch it fails.

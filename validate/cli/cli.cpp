@@ -230,7 +230,7 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
 }
 
 // The limits, stated once here and in validate/cli/cli_input.h (samples and
-// alpha, shared with the WARPCHECK_* variables); the README says them too.
+// alpha, shared with the WARPCHECK_* variables); validate/cli/README.md says them too.
 constexpr unsigned kMaxThreads = 1024;
 constexpr double kMinBudget = 0.1, kMaxBudget = 86400.0;
 constexpr uint64_t kMaxMemoryMib = uint64_t{1} << 30;
