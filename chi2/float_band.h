@@ -71,7 +71,6 @@ private:
     double of_coordinate(float c) const;
 
     Binning binning_;
-    int axis_ = 0;
     int steps_ = 1;
     Kind kind_ = Kind::Coordinate;
     int coordinate_ = 0;
