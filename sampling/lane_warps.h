@@ -1,6 +1,6 @@
 // Lane forms of the common spherical and disk warps: eight samples at once,
 // each step the same IEEE operation as the scalar form in disk.h, hemisphere.h
-// and sphere.h, so they return the same bits (tests/sampling/lanes_test.cpp).
+// and sphere.h, so they return the same bits (tests/sampling/test_lanes.cpp).
 // The scalar forms stay the readable definition; these feed the vectorised
 // chi-square path (validate/lanes/lane_sampling.h). Branches of the scalar forms
 // become selects: both sides are computed and the lane picks one.

@@ -10,7 +10,7 @@
 // called from another.
 //
 // Each lane form repeats its scalar twin operation for operation; the tests in
-// tests/sampling/lanes_test.cpp compare them bit for bit.
+// tests/sampling/test_lanes.cpp compare them bit for bit.
 #pragma once
 
 #include <bit>
