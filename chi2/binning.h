@@ -57,7 +57,7 @@ struct Histogram {
     void spread_poles(int cols);
 };
 
-/// What a vectorised binning loop needs (validate/lane_cells.h): the constants
+/// What a vectorised binning loop needs (validate/lanes/lane_cells.h): the constants
 /// of Binning's own arithmetic for an azimuthal domain, so that the lanes put
 /// every ordinary sample in the cell bin() would.
 struct LanePlan {
@@ -130,7 +130,7 @@ public:
              std::span<const unsigned char> zero_cells = {}) const;
     void bin(std::span<const DomainPoint> points, Histogram& hist, std::span<const unsigned char> zero_cells = {}) const;
 
-    /// The constants for validate/lane_cells.h, when this binning has them: an
+    /// The constants for validate/lanes/lane_cells.h, when this binning has them: an
     /// azimuthal domain (disk, sphere, cap) with the octant table and at most
     /// LanePlan::kMaxOctantCols columns per octant. Empty otherwise.
     std::optional<LanePlan> lane_plan() const;

@@ -51,7 +51,7 @@ namespace warpcheck::chi2 {
 using FloatBlockFn = std::function<void(uint64_t first, std::size_t n, float* out)>;
 
 /// Optionally, the same f fused with the first pass's run scan, so that a
-/// monotone sweep need not store its outputs (validate/exhaustive_sweep.h
+/// monotone sweep need not store its outputs (validate/api/exhaustive_sweep.h
 /// builds one for an inlined sampler): evaluates f(first + j) for j in [0, n)
 /// and, for every j whose output's bits differ from those of the output before
 /// it (for j = 0: `previous`), in increasing order, writes base + j to

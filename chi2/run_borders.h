@@ -1,7 +1,7 @@
 // Run borders of consecutive outputs, 64 at a time in AVX-512 registers: the
 // kernel of the exhaustive sweep's run scan (chi2/float_sweep.h). The sweep
 // uses it on blocks of outputs in memory; a sampler inlined into a loop of its
-// own uses it on outputs still in registers (validate/exhaustive_sweep.h), so
+// own uses it on outputs still in registers (validate/api/exhaustive_sweep.h), so
 // that a monotone sweep never stores its outputs. Only for x86-64 with GCC or
 // clang; elsewhere the sweep's portable scan is the only one.
 #pragma once

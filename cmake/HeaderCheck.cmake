@@ -1,8 +1,12 @@
 # Headers must compile on their own: for each header of a folder, compile a
 # translation unit that includes only that header. A subfolder that builds its
 # own library (with its own dependencies) checks its headers itself: name it
-# after EXCLUDE.
+# after EXCLUDE. A test, so built only with WARPCHECK_BUILD_TESTS: the release
+# build compiles what the validate command needs and nothing else.
 function(warpcheck_check_headers folder)
+  if(NOT WARPCHECK_BUILD_TESTS)
+    return()
+  endif()
   cmake_parse_arguments(PARSE_ARGV 1 arg "" "" "EXCLUDE")
   file(GLOB_RECURSE headers CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/${folder}/*.h")
   foreach(excluded IN LISTS arg_EXCLUDE)

@@ -1,7 +1,7 @@
 # Installs warpcheck as a CMake package: find_package(warpcheck) gives
 # warpcheck::validate (the library), warpcheck::main (a ready main() for
 # programs that validate their own warps), warpcheck::register17 (the include
-# path of validate/register17.h, for C++17 files that register warps),
+# path of validate/api/register17.h, for C++17 files that register warps),
 # warpcheck::sampling (the warps), warpcheck::reports (the report writers),
 # warpcheck::results (the result model), warpcheck::gtest (GoogleTest
 # assertions, validate/gtest/warpcheck_gtest.h) and the CMake function
@@ -36,9 +36,13 @@ install(TARGETS ${warpcheck_targets}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
   OBJECTS DESTINATION ${CMAKE_INSTALL_LIBDIR}/warpcheck)
-install(DIRECTORY sampling chi2 validate reports
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/warpcheck
-  FILES_MATCHING PATTERN "*.h")
+# Only the headers a renderer writes against, and what they include (cmake/PublicHeaders.cmake).
+include(${PROJECT_SOURCE_DIR}/cmake/PublicHeaders.cmake)
+warpcheck_public_headers("${PROJECT_SOURCE_DIR}" warpcheck_installed_headers)
+foreach(header IN LISTS warpcheck_installed_headers)
+  get_filename_component(folder "${header}" DIRECTORY)
+  install(FILES "${header}" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/warpcheck/${folder})
+endforeach()
 install(FILES "${WARPCHECK_GENERATED_INCLUDE_DIR}/warpcheck/version.h"
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/warpcheck/warpcheck)
 install(EXPORT warpcheckTargets NAMESPACE warpcheck:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/warpcheck)

@@ -216,7 +216,7 @@ struct CheckResult {
     std::string rerun_command;     ///< the one command that reruns just this case and check
     /// Set by `validate` on the rows it writes: a digest of this row, all but
     /// its timings, and of its run's digest, which --merge checks
-    /// (validate/run_digest.h). Empty where none was made.
+    /// (validate/run/run_digest.h). Empty where none was made.
     std::string digest;
 
     std::optional<double> figure(std::string_view name) const {
@@ -278,7 +278,7 @@ struct RunInfo {
     uint64_t run_jobs = 0;
     /// Set by `validate`: a digest of the settings that decide the figures and
     /// verdicts and of the whole run's job list, the same in every shard of one
-    /// run, which --merge checks (validate/run_digest.h). Empty where none was made.
+    /// run, which --merge checks (validate/run/run_digest.h). Empty where none was made.
     std::string digest;
 };
 

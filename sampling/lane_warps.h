@@ -1,8 +1,8 @@
 // Lane forms of the common spherical and disk warps: eight samples at once,
 // each step the same IEEE operation as the scalar form in disk.h, hemisphere.h
-// and sphere.h, so they return the same bits (tests/sampling/lanes_test.cpp).
+// and sphere.h, so they return the same bits (tests/sampling/test_lanes.cpp).
 // The scalar forms stay the readable definition; these feed the vectorised
-// chi-square path (validate/lane_sampling.h). Branches of the scalar forms
+// chi-square path (validate/lanes/lane_sampling.h). Branches of the scalar forms
 // become selects: both sides are computed and the lane picks one.
 #pragma once
 
@@ -34,7 +34,7 @@ struct UniformDiskConcentricLanes {
     WARPCHECK_LANE Points operator()(F32 u0, F32 u1) const {
         const F32 a = 2.0f * u0 - 1.0f;
         const F32 b = 2.0f * u1 - 1.0f;
-        // Conditions stay inside ?: (see validate/lane_cells.h). |a| + |b| is 0
+        // Conditions stay inside ?: (see validate/lanes/lane_cells.h). |a| + |b| is 0
         // exactly at the centre a = b = 0, whose 0/0 becomes 0/1.
         const F32 size = abs(a) + abs(b);
         const F32 r = abs(a) > abs(b) ? a : b;

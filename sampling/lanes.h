@@ -1,5 +1,5 @@
 // Eight samples at once: the lane types of the vectorised chi-square path
-// (validate/lane_sampling.h) and the lane forms of the helpers the warps use.
+// (validate/lanes/lane_sampling.h) and the lane forms of the helpers the warps use.
 //
 // The types are GCC vector extensions (also understood by Clang). Code written
 // with them compiles to AVX-512 inside a function built for that target and to
@@ -10,7 +10,7 @@
 // called from another.
 //
 // Each lane form repeats its scalar twin operation for operation; the tests in
-// tests/sampling/lanes_test.cpp compare them bit for bit.
+// tests/sampling/test_lanes.cpp compare them bit for bit.
 #pragma once
 
 #include <bit>
@@ -130,7 +130,7 @@ struct Pcg32Lanes {
     }
 };
 
-/// uniform_float_from_bits (validate/check.h) on lanes: w * 2^-64 rounded down
+/// uniform_float_from_bits (validate/api/check.h) on lanes: w * 2^-64 rounded down
 /// to a float. The 24 leading bits of w are cut from the double nearest to w
 /// (exact for w < 2^53) or to w >> 11 (exact for any w, and it keeps all of
 /// w's leading 24 bits when w >= 2^53), by clearing the low 29 of the

@@ -18,7 +18,7 @@
 //   load 9.8:  check 518 ms on 2 threads, pbrt-style 1472 ms on one: speedup 2.84;
 //              draw+warp+bin 21.1 M samples/s on one thread, fused loop 10.8 M/s: 1.96
 //   load 14.3: check 884 ms, pbrt-style 3050 ms: 3.45; 9.8 vs 4.8 M/s: 2.04
-// With the vectorised path (validate/lane_sampling.h, three sets of 8 lanes),
+// With the vectorised path (validate/lanes/lane_sampling.h, three sets of 8 lanes),
 // 16:47-16:52 UTC, machine otherwise idle (load 0.4-1.3, this benchmark itself),
 // five runs of --benchmark_filter='Vs|PerCore' or 'PerCore/1':
 //   check 37.1-38.6 ms on 2 threads, pbrt-style 834-858 ms on one: speedup 22.2-22.8;
@@ -53,11 +53,11 @@
 #include "paired_timing.h"
 #include "pbrt_style_chi2.h"
 #include "sampling/hemisphere.h"
-#include "validate/check.h"
+#include "validate/api/check.h"
 #include "validate/checks/checks.h"
-#include "validate/lane_sampling.h"
-#include "validate/thread_pool.h"
-#include "validate/warp_case.h"
+#include "validate/lanes/lane_sampling.h"
+#include "validate/api/thread_pool.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 namespace {

@@ -76,11 +76,11 @@
 
 #include "paired_timing.h"
 #include "sampling/hash.h"
-#include "validate/external.h"
+#include "validate/api/external.h"
 
 #include "sampling/unit_float.h"
-#include "validate/exhaustive_sweep.h"
-#include "validate/thread_pool.h"
+#include "validate/api/exhaustive_sweep.h"
+#include "validate/api/thread_pool.h"
 
 namespace {
 
@@ -181,7 +181,7 @@ uint64_t counter_array_loop() {
 }
 
 // hashed_unit's block function, from the case an external program registers
-// (validate/external.h).
+// (validate/api/external.h).
 warpcheck::FloatBlockFn hashed_unit_sweep_fn() {
     const auto warp = warpcheck::make_u32_float_case(
         {.family = "hashed_unit", .domain = warpcheck::chi2::Domain::interval(0, 1)}, warpcheck::Monotone::NotClaimed,

@@ -9,9 +9,8 @@
 #include <numeric>
 #include <vector>
 
-#include <chi2/domain_kinds.h>
-#include <validate/bsdf/bsdf_grid.h>
-#include <validate/external.h>
+#include <validate/api/bsdf_grid.h>
+#include <validate/api/external.h>
 
 namespace {
 
@@ -43,14 +42,14 @@ void register_linear(warpcheck::Registry& registry) {
              .params = {{"a", a}, {"b", b}},
              .description = "density proportional to (1-x) a + x b on [0,1]",
              .input = warpcheck::InputKind::Uniform1D,
-             .domain = warpcheck::chi2::Domain::interval(0, 1)},
+             .domain = warpcheck::Domain::interval(0, 1)},
             [warp](float u) { return warp.sample(u); },
             [warp](float x) { return warp.pdf(x); },
             [warp](float x) { return warp.invert(x); }));
     }
 }
 
-// ---- Samplers that return more than a point (README, "Samplers that return more than a point") ----
+// ---- Samplers that return more than a point (validate/api/README.md, "Samplers that return more than a point") ----
 // Each kind is registered correct and as a wrong twin; the twins are marked as
 // known flaws, so `--all` runs the correct ones and run_example.sh runs each
 // twin by name and asserts that the check meant to catch it fails.
@@ -153,7 +152,7 @@ void register_renderer_kinds(warpcheck::Registry& registry) {
         registry.add_case(make_warp_case(
             {.family = wrong ? "cosine_returned_pdf_wrong" : "cosine_returned_pdf",
              .description = "cosine-weighted hemisphere whose sample returns its pdf",
-             .domain = chi2::Domain::hemisphere()},
+             .domain = warpcheck::Domain::hemisphere()},
             [warp](Point2f u) {
                 float pdf = 0;
                 const Vector3f w = warp.sample(u, &pdf);
@@ -167,11 +166,11 @@ void register_renderer_kinds(warpcheck::Registry& registry) {
         registry.add_case(make_warp_case({.family = wrong ? "table_no_pdf_wrong" : "table_no_pdf",
                                           .description = "piecewise-constant table; pdf only from sample",
                                           .input = InputKind::Uniform1D,
-                                          .domain = chi2::Domain::interval(0, 1)},
+                                          .domain = warpcheck::Domain::interval(0, 1)},
                                          [table](float u) { return table.sample(u); }));
     }
     // Weighted samplers, over a grid of exponents and selection probabilities.
-    add_case_grid(registry, {.family = "phong_mixture", .domain = chi2::Domain::hemisphere()},
+    add_case_grid(registry, {.family = "phong_mixture", .domain = warpcheck::Domain::hemisphere()},
                   {{"n", {5, 50}}, {"select", {0.3, 0.6}}}, [](WarpCaseInfo info, const GridPoint& p) {
                       PhongMixture m;
                       m.n = float(p["n"]);
@@ -182,7 +181,7 @@ void register_renderer_kinds(warpcheck::Registry& registry) {
                   });
     PhongMixture twin;
     twin.pdf_select = 0.5f;
-    registry.add_case(make_weighted_case({.family = "phong_mixture_wrong", .domain = chi2::Domain::hemisphere()},
+    registry.add_case(make_weighted_case({.family = "phong_mixture_wrong", .domain = warpcheck::Domain::hemisphere()},
                                          [twin](Point2f u) { return twin.sample(u); },
                                          [twin](Vector3f w) { return twin.eval(w); },
                                          [twin](Vector3f w) { return twin.pdf(w); }));
@@ -247,7 +246,7 @@ void register_normal(warpcheck::Registry& registry) {
              .params = {{"mu", 2}, {"sigma", 0.5}},
              .description = "normal distribution on the whole real line, by inversion",
              .input = warpcheck::InputKind::Uniform1D,
-             .domain = warpcheck::chi2::Domain::real_line(),
+             .domain = warpcheck::Domain::real_line(),
              .views = {x}},
             warp));
     }
@@ -279,7 +278,7 @@ void register_mirrored_exponential(warpcheck::Registry& registry) {
              .params = {{"b", 1}, {"rate", 4}},
              .description = "exponential tail on the half-line (-inf, b]",
              .input = warpcheck::InputKind::Uniform1D,
-             .domain = warpcheck::chi2::Domain::lower_half_line(1),
+             .domain = warpcheck::Domain::lower_half_line(1),
              .views = {x}},
             MirroredExponentialWarp{1.0f, 4.0f, wrong}));
     }
@@ -301,7 +300,7 @@ void register_no_inverse(warpcheck::Registry& registry) {
         registry.add_case(warpcheck::make_warp_case(
             {.family = wrong ? "cosine_hemisphere_no_inverse_half_pdf" : "cosine_hemisphere_no_inverse",
              .description = "cosine-weighted hemisphere without an inverse: the round trip is not applicable",
-             .domain = warpcheck::chi2::Domain::hemisphere()},
+             .domain = warpcheck::Domain::hemisphere()},
             CosineHemisphereNoInverse{wrong ? 0.5f : 1.0f}));
     }
 }
@@ -334,14 +333,14 @@ void register_sphere_views(warpcheck::Registry& registry) {
     azimuth.hi = 2 * kPi;
     azimuth.label = "phi";
     azimuth.coordinate = [](const warpcheck::WarpOutput& w) {
-        return w[0] == 0 && w[1] == 0 ? std::nan("") : warpcheck::chi2::exact_phi(w[0], w[1]);  // NaN at a pole
+        return w[0] == 0 && w[1] == 0 ? std::nan("") : warpcheck::exact_phi(w[0], w[1]);  // NaN at a pole
     };
     azimuth.pdf = [](double) { return 1 / (2 * kPi); };
     for (bool wrong : {false, true}) {
         registry.add_case(warpcheck::make_warp_case(
             {.family = wrong ? "uniform_sphere_azimuth_bent" : "uniform_sphere",
              .description = "uniform directions, with a cos theta view and an azimuth view",
-             .domain = warpcheck::chi2::Domain::sphere(),
+             .domain = warpcheck::Domain::sphere(),
              .views = {cos_theta, azimuth}},
             UniformSphereTwoViews{wrong ? 1e-3f : 0.0f}));
     }
@@ -362,7 +361,7 @@ void register_float_sampler(warpcheck::Registry& registry) {
         registry.add_case(warpcheck::make_u32_float_case(
             {.family = wrong ? "renderer_unit_float_swapped" : "renderer_unit_float",
              .description = "float in [0,1) from the top 24 of 32 random bits",
-             .domain = warpcheck::chi2::Domain::interval(0, 1)},
+             .domain = warpcheck::Domain::interval(0, 1)},
             warpcheck::Monotone::Claimed, [wrong](uint32_t u) { return unit_float_from_bits(u, wrong); },
             [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
             [wrong](float x) { return (static_cast<uint32_t>(x * 0x1p24f) ^ (wrong ? 1u : 0u)) << 8; }));

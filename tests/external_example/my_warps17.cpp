@@ -1,11 +1,11 @@
 // A renderer that compiles as C++17 registers its warps in its own files
-// through validate/register17.h alone; the program links warpcheck::main.
+// through validate/api/register17.h alone; the program links warpcheck::main.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
 
-#include <validate/register17.h>
+#include <validate/api/register17.h>
 
 static_assert(__cplusplus == 201703L, "this file proves that registration compiles as C++17");
 

@@ -12,6 +12,15 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 cmake --install "$build_dir" --prefix "$work/prefix" > "$work/install.log"
+# The installed include folder holds only what a renderer writes against and
+# what that includes (cmake/PublicHeaders.cmake): at most 30 headers, and none
+# of the private rooms' (the command line, the worker supervisor, the checks).
+installed=$(find "$work/prefix/include/warpcheck" -name '*.h' | wc -l)
+[ "$installed" -le 30 ] || { echo "$installed installed headers, more than 30"; exit 1; }
+for private in validate/cli/cli.h validate/run/worker_supervisor.h validate/checks/checks.h reports/json_report.h; do
+  [ ! -e "$work/prefix/include/warpcheck/$private" ] || { echo "private header $private installed"; exit 1; }
+done
+echo "$installed installed headers"
 cmake -S "$example_dir" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release \
   > "$work/configure.log" || { cat "$work/configure.log"; exit 1; }
 cmake --build "$work/build" -j2 > "$work/build.log" || { cat "$work/build.log"; exit 1; }
@@ -67,7 +76,7 @@ for theta in 0 60 85; do
 done
 expect_fail "renderer_diffuse_not_reciprocal[theta_o=60]" bsdf_reciprocity "not reciprocal"
 
-# A C++17 translation unit registers its warps through validate/register17.h.
+# A C++17 translation unit registers its warps through validate/api/register17.h.
 "$work/build/validate_my_warps17" --all --samples 200000 --color never | tee "$work/all17.txt"
 grep -q "logistic_cxx17\[mu=-3,s=0.25\]" "$work/all17.txt"
 grep -Eq "^pass +bsdf_weight +diffuse_cxx17\[theta_o=70\]" "$work/all17.txt" \

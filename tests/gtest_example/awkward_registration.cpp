@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include <validate/external.h>
+#include <validate/api/external.h>
 
 #include "power_warp.h"
 
@@ -21,7 +21,7 @@ warpcheck::WarpCaseInfo power_info(const char* family, std::vector<warpcheck::Pa
             .params = std::move(params),
             .description = "density 3 x^2 on [0,1]",
             .input = warpcheck::InputKind::Uniform1D,
-            .domain = warpcheck::chi2::Domain::interval(0, 1)};
+            .domain = warpcheck::Domain::interval(0, 1)};
 }
 
 }  // namespace

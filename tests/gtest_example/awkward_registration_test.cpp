@@ -1,5 +1,5 @@
 // The GoogleTest suite of awkward_registration.cpp's warps.
-#include <validate/external.h>
+#include <validate/api/external.h>
 #include <validate/gtest/warpcheck_gtest.h>
 
 WARPCHECK_TEST_SUITE(Awkward, warpcheck_register);

@@ -2,7 +2,7 @@
 // (warpcheck::main), its GoogleTest binary and its ctest tests.
 #include "power_warp.h"
 
-#include <validate/external.h>
+#include <validate/api/external.h>
 
 namespace {
 
@@ -11,7 +11,7 @@ warpcheck::WarpCaseInfo power_case(const char* family, float n) {
             .params = {{"n", n}},
             .description = "density (n+1) x^n on [0,1]",
             .input = warpcheck::InputKind::Uniform1D,
-            .domain = warpcheck::chi2::Domain::interval(0, 1)};
+            .domain = warpcheck::Domain::interval(0, 1)};
 }
 
 }  // namespace

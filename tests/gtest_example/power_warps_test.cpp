@@ -2,7 +2,7 @@
 // registration, and assertions on a warp object with its case info.
 #include <gtest/gtest.h>
 
-#include <validate/external.h>
+#include <validate/api/external.h>
 #include <validate/gtest/warpcheck_gtest.h>
 
 #include "power_warp.h"
@@ -16,7 +16,7 @@ warpcheck::WarpCaseInfo lobe(float n) {
             .params = {{"n", n}},
             .description = "density (n+1) x^n on [0,1]",
             .input = warpcheck::InputKind::Uniform1D,
-            .domain = warpcheck::chi2::Domain::interval(0, 1)};
+            .domain = warpcheck::Domain::interval(0, 1)};
 }
 
 TEST(PowerWarp, CubicLobe) { EXPECT_WARP_PASSES(warpcheck::make_warp_case(lobe(3), PowerWarp{3})); }

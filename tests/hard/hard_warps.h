@@ -19,7 +19,7 @@
 #include <string>
 
 #include <chi2/domain_kinds.h>
-#include <validate/external.h>
+#include <validate/api/external.h>
 
 namespace hard {
 

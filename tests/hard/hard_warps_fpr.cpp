@@ -3,8 +3,8 @@
 // as warpcheck_fpr measures the built-in warps (validate/fpr.h). The wrong
 // twins (known flaws) are left out.
 //     hard_warps_fpr --runs 20 --first-seed 1 --alpha 0.01
-#include <validate/external.h>
-#include <validate/fpr.h>
+#include <validate/api/external.h>
+#include <validate/trust/fpr.h>
 
 int main(int argc, char** argv) {
     return warpcheck::fpr_main(argc, argv,

@@ -30,7 +30,7 @@
 #include <utility>
 #include <vector>
 
-#include <validate/external.h>
+#include <validate/api/external.h>
 
 // Defined here, it replaces the C library's for this program (the report
 // writer's fsync among them).

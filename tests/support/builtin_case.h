@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "validate/registry.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck::testing {
 

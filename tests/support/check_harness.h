@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "validate/check.h"
-#include "validate/runner.h"
+#include "validate/api/check.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck::testing {
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The AVX-512 object (validate/lane_sampling_avx512.cpp, built for x86-64-v4)
+# The AVX-512 object (validate/lanes/lane_sampling_avx512.cpp, built for x86-64-v4)
 # must define nothing but its own group functions: an inline function or
 # template it emitted as a weak symbol could be the copy the linker keeps for
 # every caller, and would then run AVX-512 code on processors without it.

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "sampling/vector.h"
-#include "validate/warp_case.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck::testing::hard {
 

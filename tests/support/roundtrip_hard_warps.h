@@ -10,7 +10,7 @@
 #include <numbers>
 #include <string>
 
-#include "validate/warp_case.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck::testing::hard {
 

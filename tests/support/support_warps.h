@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "validate/check.h"
-#include "validate/registry.h"
-#include "validate/runner.h"
-#include "validate/warp_case.h"
+#include "validate/api/check.h"
+#include "validate/api/registry.h"
+#include "validate/run/runner.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck::testing {
 

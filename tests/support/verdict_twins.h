@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "validate/warp_case.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck::testing {
 

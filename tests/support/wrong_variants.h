@@ -9,7 +9,7 @@
 
 #include "sampling/exponential.h"
 #include "sampling/trowbridge_reitz.h"
-#include "validate/warp_case.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck::testing {
 

@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "validate/registry.h"
-#include "validate/runner.h"
+#include "validate/api/registry.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

@@ -17,9 +17,9 @@
 #include "sampling/bsdf_conductor.h"
 #include "sampling/bsdf_dielectric.h"
 #include "sampling/bsdf_diffuse.h"
-#include "validate/bsdf/bsdf_case.h"
-#include "validate/registry.h"
-#include "validate/runner.h"
+#include "validate/api/bsdf_case.h"
+#include "validate/api/registry.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

@@ -18,9 +18,9 @@
 #include "sampling/hash.h"
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
-#include "validate/exhaustive_sweep.h"
-#include "validate/external.h"
-#include "validate/runner.h"
+#include "validate/api/exhaustive_sweep.h"
+#include "validate/api/external.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

@@ -17,10 +17,10 @@
 #include "sampling/sphere.h"
 #include "sampling/trowbridge_reitz.h"
 #include "support/builtin_case.h"
-#include "validate/check.h"
+#include "validate/api/check.h"
 #include "validate/checks/checks.h"
-#include "validate/thread_pool.h"
-#include "validate/warp_case.h"
+#include "validate/api/thread_pool.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 namespace {

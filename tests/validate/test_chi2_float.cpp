@@ -14,7 +14,7 @@
 
 #include "support/hard_float_warps.h"
 #include "validate/checks/checks.h"
-#include "validate/runner.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

@@ -1,13 +1,13 @@
 // Reading numbers as people type them, stating limits in words, and "did you
-// mean" suggestions (validate/cli_input.h), and the shortest decimal of a
+// mean" suggestions (validate/cli/cli_input.h), and the shortest decimal of a
 // float parameter in a case name.
 #include <cstdlib>
 
 #include <gtest/gtest.h>
 
-#include "validate/check.h"
-#include "validate/cli_input.h"
-#include "validate/warp_case.h"
+#include "validate/api/check.h"
+#include "validate/cli/cli_input.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 namespace {

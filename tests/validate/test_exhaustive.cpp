@@ -13,9 +13,9 @@
 #include "support/builtin_case.h"
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
-#include "validate/exhaustive_sweep.h"
-#include "validate/registry.h"
-#include "validate/thread_pool.h"
+#include "validate/api/exhaustive_sweep.h"
+#include "validate/api/registry.h"
+#include "validate/api/thread_pool.h"
 
 namespace warpcheck {
 namespace {

@@ -12,8 +12,8 @@
 #include "support/builtin_case.h"
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
-#include "validate/exhaustive_sweep.h"
-#include "validate/runner.h"
+#include "validate/api/exhaustive_sweep.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

@@ -1,5 +1,5 @@
 // The exhaustive check's fast path opened to external samplers
-// (validate/external.h): a renderer's u32 -> float and u64 -> float samplers,
+// (validate/api/external.h): a renderer's u32 -> float and u64 -> float samplers,
 // monotone by claim or not.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
-#include "validate/external.h"
+#include "validate/api/external.h"
 
 namespace warpcheck {
 namespace {

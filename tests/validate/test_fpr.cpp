@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "validate/external.h"
-#include "validate/fpr.h"
+#include "validate/api/external.h"
+#include "validate/trust/fpr.h"
 
 namespace warpcheck {
 namespace {

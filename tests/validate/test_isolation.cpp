@@ -25,10 +25,10 @@
 #include "reports/text.h"
 #include "sampling/hemisphere.h"
 #include "validate/checks/checks.h"
-#include "validate/result_codec.h"
-#include "validate/runner.h"
-#include "validate/worker_output.h"
-#include "validate/worker_supervisor.h"
+#include "validate/run/result_codec.h"
+#include "validate/run/runner.h"
+#include "validate/run/worker_output.h"
+#include "validate/run/worker_supervisor.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define WARPCHECK_TEST_ASAN 1

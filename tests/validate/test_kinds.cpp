@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "support/check_harness.h"
-#include "validate/case_grid.h"
+#include "validate/api/case_grid.h"
 #include "validate/checks/checks.h"
-#include "validate/registry.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

@@ -18,9 +18,9 @@
 #include "sampling/unit_float.h"
 #include "support/verdict_twins.h"
 #include "support/wrong_variants.h"
-#include "validate/registry.h"
+#include "validate/api/registry.h"
 #include "support/check_harness.h"
-#include "validate/runner.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

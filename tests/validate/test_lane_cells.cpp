@@ -1,4 +1,4 @@
-// lane_cells (validate/lane_cells.h) against Binning::bin, point by point: every point the
+// lane_cells (validate/lanes/lane_cells.h) against Binning::bin, point by point: every point the
 // lanes classify must be in the cell bin() puts it in, and the points they
 // leave (-1) must be the ones bin() counts as NaN, outside or at a pole.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "chi2/binning.h"
-#include "validate/lane_cells.h"
+#include "validate/lanes/lane_cells.h"
 #include "sampling/pcg32.h"
 
 #pragma GCC diagnostic ignored "-Wpsabi"  // lane vectors between inline test helpers

@@ -1,4 +1,4 @@
-// The vectorised chi-square path (validate/lane_sampling.h) against the scalar
+// The vectorised chi-square path (validate/lanes/lane_sampling.h) against the scalar
 // one: for every built-in case with a lane form, on both code paths (AVX-512
 // where the processor has it, and the portable build), the histogram equals
 // the one chi2::sample_histogram builds from draw_inputs and WarpCase::sample,
@@ -14,12 +14,12 @@
 #include "sampling/hemisphere.h"
 #include "sampling/sphere.h"
 #include "support/builtin_case.h"
-#include "validate/check.h"
+#include "validate/api/check.h"
 #include "validate/checks/checks.h"
-#include "validate/lane_sampling.h"
-#include "validate/registry.h"
-#include "validate/thread_pool.h"
-#include "validate/warp_case.h"
+#include "validate/lanes/lane_sampling.h"
+#include "validate/api/registry.h"
+#include "validate/api/thread_pool.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 namespace {

@@ -1,4 +1,4 @@
-// The stated power figures checked by simulation (validate/power_simulation.h),
+// The stated power figures checked by simulation (validate/trust/power_simulation.h),
 // at a tenth of the default sample count and 40 seeds so that it runs in
 // seconds: the full-size measurement is `warpcheck_fpr --power-check`.
 #include <cmath>
@@ -9,9 +9,9 @@
 
 #include "support/builtin_case.h"
 #include "validate/checks/checks.h"
-#include "validate/power_simulation.h"
-#include "validate/registry.h"
-#include "validate/runner.h"
+#include "validate/trust/power_simulation.h"
+#include "validate/api/registry.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

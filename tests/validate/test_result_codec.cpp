@@ -1,4 +1,4 @@
-// The worker codec (validate/result_codec.h): a result decoded is the result
+// The worker codec (validate/run/result_codec.h): a result decoded is the result
 // encoded, every member of every type and every bit of every double (NaN
 // payloads and signs, infinities, -0, subnormals), for every verdict.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "support/model_visitors.h"
-#include "validate/result_codec.h"
+#include "validate/run/result_codec.h"
 
 namespace warpcheck {
 namespace {

@@ -14,7 +14,7 @@
 #include "support/roundtrip_hard_warps.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/float_cell.h"
-#include "validate/runner.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

@@ -12,7 +12,7 @@
 #include "sampling/hemisphere.h"
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
-#include "validate/registry.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

@@ -21,9 +21,9 @@
 
 #include "support/run_command.h"
 #include "support/verdict_twins.h"
-#include "validate/cli.h"
-#include "validate/merge.h"
-#include "validate/registry.h"
+#include "validate/cli/cli.h"
+#include "validate/run/merge.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

@@ -16,8 +16,8 @@
 #include <string>
 
 #include "sampling/hash.h"
-#include "validate/exhaustive_sweep.h"
-#include "validate/thread_pool.h"
+#include "validate/api/exhaustive_sweep.h"
+#include "validate/api/thread_pool.h"
 
 namespace warpcheck {
 namespace {

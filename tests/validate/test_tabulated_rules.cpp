@@ -18,8 +18,8 @@
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/tabulated_reference.h"
-#include "validate/register17.h"
-#include "validate/registry.h"
+#include "validate/api/register17.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

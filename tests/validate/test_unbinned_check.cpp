@@ -18,11 +18,11 @@
 #include "chi2/multiple_testing.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sphere.h"
-#include "validate/check.h"
+#include "validate/api/check.h"
 #include "validate/checks/checks.h"
-#include "validate/runner.h"
-#include "validate/thread_pool.h"
-#include "validate/warp_case.h"
+#include "validate/run/runner.h"
+#include "validate/api/thread_pool.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 namespace {

@@ -21,10 +21,10 @@
 
 #include "chi2/multiple_testing.h"
 #include "sampling/piecewise_constant.h"
-#include "validate/check.h"
+#include "validate/api/check.h"
 #include "validate/checks/checks.h"
-#include "validate/thread_pool.h"
-#include "validate/warp_case.h"
+#include "validate/api/thread_pool.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 namespace {

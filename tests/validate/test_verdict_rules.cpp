@@ -10,8 +10,8 @@
 #include "support/verdict_twins.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/input_chunks.h"
-#include "validate/registry.h"
-#include "validate/runner.h"
+#include "validate/api/registry.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

@@ -11,8 +11,8 @@
 
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
-#include "validate/registry.h"
-#include "validate/runner.h"
+#include "validate/api/registry.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {

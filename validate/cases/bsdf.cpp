@@ -16,8 +16,8 @@
 #include "sampling/bsdf_diffuse.h"
 #include "sampling/bsdf_phase.h"
 #include "sampling/bsdf_plastic.h"
-#include "validate/bsdf/bsdf_grid.h"
-#include "validate/registry.h"
+#include "validate/api/bsdf_grid.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

@@ -11,8 +11,8 @@
 #include "sampling/bsdf_dielectric.h"
 #include "sampling/bsdf_diffuse.h"
 #include "sampling/bsdf_plastic.h"
-#include "validate/bsdf/bsdf_case.h"
-#include "validate/registry.h"
+#include "validate/api/bsdf_case.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

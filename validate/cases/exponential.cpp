@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "sampling/exponential.h"
-#include "validate/registry.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

@@ -5,8 +5,8 @@
 #include "sampling/disk.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sphere.h"
-#include "validate/lane_sampling.h"
-#include "validate/registry.h"
+#include "validate/lanes/lane_sampling.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

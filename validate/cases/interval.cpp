@@ -1,6 +1,6 @@
 // Interval warps: floats in [0,1) from 32 or 64 random bits, lerps over [a,b),
 // and the exact sampler of every float of [a,b). The 32-bit samplers and the
-// lerps can be swept exhaustively (validate/exhaustive_sweep.h).
+// lerps can be swept exhaustively (validate/api/exhaustive_sweep.h).
 // Built in: the samplers that pass by the rules (the biased-but-in-range ones
 // with their bias figures). register_flawed_interval_cases adds the idioms that
 // fail (u * 2^-32 reaching 1.0, 23 random bits never reaching 1 - 2^-24, lerps
@@ -17,8 +17,8 @@
 #include "sampling/interval.h"
 #include "sampling/pcg32.h"
 #include "sampling/unit_float.h"
-#include "validate/exhaustive_sweep.h"
-#include "validate/registry.h"
+#include "validate/api/exhaustive_sweep.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

@@ -2,7 +2,7 @@
 #include <utility>
 
 #include "sampling/linear.h"
-#include "validate/registry.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

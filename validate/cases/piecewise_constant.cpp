@@ -7,7 +7,7 @@
 
 #include "sampling/piecewise_constant.h"
 #include "sampling/tabulate.h"
-#include "validate/registry.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "sampling/trowbridge_reitz.h"
-#include "validate/registry.h"
+#include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {

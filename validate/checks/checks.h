@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "chi2/chi2_test.h"
-#include "validate/check.h"
+#include "validate/api/check.h"
 
 namespace warpcheck {
 
@@ -25,7 +25,7 @@ std::unique_ptr<Check> make_exhaustive_roundtrip_check();
 std::unique_ptr<Check> make_chi2_check();
 /// The chi-square check's scalar sample source: chunk c drawn from
 /// ctx.chunk_rng(c) by draw_inputs and warped by WarpCase::sample (the
-/// histogram the lane path of validate/lane_sampling.h must match).
+/// histogram the lane path of validate/lanes/lane_sampling.h must match).
 chi2::SampleChunk chi2_sample_chunks(const WarpCase& warp, const CheckContext& ctx);
 /// "tabulated": for 1D warps and the monotone 1D views of a case (WarpCaseInfo::views),
 /// sample(u) and the density against the inversion method on a 65536-bucket

@@ -25,7 +25,7 @@
 #include "validate/checks/evidence.h"
 #include "validate/checks/line_resolution.h"
 #include "validate/checks/power_level.h"
-#include "validate/lane_sampling.h"
+#include "validate/lanes/lane_sampling.h"
 
 namespace warpcheck {
 namespace {
@@ -124,7 +124,7 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
         for (std::size_t i = 0; i < points.size(); ++i) x[i] = to_warp_output(points[i]);
         warp.pdf(x, density);
     };
-    // The same histogram, 24 samples at a time (validate/lane_sampling.h), where
+    // The same histogram, 24 samples at a time (validate/lanes/lane_sampling.h), where
     // the processor has AVX-512: by the warp's lane form, or else by its own
     // sample between the lanes' draws and binning. Elsewhere the scalar chunks
     // below, which beat the lanes' portable build (28-31 against 20-24 M samples/s per core here).

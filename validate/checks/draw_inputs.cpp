@@ -1,6 +1,6 @@
 #include <bit>
 
-#include "validate/check.h"
+#include "validate/api/check.h"
 
 namespace warpcheck {
 

@@ -1,7 +1,7 @@
 // Exhaustive float histogram: every input of a float sampler's grid (all 2^32
 // values for 32-bit samplers, every t = k 2^-24 for the lerps), each output
 // float counted exactly and compared with the uniform measure of [a,b)
-// (validate/exhaustive_sweep.h).
+// (validate/api/exhaustive_sweep.h).
 //
 // Verdict, stated in the message when it fails:
 // - FAIL if any output lies outside the half-open [a,b) (1.0 from [0,1), b
@@ -35,7 +35,7 @@
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
-#include "validate/exhaustive_sweep.h"
+#include "validate/api/exhaustive_sweep.h"
 
 namespace warpcheck {
 namespace {

@@ -36,7 +36,7 @@
 #include "validate/checks/evidence.h"
 #include "validate/checks/float_cell.h"
 #include "validate/checks/formatting.h"
-#include "validate/exhaustive_sweep.h"
+#include "validate/api/exhaustive_sweep.h"
 
 namespace warpcheck {
 namespace {

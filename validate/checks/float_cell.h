@@ -8,7 +8,7 @@
 #include <array>
 #include <cmath>
 
-#include "validate/warp_case.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 

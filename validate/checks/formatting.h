@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "validate/warp_case.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 

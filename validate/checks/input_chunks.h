@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "validate/check.h"
+#include "validate/api/check.h"
 
 namespace warpcheck {
 

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "chi2/domain_parts.h"
-#include "validate/warp_case.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 

@@ -22,7 +22,7 @@
 #include <optional>
 #include <vector>
 
-#include "validate/warp_case.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck {
 

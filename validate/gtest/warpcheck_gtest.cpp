@@ -16,7 +16,7 @@
 #include "reports/outputs.h"
 #include "reports/terminal_table.h"
 #include "sampling/hash.h"
-#include "validate/cli_input.h"
+#include "validate/cli/cli_input.h"
 #include "warpcheck/version.h"
 
 namespace warpcheck::gtest {

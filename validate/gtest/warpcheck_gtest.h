@@ -40,8 +40,8 @@
 
 #include <gtest/gtest.h>
 
-#include "validate/registry.h"
-#include "validate/runner.h"
+#include "validate/api/registry.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck::gtest {
 

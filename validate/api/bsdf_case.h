@@ -1,0 +1,205 @@
+// A BSDF case: a renderer's BSDF (or phase function) as it is, at one outgoing
+// direction wo, with a stable name such as rough_conductor[alpha=0.3,theta_o=60].
+// Its parts are pbrt-v4's (sampling/bsdf.h): sample(wo, uc, u) -> BsdfSample
+// (wi, f, pdf, flags, eta), f(wo, wi) and pdf(wo, wi); a phase function's are
+// sample(wo, u), p(wo, wi) and pdf(wo, wi). Each is a claim that a BSDF check
+// tests (validate/bsdf/bsdf_checks.h); only those checks take BSDF cases.
+//
+// The domain is the whole sphere of wi, reflection and transmission together,
+// whatever the lobes; the input is (uc, u.x, u.y) in [0,1)^3 (InputKind::Uniform3D,
+// uc in u[0]), drawn like any other input from the (case, check) stream.
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "sampling/bsdf.h"
+#include "validate/api/warp_case.h"
+
+namespace warpcheck {
+
+/// What a BSDF case declares besides its functions.
+struct BsdfClaims {
+    Vector3f wo{0.0f, 0.0f, 1.0f};  ///< the outgoing direction of the case, unit length
+    /// The lobes it may sample (sampling/bsdf.h): Continuous for a density,
+    /// Delta for delta lobes, and Reflection and/or Transmission.
+    BsdfFlags lobes = BsdfFlags::None;
+    /// Whether f is reciprocal: f(wo, wi) = f(wi, wo) for reflection, and
+    /// across the interface f(wo, wi) / eta(wo)^2 = f(wi, wo) / eta(wi)^2
+    /// (Transport::Radiance) or f(wo, wi) / eta(wi)^2 = f(wi, wo) / eta(wo)^2
+    /// (Transport::Importance), eta(w) being the index on w's side.
+    bool reciprocal = true;
+    Transport transport = Transport::Radiance;
+    /// The index of refraction below the surface over above (1 without transmission).
+    float eta = 1.0f;
+    /// A phase function: wi on the whole sphere, weight p / pdf (no cosine).
+    bool phase_function = false;
+};
+
+/// One sample as the checks see it: the BsdfSample, with wi as a WarpOutput.
+struct BsdfRecord {
+    WarpOutput wi{};
+    float f = 0.0f;
+    float pdf = 0.0f;
+    float eta = 1.0f;
+    BsdfFlags flags = BsdfFlags::None;
+    /// Whether there is a sample: pdf != 0 (a NaN pdf is a sample, and fails).
+    bool sampled() const { return !(pdf == 0.0f); }
+    bool delta() const { return has(flags, BsdfFlags::Delta); }
+};
+
+/// The unit direction at polar angle theta and azimuth phi, both in degrees,
+/// computed in double and rounded to float.
+Vector3f bsdf_direction(double theta_degrees, double phi_degrees = 0.0);
+
+class BsdfCase : public WarpCase {
+public:
+    /// Sets info.input to Uniform3D and info.domain to the sphere; refuses
+    /// (std::invalid_argument naming the case) a wo that is not a finite unit
+    /// vector off the horizon, no lobes, or a phase function with surface lobes.
+    BsdfCase(WarpCaseInfo info, BsdfClaims claims);
+
+    const BsdfClaims& claims() const { return claims_; }
+    Vector3f wo() const { return claims_.wo; }
+    bool phase_function() const { return claims_.phase_function; }
+
+    /// out[i] = sample(wo, uc = in[i].u[0], u = (in[i].u[1], in[i].u[2])).
+    virtual void sample_bsdf(std::span<const WarpInput> in, std::span<BsdfRecord> out) const = 0;
+    /// out[i] = f(a[i], b[i]) (p for a phase function), for any pair: the
+    /// reciprocity check swaps the arguments.
+    virtual void f(std::span<const WarpOutput> a, std::span<const WarpOutput> b, std::span<double> out) const = 0;
+
+    /// out[i] = f(wo, wi[i]) |cos theta_i| (p for a phase function): the
+    /// integrand whose integral over the sphere is the directional albedo.
+    void f_cos(std::span<const WarpOutput> wi, std::span<double> out) const;
+    /// The factor of f in the weight: |cos theta_i|, or 1 for a phase function.
+    double cosine(const WarpOutput& wi) const { return phase_function() ? 1.0 : std::abs(static_cast<double>(wi[2])); }
+    /// Whether wi lies across the surface from wo (a transmitted direction).
+    bool transmitted(const WarpOutput& wi) const {
+        return !phase_function() && static_cast<double>(wi[2]) * claims_.wo.z < 0.0;
+    }
+    /// What turns f |cos theta_i| into energy: (eta(wi) / eta(wo))^2 for a
+    /// transmitted direction in radiance transport (undoing the 1 / etap^2 that
+    /// is radiance's compression, not a gain), else 1. The energy albedo, the
+    /// integral of f |cos theta_i| times this, is at most 1 for a passive surface.
+    double energy_factor(const WarpOutput& wi) const;
+
+    void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override;
+    void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override;
+    bool has_inverse() const override { return false; }
+    SampleReturns sample_returns() const override { return SampleReturns::Bsdf; }
+
+private:
+    BsdfClaims claims_;
+};
+
+namespace detail {
+
+inline Vector3f to_vector(const WarpOutput& o) { return {o[0], o[1], o[2]}; }
+inline WarpOutput to_output_of(const Vector3f& v) { return {v.x, v.y, v.z}; }
+
+/// A BSDF given as three callables over its natural types: sample(wo, uc, u) or,
+/// for a phase function, sample(wo, u), returning BsdfSample; f(wo, wi) and
+/// pdf(wo, wi) returning a float or double.
+template <typename Sample, typename F, typename Pdf>
+class LambdaBsdfCase final : public BsdfCase {
+public:
+    LambdaBsdfCase(WarpCaseInfo info, BsdfClaims claims, Sample s, F f, Pdf p)
+        : BsdfCase(std::move(info), claims), sample_(std::move(s)), f_(std::move(f)), pdf_(std::move(p)) {}
+
+    void sample_bsdf(std::span<const WarpInput> in, std::span<BsdfRecord> out) const override {
+        const Vector3f wo = this->wo();
+        for (std::size_t k = 0; k < in.size(); ++k) {
+            const BsdfSample s = call_sample(wo, in[k]);
+            out[k] = {to_output_of(s.wi), s.f, s.pdf, s.eta, s.flags};
+        }
+    }
+    void f(std::span<const WarpOutput> a, std::span<const WarpOutput> b, std::span<double> out) const override {
+        for (std::size_t k = 0; k < a.size(); ++k) out[k] = static_cast<double>(f_(to_vector(a[k]), to_vector(b[k])));
+    }
+    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
+        const Vector3f wo = this->wo();
+        for (std::size_t k = 0; k < x.size(); ++k) out[k] = static_cast<double>(pdf_(wo, to_vector(x[k])));
+    }
+
+private:
+    BsdfSample call_sample(Vector3f wo, const WarpInput& in) const {
+        if constexpr (std::is_invocable_v<const Sample&, Vector3f, float, Point2f>)
+            return sample_(wo, in.u[0], Point2f{in.u[1], in.u[2]});
+        else
+            return sample_(wo, Point2f{in.u[1], in.u[2]});
+    }
+
+    Sample sample_;
+    F f_;
+    Pdf pdf_;
+};
+
+}  // namespace detail
+
+/// Makes a BSDF case from three callables: sample(Vector3f wo, float uc,
+/// Point2f u) -> BsdfSample (a phase function's sample(Vector3f wo, Point2f u)),
+/// f(Vector3f wo, Vector3f wi) and pdf(Vector3f wo, Vector3f wi) -> float.
+/// claims.lobes must say which lobes it samples. Lambdas inline into the batch loops.
+template <typename Sample, typename F, typename Pdf>
+std::unique_ptr<WarpCase> make_bsdf_case(WarpCaseInfo info, BsdfClaims claims, Sample sample, F f, Pdf pdf) {
+    static_assert(std::is_invocable_r_v<BsdfSample, const Sample&, Vector3f, float, Point2f> ||
+                      std::is_invocable_r_v<BsdfSample, const Sample&, Vector3f, Point2f>,
+                  "sample must take (Vector3f wo, float uc, Point2f u), or (Vector3f wo, Point2f u) for a phase "
+                  "function, and return a BsdfSample");
+    return std::make_unique<detail::LambdaBsdfCase<Sample, F, Pdf>>(std::move(info), claims, std::move(sample),
+                                                                     std::move(f), std::move(pdf));
+}
+
+/// A BSDF object: const members sample(Vector3f, float, Point2f) -> BsdfSample,
+/// f(Vector3f, Vector3f), pdf(Vector3f, Vector3f) and flags() -> BsdfFlags, as
+/// the BSDFs of sampling/bsdf_*.h have; eta() and transport() where it transmits.
+template <typename B>
+concept BsdfObject = requires(const B& b, Vector3f w, float uc, Point2f u) {
+    { b.sample(w, uc, u) } -> std::convertible_to<BsdfSample>;
+    b.f(w, w);
+    b.pdf(w, w);
+    { b.flags() } -> std::convertible_to<BsdfFlags>;
+};
+
+/// A phase-function object: sample(Vector3f, Point2f) -> BsdfSample, p and pdf.
+template <typename P>
+concept PhaseObject = requires(const P& p, Vector3f w, Point2f u) {
+    { p.sample(w, u) } -> std::convertible_to<BsdfSample>;
+    p.p(w, w);
+    p.pdf(w, w);
+};
+
+/// Makes a BSDF case from a BSDF object seen from claims.wo: the lobes come
+/// from its flags(), eta and transport from its eta() and transport() when it
+/// has them; the rest of the claims (reciprocity) as given.
+template <BsdfObject B>
+std::unique_ptr<WarpCase> make_bsdf_case(WarpCaseInfo info, BsdfClaims claims, B bsdf) {
+    claims.lobes = bsdf.flags();
+    if constexpr (requires { bsdf.eta(); }) claims.eta = bsdf.eta();
+    if constexpr (requires { bsdf.transport(); }) claims.transport = bsdf.transport();
+    return make_bsdf_case(
+        std::move(info), claims, [bsdf](Vector3f wo, float uc, Point2f u) { return bsdf.sample(wo, uc, u); },
+        [bsdf](Vector3f wo, Vector3f wi) { return bsdf.f(wo, wi); },
+        [bsdf](Vector3f wo, Vector3f wi) { return bsdf.pdf(wo, wi); });
+}
+
+/// Makes a phase function's case seen from wo (reciprocal, one continuous lobe).
+template <PhaseObject P>
+std::unique_ptr<WarpCase> make_phase_case(WarpCaseInfo info, Vector3f wo, P phase) {
+    BsdfClaims claims{.wo = wo, .lobes = BsdfFlags::Continuous, .phase_function = true};
+    return make_bsdf_case(
+        std::move(info), claims, [phase](Vector3f w, Point2f u) { return phase.sample(w, u); },
+        [phase](Vector3f a, Vector3f b) { return phase.p(a, b); },
+        [phase](Vector3f a, Vector3f b) { return phase.pdf(a, b); });
+}
+
+/// The BSDF case inside a WarpCase, or nullptr.
+inline const BsdfCase* as_bsdf(const WarpCase& warp) { return dynamic_cast<const BsdfCase*>(&warp); }
+
+}  // namespace warpcheck

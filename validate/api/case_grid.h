@@ -1,0 +1,84 @@
+// Parameter families in one call: one warp registered over a grid of parameter
+// values (many outgoing directions of a BSDF sampler, many roughnesses), each
+// point a case with a stable name, family[axis=value,...], in the order the
+// axes are given.
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "validate/api/registry.h"
+#include "validate/api/warp_case.h"
+
+namespace warpcheck {
+
+/// One parameter of a grid and the values it takes, in order.
+struct GridAxis {
+    std::string name;
+    std::vector<double> values;
+};
+
+/// One point of a grid: its parameters in axis order, looked up by name.
+class GridPoint {
+public:
+    explicit GridPoint(std::vector<Parameter> params) : params_(std::move(params)) {}
+    /// The value of the named axis; an unknown name is a std::invalid_argument.
+    double operator[](std::string_view name) const {
+        for (const Parameter& p : params_)
+            if (p.name == name) return p.value;
+        throw std::invalid_argument("grid point has no parameter " + std::string(name));
+    }
+    const std::vector<Parameter>& params() const { return params_; }
+
+private:
+    std::vector<Parameter> params_;
+};
+
+/// Makes the case of one grid point from `info` (the base info with the
+/// point's parameters appended to its params, so the name is stable) and the point.
+using GridCaseMaker = std::function<std::unique_ptr<WarpCase>(WarpCaseInfo info, const GridPoint& point)>;
+
+/// Registers make(info, point) for every point of the Cartesian product of the
+/// axes (the first axis varies slowest). Refused with a std::invalid_argument
+/// naming the family: an axis without values or with a non-finite one, two
+/// axes (or an axis and a base parameter) of one name, or a case whose name is
+/// not the one the grid gives it (the maker must keep info.params).
+inline void add_case_grid(Registry& registry, const WarpCaseInfo& base, const std::vector<GridAxis>& axes,
+                          const GridCaseMaker& make) {
+    const std::string where = "parameter grid of " + base.family + ": ";
+    std::vector<std::string> names;
+    for (const Parameter& p : base.params) names.push_back(p.name);
+    std::size_t points = 1;
+    for (const GridAxis& axis : axes) {
+        if (axis.values.empty()) throw std::invalid_argument(where + "axis " + axis.name + " has no values");
+        for (double v : axis.values)
+            if (!std::isfinite(v)) throw std::invalid_argument(where + "axis " + axis.name + " has a non-finite value");
+        for (const std::string& n : names)
+            if (n == axis.name) throw std::invalid_argument(where + "two parameters named " + axis.name);
+        names.push_back(axis.name);
+        points *= axis.values.size();
+    }
+    for (std::size_t index = 0; index < points; ++index) {
+        std::vector<Parameter> point;
+        std::size_t rest = index;
+        for (std::size_t a = axes.size(); a-- > 0;) {
+            point.insert(point.begin(), {axes[a].name, axes[a].values[rest % axes[a].values.size()]});
+            rest /= axes[a].values.size();
+        }
+        WarpCaseInfo info = base;
+        info.params.insert(info.params.end(), point.begin(), point.end());
+        const std::string expected = case_name(info.family, info.params);
+        std::unique_ptr<WarpCase> warp = make(std::move(info), GridPoint(point));
+        if (!warp || warp->name() != expected)
+            throw std::invalid_argument(where + "the case of " + expected + " is " +
+                                        (warp ? "named " + warp->name() : "null") + " (make it from the info given)");
+        registry.add_case(std::move(warp));
+    }
+}
+
+}  // namespace warpcheck

@@ -1,0 +1,91 @@
+#include "validate/api/registry.h"
+
+#include <stdexcept>
+
+#include "validate/api/case_validation.h"
+
+namespace warpcheck {
+
+void Registry::add_case(std::unique_ptr<WarpCase> warp) {
+    if (!warp) throw std::invalid_argument("registry: null warp case");
+    if (find_case(warp->name())) throw std::invalid_argument("registry: duplicate warp case name " + warp->name());
+    std::string problems;
+    for (const std::string& p : case_problems(*warp)) problems += "\n  - " + p;
+    if (!problems.empty())
+        throw std::invalid_argument("registry: warp case " + warp->name() + " is declared inconsistently:" + problems);
+    cases_.push_back(std::move(warp));
+}
+
+void Registry::add_check(std::unique_ptr<Check> check) {
+    if (!check) throw std::invalid_argument("registry: null check");
+    if (find_check(check->name())) throw std::invalid_argument("registry: duplicate check name " + check->name());
+    checks_.push_back(std::move(check));
+}
+
+const WarpCase* Registry::find_case(std::string_view name) const {
+    for (const auto& c : cases_)
+        if (c->name() == name) return c.get();
+    return nullptr;
+}
+
+void Registry::mark_known_flaw(const std::string& case_name, std::string flaw) {
+    if (!find_case(case_name)) throw std::invalid_argument("registry: no case " + case_name + " to mark as flawed");
+    flaws_.push_back({case_name, "", std::move(flaw)});
+}
+
+void Registry::mark_known_flaw(const std::string& case_name, const std::string& check_name, std::string flaw) {
+    if (!find_case(case_name)) throw std::invalid_argument("registry: no case " + case_name + " to mark as flawed");
+    if (!find_check(check_name))
+        throw std::invalid_argument("registry: no check " + check_name + " to mark as flawed for case " + case_name);
+    flaws_.push_back({case_name, check_name, std::move(flaw)});
+}
+
+std::string Registry::known_flaw(const WarpCase& warp) const {
+    for (const Flaw& f : flaws_)
+        if (f.case_name == warp.name() && f.check_name.empty()) return f.text;
+    return {};
+}
+
+std::string Registry::known_flaw(const WarpCase& warp, const Check& check) const {
+    for (const Flaw& f : flaws_)
+        if (f.case_name == warp.name() && f.check_name == check.name()) return f.text;
+    return known_flaw(warp);
+}
+
+const Check* Registry::find_check(std::string_view name) const {
+    for (const auto& c : checks_)
+        if (c->name() == name) return c.get();
+    return nullptr;
+}
+
+namespace {
+
+// Classic glob matching with backtracking over the last '*'.
+bool glob_match(std::string_view text, std::string_view pattern) {
+    std::size_t t = 0, p = 0, star = std::string_view::npos, mark = 0;
+    while (t < text.size()) {
+        if (p < pattern.size() && (pattern[p] == '?' || pattern[p] == text[t])) {
+            ++t;
+            ++p;
+        } else if (p < pattern.size() && pattern[p] == '*') {
+            star = p++;
+            mark = t;
+        } else if (star != std::string_view::npos) {
+            p = star + 1;
+            t = ++mark;
+        } else {
+            return false;
+        }
+    }
+    while (p < pattern.size() && pattern[p] == '*') ++p;
+    return p == pattern.size();
+}
+
+}  // namespace
+
+bool name_matches(std::string_view name, std::string_view pattern) {
+    if (pattern.find_first_of("*?") != std::string_view::npos) return glob_match(name, pattern);
+    return name.find(pattern) != std::string_view::npos;
+}
+
+}  // namespace warpcheck

@@ -1,0 +1,216 @@
+// "bsdf_albedo": the mean weight against the directional albedo, and the
+// albedo against 1 (energy conservation).
+//
+// The mean of the weights f |cos theta_i| / pdf over all draws (a draw without
+// a sample weighs 0) estimates the directional albedo: the integral of
+// f(wo, .) |cos theta_i| over the sphere (by the chi-square engine's
+// quadrature) plus, for each delta lobe, its claimed probability times its
+// samples' mean weight. Rules:
+//  - statistical: Student's t-test of the mean weight against that albedo,
+//    the quadrature's error bound and a 2^-20 relative rounding allowance
+//    (the float weights of 10^6 samples rounding the same way) added to the
+//    standard error; in the run's Sidak family;
+//  - the energy albedo, the same integral with transmitted directions' f
+//    times (eta(wi) / eta(wo))^2 in radiance transport (undoing radiance's
+//    1 / etap^2, BsdfCase::energy_factor), may exceed 1 by at most the
+//    quadrature's error bound plus 2^-20 (the density's float rounding, as
+//    chi2::kIntegralTolerance): more is energy created by the surface (FAIL).
+//    One-sided: an albedo below 1 is a surface that absorbs.
+// Evidence: the albedo and energy albedo against theta_o at this case's
+// azimuth (a cheaper quadrature per angle, kSweepAccuracySamples).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "chi2/mean_test.h"
+#include "validate/checks/bsdf/bsdf_checks.h"
+#include "validate/checks/bsdf/bsdf_common.h"
+#include "validate/checks/bsdf/bsdf_statistics.h"
+#include "validate/checks/evidence.h"
+#include "validate/checks/power_level.h"
+
+namespace warpcheck::bsdf {
+namespace {
+
+/// Relative rounding allowance of the reference and of the energy bound: 2^-20 (16 float ulps).
+constexpr double kRoundingAllowance = 0x1p-20;
+/// The albedo quadrature's cells: 16 azimuths by 32 heights, whose rows split
+/// the sphere at z = 0, so each cell lies on one side of the surface.
+constexpr chi2::BinResolution kAlbedoCells{16, 32};
+/// The sweep's quadrature: 4 azimuths by 8 heights, and the accuracy rule of
+/// 10^4 samples (an error bound of about 1e-3 of the albedo, far below the
+/// curve's features, and reported).
+constexpr chi2::BinResolution kSweepCells{4, 8};
+constexpr uint64_t kSweepAccuracySamples = 10'000;
+
+struct Draws {
+    chi2::Moments weights, energy;
+    DeltaTally delta;
+    void merge(const Draws& o) {
+        weights.merge(o.weights);
+        energy.merge(o.energy);
+        delta.merge(o.delta);
+    }
+};
+
+Draws draw(const BsdfCase& bsdf, const CheckContext& ctx) {
+    const auto parts = map_bsdf_chunks<Draws>(ctx, bsdf, ctx.options().samples, false,
+                                              [&](std::size_t, std::span<const WarpInput>, std::span<const BsdfRecord> rec) {
+        Draws d;
+        for (const BsdfRecord& r : rec) {
+            const double w = r.sampled() ? static_cast<double>(r.f) * bsdf.cosine(r.wi) / r.pdf : 0.0;
+            d.weights.add(w);
+            d.energy.add(r.sampled() ? w * bsdf.energy_factor(r.wi) : 0.0);
+            if (r.sampled() && r.delta()) d.delta.add(bsdf, r);
+        }
+        return d;
+    });
+    return merge_in_order(parts);
+}
+
+/// The integral of f(wo, .) |cos theta_i| over the sphere, plain and as
+/// energy (wo on the case's side of the surface, so energy_factor applies).
+struct Albedo {
+    double albedo = 0.0, energy = 0.0, error = 0.0;
+    uint64_t evaluations = 0;
+};
+
+Albedo integrate(const BsdfCase& bsdf, Vector3f wo, chi2::BinResolution cells, uint64_t accuracy_samples,
+                 const chi2::ParallelFor& parallel) {
+    const chi2::Binning binning(bsdf.domain(), cells);
+    chi2::QuadratureOptions q;
+    q.sample_count = accuracy_samples;
+    const chi2::CellIntegrals c = chi2::integrate_cells(binning, albedo_integrand(bsdf, wo), q, parallel);
+    Albedo a{0.0, 0.0, c.error_total, c.evaluations};
+    for (std::size_t i = 0; i < c.probability.size(); ++i) {
+        const chi2::ParamRect r = binning.cell_rect(i);
+        // The factor is constant on each side of the surface, and no cell straddles it.
+        const WarpOutput middle{0.0f, 0.0f, static_cast<float>(0.5 * (r.v0 + r.v1))};
+        a.albedo += c.probability[i];
+        a.energy += c.probability[i] * bsdf.energy_factor(middle);
+    }
+    return a;
+}
+
+/// The delta lobes' part of the albedo: claimed probability times mean weight.
+double delta_albedo(const DeltaTally& d, bool energy) {
+    double sum = 0.0;
+    for (const DeltaTally::Lobe& l : d.lobes) sum += l.claimed() * (energy ? l.mean_energy() : l.mean_weight());
+    return sum;
+}
+
+double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+
+/// The (energy) albedo of the continuous lobes against theta_o on wo's side,
+/// at wo's azimuth: the same f at other wo. Returns the curves' largest
+/// quadrature error bound in `worst_error`.
+Plot albedo_sweep(const BsdfCase& bsdf, double own_albedo, double mean_weight, double& worst_error) {
+    const Vector3f wo = bsdf.wo();
+    const double phi = degrees(std::atan2(static_cast<double>(wo.y), static_cast<double>(wo.x)));
+    const bool below = wo.z < 0.0f;
+    const double own = degrees(std::acos(std::abs(static_cast<double>(wo.z))));
+    Series albedo{"albedo, continuous lobes", {}, {}}, energy{"energy albedo, continuous lobes", {}, {}};
+    for (double theta = 0.0; theta <= 89.0; theta += theta < 85.0 ? 5.0 : 4.0) {
+        const Vector3f w = bsdf_direction(below ? 180.0 - theta : theta, phi);
+        const Albedo a = integrate(bsdf, w, kSweepCells, kSweepAccuracySamples, chi2::serial_for);
+        worst_error = std::max(worst_error, a.error);
+        albedo.x.push_back(theta);
+        albedo.y.push_back(a.albedo);
+        energy.x.push_back(theta);
+        energy.y.push_back(a.energy);
+    }
+    Plot plot;
+    plot.kind = Plot::Kind::Lines;
+    plot.title = "albedo against theta_o of " + bsdf.name() + " (at its phi_o)";
+    plot.x_label = below ? "theta_o from below the surface (degrees)" : "theta_o (degrees)";
+    plot.y_label = "albedo";
+    plot.series = {std::move(albedo), std::move(energy), {"energy bound", {0.0, 90.0}, {1.0, 1.0}},
+                   {"this case: albedo", {own}, {own_albedo}}, {"this case: mean weight", {own}, {mean_weight}}};
+    return plot;
+}
+
+struct Outcome {
+    Albedo integral;
+    double albedo = 0.0, energy = 0.0, energy_tolerance = 0.0;
+    chi2::MeanTest test;
+};
+
+Outcome evaluate(const BsdfCase& bsdf, const CheckContext& ctx, const Draws& d) {
+    Outcome o;
+    o.integral = integrate(bsdf, bsdf.wo(), kAlbedoCells, ctx.options().samples, ctx.executor());
+    o.albedo = o.integral.albedo + delta_albedo(d.delta, false);
+    o.energy = o.integral.energy + delta_albedo(d.delta, true);
+    o.energy_tolerance = o.integral.error + kRoundingAllowance;
+    o.test = chi2::mean_test(d.weights, o.albedo, std::hypot(o.integral.error, kRoundingAllowance * o.albedo));
+    return o;
+}
+
+void judge(CheckResult& r, const Outcome& o) {
+    r.p_value = o.test.p_value;  // judged by the runner at the run's corrected level
+    r.summary = fmt::format("mean weight {:.6g} vs albedo {:.6g} (t = {:.2f}); energy {:.6g}", o.test.mean, o.albedo,
+                            o.test.t, o.energy);
+    r.message = fmt::format("mean weight {:.9g} estimates the albedo {:.9g} (integral of f |cos| {:.9g} plus delta "
+                            "lobes {:.9g}): {:.2f} standard errors; energy albedo {:.9g} (bound 1 + {:.3g})",
+                            o.test.mean, o.albedo, o.integral.albedo, o.albedo - o.integral.albedo, o.test.t, o.energy,
+                            o.energy_tolerance);
+    r.verdict = Verdict::Pass;
+    if (!(o.energy <= 1.0 + o.energy_tolerance)) {
+        r.verdict = Verdict::Fail;
+        r.summary = fmt::format("energy albedo {:.6g} exceeds 1 (tolerance {:.3g})", o.energy, o.energy_tolerance);
+        r.message = "the surface creates energy: " + r.message;
+    }
+}
+
+class BsdfAlbedoCheck final : public BsdfCheck {
+public:
+    std::string name() const override { return "bsdf_albedo"; }
+    bool statistical() const override { return true; }
+    std::string description() const override {
+        return "BSDF: the mean weight against the directional albedo (t-test, Sidak-corrected), and the energy "
+               "albedo at most 1";
+    }
+
+protected:
+    bool applies_to_bsdf(const BsdfCase&) const override { return true; }
+
+    CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
+        const Draws d = draw(bsdf, ctx);
+        const Outcome o = evaluate(bsdf, ctx, d);
+        CheckResult r;
+        r.samples = d.weights.n;
+        const double level = power_level(ctx.options(), 1);
+        const double detectable = detectable_shift_in_standard_errors(level) * o.test.standard_error;
+        r.figures = {{"samples", static_cast<double>(d.weights.n)},
+                     {"mean_weight", o.test.mean},
+                     {"albedo", o.albedo},
+                     {"albedo_continuous", o.integral.albedo},
+                     {"quadrature_error", o.integral.error},
+                     {"quadrature_evaluations", static_cast<double>(o.integral.evaluations)},
+                     {"standard_error", o.test.standard_error},
+                     {"t", o.test.t},
+                     {"p_value", o.test.p_value},
+                     {"energy_albedo", o.energy},
+                     {"energy_mean_weight", d.energy.mean},
+                     {"energy_tolerance", o.energy_tolerance},
+                     {"power_weight_error", detectable},
+                     {"power_relative_weight_error", detectable / o.albedo},
+                     {"power_level", level}};
+        judge(r, o);
+        if (!bsdf.phase_function()) {
+            double sweep_error = 0.0;
+            r.plots.push_back(albedo_sweep(bsdf, o.integral.albedo, o.test.mean, sweep_error));
+            r.figures.push_back({"sweep_quadrature_error", sweep_error});
+        }
+        return r;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Check> make_bsdf_albedo_check() { return std::make_unique<BsdfAlbedoCheck>(); }
+
+}  // namespace warpcheck::bsdf

@@ -1,0 +1,28 @@
+// The checks of BSDF and phase-function cases (validate/bsdf/bsdf_case.h).
+// register_builtin_checks adds them; each takes BSDF cases only.
+#pragma once
+
+#include <memory>
+
+#include "validate/api/check.h"
+
+namespace warpcheck::bsdf {
+
+/// "bsdf_chi2": the continuous lobes' wi over the sphere against pdf(wo, .)
+/// (chi-square), and the pdf's integral against the share of draws that landed.
+std::unique_ptr<Check> make_bsdf_chi2_check();
+/// "bsdf_weight": every sample's weight f |cos theta_i| / pdf against f() and
+/// pdf() at its wi; wi a unit vector on the side its flags say; no sample
+/// where pdf or f is 0.
+std::unique_ptr<Check> make_bsdf_weight_check();
+/// "bsdf_delta": each delta lobe's share of draws against its claimed
+/// probability (binomial), its direction (mirror, Snell) and its eta.
+std::unique_ptr<Check> make_bsdf_delta_check();
+/// "bsdf_albedo": the mean weight against the directional albedo (t-test) and
+/// the energy albedo at most 1.
+std::unique_ptr<Check> make_bsdf_albedo_check();
+/// "bsdf_reciprocity": f(wo, wi) = f(wi, wo) (the eta^2 rule across an
+/// interface), where the case claims it.
+std::unique_ptr<Check> make_bsdf_reciprocity_check();
+
+}  // namespace warpcheck::bsdf

@@ -1,0 +1,268 @@
+// "bsdf_chi2": where the continuous lobes send wi, against pdf(wo, .), on the
+// whole sphere (reflection and transmission together), with the chi-square
+// engine of chi2/. And whether pdf(wo, .) integrates to what the continuous
+// lobes hold: one minus the delta lobes' claimed probability, less the
+// probability that the sampler gives up (no sample).
+//
+// The draws split three ways: delta samples (their share is bsdf_delta's
+// test), no sample, and continuous samples, which land on the sphere. Given
+// how many landed, those are independent draws from pdf(wo, .) / T, T the
+// integral of the pdf over the sphere: the chi-square test of their cells
+// (chi2::evaluate_chi2 with each cell's integral over T) tests the shape.
+// The scale is tested by where the draws went:
+//  - T may not exceed 1 - P_delta (P_delta: the delta lobes' claimed
+//    probability) by more than the quadrature's verified error bound plus
+//    2^-20 (the float rounding of the density, as chi2::kIntegralTolerance)
+//    plus, unless --strict, twice the pdf's float noise (its change over one
+//    float step of wi, chi2::kFloatNoiseFactor: a float pdf of a sharp lobe
+//    rounds its half vector and its 1 / (4 wo.wm)): a FAIL;
+//  - the share of non-delta draws that landed is Binomial with probability
+//    T / (1 - P_delta) (the rest gave up): its two-sided p-value, against that
+//    probability widened by the same tolerance, joins Pearson's and the
+//    largest residual's in one p-value (weighted Bonferroni, chi2/min_p.h), so
+//    a pdf too small for the samples (1/pi typed as 0.318) fails by chance
+//    at most at the run's level.
+// The cells and the statistic are those of the chi2 check (chi2_check.cpp):
+// cells no narrower than the float steps of their edges allow
+// (chi2::float_aware_resolution), the quadrature verified and its float noise
+// measured, and each cell's expected count known within a band (the verified
+// bound, the float noise and chi2::kEdgeFloatSteps float steps at each edge)
+// that Pearson's statistic and the largest residual allow for, so a sharp lobe
+// (alpha 0.05) and the horizon, where the float wi crowd onto few floats, are
+// judged at what a float sampler can do.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "chi2/chi2_test.h"
+#include "chi2/local_residual.h"
+#include "chi2/min_p.h"
+#include "chi2/power.h"
+#include "validate/checks/bsdf/bsdf_checks.h"
+#include "validate/checks/bsdf/bsdf_common.h"
+#include "validate/checks/bsdf/bsdf_evidence.h"
+#include "validate/checks/bsdf/bsdf_statistics.h"
+#include "validate/checks/evidence.h"
+#include "validate/checks/power_level.h"
+
+namespace warpcheck::bsdf {
+namespace {
+
+/// The share of the check's level given to the landing test; Pearson's
+/// statistic and the largest residual share the rest as in the chi2 check.
+constexpr double kLandingLevelShare = 0.1;
+
+struct Draws {
+    chi2::Histogram hist;
+    uint64_t total = 0, no_sample = 0;
+    DeltaTally delta;
+    void merge(const Draws& o) {
+        if (hist.counts.empty()) hist.counts.assign(o.hist.counts.size(), 0);
+        hist.merge(o.hist);
+        total += o.total;
+        no_sample += o.no_sample;
+        delta.merge(o.delta);
+    }
+    /// Continuous draws that landed (in a cell, outside, NaN or set aside on the boundary).
+    uint64_t landed() const { return total - no_sample - delta.count(); }
+};
+
+Draws draw(const BsdfCase& bsdf, const CheckContext& ctx, const chi2::Binning& binning,
+           const std::vector<unsigned char>& zero) {
+    auto parts = map_bsdf_chunks<Draws>(ctx, bsdf, ctx.options().samples, false,
+                                        [&](std::size_t, std::span<const WarpInput>, std::span<const BsdfRecord> rec) {
+        Draws d;
+        d.hist.counts.assign(binning.cell_count(), 0);
+        std::vector<WarpOutput> points;
+        points.reserve(rec.size());
+        for (const BsdfRecord& r : rec) {
+            ++d.total;
+            if (!r.sampled()) ++d.no_sample;
+            else if (r.delta()) d.delta.add(bsdf, r);
+            else points.push_back(r.wi);
+        }
+        binning.bin(std::span<const std::array<float, 3>>(points), d.hist, zero);
+        return d;
+    });
+    return merge_in_order(parts);
+}
+
+/// The cells' integrals over T: the density of a continuous sample given that
+/// it landed (errors and float noise scaled alike).
+chi2::CellIntegrals conditional(chi2::CellIntegrals q) {
+    const double t = q.total;
+    if (!(t > 0.0) || !std::isfinite(t)) return q;  // the engine then fails the integral
+    q.total = 0.0;
+    q.error_total = 0.0;
+    q.float_noise_total = 0.0;
+    for (std::size_t i = 0; i < q.probability.size(); ++i) {
+        q.probability[i] /= t;
+        q.error[i] /= t;
+        q.total += q.probability[i];
+        q.error_total += q.error[i];
+        if (i < q.float_noise.size()) {
+            q.float_noise[i] /= t;
+            q.float_noise_total += q.float_noise[i];
+        }
+    }
+    return q;
+}
+
+/// The largest cell residual against the same bands as Pearson's statistic
+/// (as the chi2 check).
+chi2::LocalResidual local_residual(const chi2::Chi2Outcome& o, uint64_t samples) {
+    std::vector<double> lower(o.expected.size()), upper(o.expected.size());
+    for (std::size_t i = 0; i < lower.size(); ++i) {
+        lower[i] = std::max(0.0, o.expected[i] - o.band[i]);
+        upper[i] = o.expected[i] + o.band[i];
+    }
+    return chi2::largest_cell_residual(o.histogram.counts, o.expected, lower, upper, samples);
+}
+
+struct Normalisation {
+    double integral = 0.0, tolerance = 0.0, delta = 0.0;
+    uint64_t trials = 0, landed = 0;
+    double p_value = 1.0;
+    std::string failure;
+};
+
+Normalisation normalisation(const chi2::CellIntegrals& q, const Draws& d, bool strict) {
+    Normalisation n;
+    n.integral = q.total;
+    n.tolerance = chi2::kIntegralTolerance + q.error_total + (strict ? 0.0 : chi2::kFloatNoiseFactor * q.float_noise_total);
+    n.delta = d.delta.claimed();
+    n.trials = d.total - d.delta.count();
+    n.landed = d.landed();
+    const double room = 1.0 - n.delta;
+    if (!(n.integral <= room + n.tolerance))
+        n.failure = fmt::format("pdf(wo, .) integrates to {:.7g} over the sphere, more than the {:.7g} that the "
+                                "continuous lobes hold (1 - {:.7g} claimed by delta samples; tolerance {:.3g})",
+                                n.integral, room, n.delta, n.tolerance);
+    if (room > 0.0)
+        n.p_value = binomial_band_p(n.landed, n.trials, (n.integral - n.tolerance) / room,
+                                    (n.integral + n.tolerance) / room);
+    return n;
+}
+
+void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual& local, const Normalisation& n,
+                 const Draws& d, const RunOptions& options) {
+    r.samples = d.total;
+    const double level = (1.0 - chi2::kLocalLevelShare - kLandingLevelShare) * power_level(options, 1);
+    const double lambda = chi2::pearson_noncentrality_for_power(o.dof(), level);
+    r.figures = {{"statistic", o.statistic()},
+                 {"dof", static_cast<double>(o.dof())},
+                 {"pearson_p_value", o.p_value()},
+                 {"local_p_value", local.p_value},
+                 {"local_max_residual", local.residual},
+                 {"landing_p_value", n.p_value},
+                 {"pdf_integral", n.integral},
+                 {"integral_tolerance", n.tolerance},
+                 {"delta_claimed", n.delta},
+                 {"samples", static_cast<double>(d.total)},
+                 {"continuous_samples", static_cast<double>(n.landed)},
+                 {"delta_samples", static_cast<double>(d.delta.count())},
+                 {"no_sample", static_cast<double>(d.no_sample)},
+                 {"outside", static_cast<double>(o.histogram.outside)},
+                 {"nan", static_cast<double>(o.histogram.nan)},
+                 {"zero_expected_hits", static_cast<double>(o.zero_expected_hits)},
+                 {"cells", static_cast<double>(o.expected.size())},
+                 {"cells_used", static_cast<double>(o.pearson.terms)},
+                 {"noncentrality", o.pearson.noncentrality},
+                 {"float_noise", o.integrals.float_noise_total},
+                 {"edge_band", o.edge_band_total},
+                 {"verification_mismatches", static_cast<double>(o.integrals.verification_mismatches)},
+                 {"quadrature_evaluations", static_cast<double>(o.integrals.evaluations)},
+                 {"power_tilt_eps", chi2::pearson_tilt_for_noncentrality(lambda, n.landed)},
+                 {"power_level", level}};
+}
+
+void judge(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual& local, const Normalisation& n) {
+    const double share = 1.0 - chi2::kLocalLevelShare - kLandingLevelShare;
+    if (o.dof() >= 1)
+        r.p_value = chi2::weighted_min_p({o.p_value(), local.p_value, n.p_value},
+                                         {share, chi2::kLocalLevelShare, kLandingLevelShare});
+    else if (o.errors.empty())
+        r.p_value = n.p_value;
+    r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}; landed {} of {} (pdf integral {:.5g})", o.statistic(),
+                            o.dof(), o.p_value(), n.landed, n.trials, n.integral);
+    std::vector<std::string> failures = o.failures;
+    if (!n.failure.empty()) failures.insert(failures.begin(), n.failure);
+    r.verdict = Verdict::Pass;
+    if (!failures.empty()) {
+        r.verdict = Verdict::Fail;
+        r.summary = failures.front();
+        r.message = join_reasons(failures);
+    } else if (!o.errors.empty()) {
+        r.verdict = Verdict::Error;
+        r.message = join_reasons(o.errors);
+    } else {
+        r.message = fmt::format("Pearson p {:.3g}, largest residual {:.3g} (p {:.3g}), landing p {:.3g}: {} of {} "
+                                "non-delta draws landed, {:.6g} expected from the pdf's integral",
+                                o.p_value(), local.residual, local.p_value, n.p_value, n.landed, n.trials,
+                                static_cast<double>(n.trials) * n.integral / (1.0 - n.delta));
+    }
+}
+
+Table draw_table(const Draws& d, const Normalisation& n) {
+    Table t{"Where the draws went", {"kind", "samples", "share", "claimed or expected"}, {}};
+    const double total = static_cast<double>(d.total);
+    const auto row = [&](std::string kind, uint64_t count, std::string claim) {
+        t.rows.push_back({std::move(kind), std::to_string(count), fmt::format("{:.6g}", static_cast<double>(count) / total),
+                          std::move(claim)});
+    };
+    const double room = 1.0 - n.delta;
+    row("continuous (landed)", n.landed, fmt::format("{:.6g} (pdf integral)", n.integral));
+    row("no sample", d.no_sample, fmt::format("{:.6g} (1 - delta - integral)", room - n.integral));
+    for (int k = 0; k < kDeltaLobes; ++k) {
+        const DeltaTally::Lobe& l = d.delta.lobes[static_cast<std::size_t>(k)];
+        if (l.count > 0) row(delta_lobe_name(k), l.count, fmt::format("{:.6g} (claimed)", l.claimed()));
+    }
+    return t;
+}
+
+class BsdfChi2Check final : public BsdfCheck {
+public:
+    std::string name() const override { return "bsdf_chi2"; }
+    bool statistical() const override { return true; }
+    std::string description() const override {
+        return "BSDF: chi-square of the continuous lobes' wi over the sphere against pdf(wo, .), and the pdf's "
+               "integral against the share of draws that landed (Sidak-corrected)";
+    }
+
+protected:
+    bool applies_to_bsdf(const BsdfCase& b) const override { return has(b.claims().lobes, BsdfFlags::Continuous); }
+
+    CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
+        const uint64_t samples = ctx.options().samples;
+        chi2::Chi2Options options;
+        options.resolution = chi2::float_aware_resolution(bsdf.domain(), bsdf_resolution(bsdf), samples);
+        options.strict = ctx.options().strict;
+        const chi2::Binning binning(bsdf.domain(), options.resolution);
+        chi2::QuadratureOptions q;
+        q.sample_count = samples;
+        q.accuracy_fraction = options.accuracy_fraction;
+        q.verify = true;
+        q.float_noise = true;
+        const chi2::CellIntegrals integrals = chi2::integrate_cells(binning, pdf_integrand(bsdf), q, ctx.executor());
+        const Draws d = draw(bsdf, ctx, binning, chi2::zero_cells_of(integrals));
+        const Normalisation n = normalisation(integrals, d, options.strict);
+        const chi2::Chi2Outcome o = chi2::evaluate_chi2(binning, d.hist, conditional(integrals), n.landed, options);
+        const chi2::LocalResidual local = local_residual(o, n.landed);
+        CheckResult r;
+        add_figures(r, o, local, n, d, ctx.options());
+        judge(r, o, local, n);
+        r.plots.push_back(cell_heatmaps(binning, o, "wi cells of " + bsdf.name() + " (continuous lobes)"));
+        r.tables.push_back(draw_table(d, n));
+        r.tables.push_back(worst_cells(binning, o));
+        return r;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Check> make_bsdf_chi2_check() { return std::make_unique<BsdfChi2Check>(); }
+
+}  // namespace warpcheck::bsdf

@@ -1,0 +1,55 @@
+#include "validate/checks/bsdf/bsdf_common.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace warpcheck::bsdf {
+
+namespace {
+
+std::vector<WarpOutput> nodes_as_outputs(std::span<const chi2::DomainPoint> points) {
+    std::vector<WarpOutput> x(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) x[i] = to_warp_output(points[i]);
+    return x;
+}
+
+}  // namespace
+
+chi2::BatchPdf pdf_integrand(const BsdfCase& bsdf) {
+    return [&bsdf](std::span<const chi2::DomainPoint> points, std::span<double> out) {
+        bsdf.pdf(nodes_as_outputs(points), out);
+    };
+}
+
+chi2::BatchPdf albedo_integrand(const BsdfCase& bsdf, Vector3f wo) {
+    return [&bsdf, wo](std::span<const chi2::DomainPoint> points, std::span<double> out) {
+        const std::vector<WarpOutput> x = nodes_as_outputs(points);
+        const std::vector<WarpOutput> from(x.size(), detail::to_output_of(wo));
+        bsdf.f(from, x, out);
+        for (std::size_t i = 0; i < x.size(); ++i) out[i] *= bsdf.cosine(x[i]);
+    };
+}
+
+std::vector<WarpOutput> float_neighbours(const WarpOutput& w) {
+    const Frame frame = Frame::around({w[0], w[1], w[2]});
+    std::vector<WarpOutput> out;
+    out.reserve(kFloatNeighbours);
+    for (std::size_t k = 0; k < kFloatNeighbours; ++k) {
+        const double angle = 2.0 * std::numbers::pi * static_cast<double>(k) / kFloatNeighbours;
+        const double dt = kFloatStep * std::cos(angle), db = kFloatStep * std::sin(angle);
+        const double v[3] = {w[0] + dt * frame.t.x + db * frame.b.x, w[1] + dt * frame.t.y + db * frame.b.y,
+                             w[2] + dt * frame.t.z + db * frame.b.z};
+        const double len = std::hypot(v[0], v[1], v[2]);
+        out.push_back({static_cast<float>(v[0] / len), static_cast<float>(v[1] / len), static_cast<float>(v[2] / len)});
+    }
+    return out;
+}
+
+chi2::BinResolution bsdf_resolution(const BsdfCase& bsdf) {
+    chi2::BinResolution r = bsdf.info().chi2_resolution;
+    if (r.first == 0) r.first = 32;
+    if (r.second == 0) r.second = 64;
+    return r;
+}
+
+}  // namespace warpcheck::bsdf

@@ -1,0 +1,139 @@
+// What the BSDF checks share: their base class (they take BSDF cases only),
+// walking a case's samples chunk by chunk, the integrands their quadratures
+// use, and the tally of the delta lobes' samples and claims.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "chi2/binning.h"
+#include "chi2/quadrature.h"
+#include "validate/api/bsdf_case.h"
+#include "validate/api/check.h"
+#include "validate/checks/input_chunks.h"
+
+namespace warpcheck::bsdf {
+
+/// The base of every BSDF check: it takes BSDF cases only (the runner gives it
+/// no others), and applies where `applies_to_bsdf` says.
+class BsdfCheck : public Check {
+public:
+    bool about_bsdfs() const override { return true; }
+    bool applies_to(const WarpCase& warp) const override {
+        const BsdfCase* b = as_bsdf(warp);
+        return b && applies_to_bsdf(*b);
+    }
+    std::string not_applicable_because(const WarpCase& warp) const override {
+        const BsdfCase* b = as_bsdf(warp);
+        return b ? not_applicable_to_bsdf(*b) : std::string{};
+    }
+    CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
+        return run_bsdf(*as_bsdf(warp), ctx);
+    }
+
+protected:
+    virtual bool applies_to_bsdf(const BsdfCase& bsdf) const = 0;
+    /// Why a case lacks the part this check tests ("" for none: the check is
+    /// not about such cases, and no n/a row is shown).
+    virtual std::string not_applicable_to_bsdf(const BsdfCase& bsdf) const {
+        (void)bsdf;
+        return {};
+    }
+    virtual CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const = 0;
+};
+
+/// Calls f(chunk, inputs, records) for every chunk of map_input_chunks (edge
+/// inputs first when with_edges, then `samples` random ones), with the
+/// records of sample_bsdf; results in chunk order.
+template <typename Result, typename F>
+std::vector<Result> map_bsdf_chunks(const CheckContext& ctx, const BsdfCase& bsdf, uint64_t samples, bool with_edges,
+                                    F&& f) {
+    return map_input_chunks<Result>(ctx, InputKind::Uniform3D, samples, with_edges,
+                                    [&](std::size_t chunk, std::span<const WarpInput> inputs) {
+                                        std::vector<BsdfRecord> records(inputs.size());
+                                        bsdf.sample_bsdf(inputs, records);
+                                        return f(chunk, inputs, std::span<const BsdfRecord>(records));
+                                    });
+}
+
+/// pdf(wo, .) at quadrature nodes.
+chi2::BatchPdf pdf_integrand(const BsdfCase& bsdf);
+/// f(wo, .) |cos theta_i| at quadrature nodes (p for a phase function), for
+/// the given wo (the case's own, or another for a sweep).
+chi2::BatchPdf albedo_integrand(const BsdfCase& bsdf, Vector3f wo);
+
+/// How far the neighbours of a direction lie that measure a BSDF's float
+/// resolution at it: 2^-20, 8 float ulps of a unit vector's components.
+inline constexpr double kFloatStep = 0x1p-20;
+/// How many neighbours float_neighbours gives.
+inline constexpr std::size_t kFloatNeighbours = 8;
+
+/// The kFloatNeighbours directions kFloatStep from w in eight directions of
+/// its tangent plane, renormalised and rounded to float. What f or pdf does
+/// over them (a smooth change plus each evaluation's own rounding) is the
+/// float resolution of a value computed at w: a half vector recomputed from
+/// rounded directions, a Fresnel term near the critical angle, a microfacet
+/// seen edge-on.
+std::vector<WarpOutput> float_neighbours(const WarpOutput& w);
+
+/// The cells of the BSDF checks' sphere: the case's chi2_resolution, or by
+/// default 32 azimuths by 64 heights, so that each hemisphere has the 32 x 32
+/// cells of a hemispherical warp (chi2/binning.h says why about 1000).
+chi2::BinResolution bsdf_resolution(const BsdfCase& bsdf);
+
+/// The delta lobes: reflection (0) and transmission (1).
+inline constexpr int kDeltaLobes = 2;
+inline const char* delta_lobe_name(int k) { return k == 0 ? "delta reflection" : "delta transmission"; }
+
+/// The delta samples of a run, per lobe: how many, and what they claim (the
+/// probability of choosing the lobe, as their pdf; their weight).
+struct DeltaTally {
+    struct Lobe {
+        uint64_t count = 0;
+        double pdf_sum = 0.0;  ///< sum of the claimed probabilities
+        double pdf_min = std::numeric_limits<double>::infinity();
+        double pdf_max = -std::numeric_limits<double>::infinity();
+        double weight_sum = 0.0;  ///< sum of f |cos theta_i| / pdf (energy weights in energy_sum)
+        double energy_sum = 0.0;
+        void merge(const Lobe& o) {
+            count += o.count;
+            pdf_sum += o.pdf_sum;
+            pdf_min = std::min(pdf_min, o.pdf_min);
+            pdf_max = std::max(pdf_max, o.pdf_max);
+            weight_sum += o.weight_sum;
+            energy_sum += o.energy_sum;
+        }
+        /// The probability the samples claim: their mean pdf (0 without samples).
+        double claimed() const { return count ? pdf_sum / static_cast<double>(count) : 0.0; }
+        double mean_weight() const { return count ? weight_sum / static_cast<double>(count) : 0.0; }
+        double mean_energy() const { return count ? energy_sum / static_cast<double>(count) : 0.0; }
+    };
+    std::array<Lobe, kDeltaLobes> lobes{};
+
+    /// The lobe of a delta record (by the side wi is on; a phase function has none).
+    static int lobe_of(const BsdfCase& bsdf, const BsdfRecord& r) { return bsdf.transmitted(r.wi) ? 1 : 0; }
+    void add(const BsdfCase& bsdf, const BsdfRecord& r) {
+        Lobe& l = lobes[static_cast<std::size_t>(lobe_of(bsdf, r))];
+        const double pdf = r.pdf, weight = static_cast<double>(r.f) * bsdf.cosine(r.wi) / pdf;
+        ++l.count;
+        l.pdf_sum += pdf;
+        l.pdf_min = std::min(l.pdf_min, pdf);
+        l.pdf_max = std::max(l.pdf_max, pdf);
+        l.weight_sum += weight;
+        l.energy_sum += weight * bsdf.energy_factor(r.wi);
+    }
+    void merge(const DeltaTally& o) {
+        for (int k = 0; k < kDeltaLobes; ++k) lobes[static_cast<std::size_t>(k)].merge(o.lobes[static_cast<std::size_t>(k)]);
+    }
+    uint64_t count() const { return lobes[0].count + lobes[1].count; }
+    /// The total probability of the delta lobes that the samples claim.
+    double claimed() const { return lobes[0].claimed() + lobes[1].claimed(); }
+};
+
+}  // namespace warpcheck::bsdf

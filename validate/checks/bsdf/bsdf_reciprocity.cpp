@@ -1,0 +1,227 @@
+// "bsdf_reciprocity": Helmholtz reciprocity, where the case claims it
+// (BsdfClaims::reciprocal). For reflection f(wo, wi) = f(wi, wo); across the
+// interface, with eta(w) the index on w's side, f(wo, wi) / eta(wo)^2 =
+// f(wi, wo) / eta(wi)^2 in radiance transport and f(wo, wi) / eta(wi)^2 =
+// f(wi, wo) / eta(wo)^2 in importance transport (sampling/bsdf.h). A
+// renderer's bidirectional and photon methods, and MIS between them, rely on
+// it; a BSDF that is not reciprocal renders differently traced from each end.
+//
+// Tested at the case's wo against every wi of its continuous samples (where
+// f matters) and of a spherical Fibonacci grid of kGridDirections (where it
+// is small). Not statistical: one violation is a failure. The rule: the two
+// sides agree within kRelativeTolerance relative, or FLT_MIN absolute, or
+// within f's own float resolution there: how much f(wo, .) and f(., wo) move
+// when wi moves by kFloatStep (8 float ulps of a unit vector), measured at
+// eight such neighbours of each pair beyond the relative tolerance. Where f falls to
+// 0 at the edge of a microfacet configuration (a facet seen edge-on: wo.wm or
+// wi.wm near 0) a few roundings of the half vector move f by any fraction of
+// itself; those pairs are excused, counted and their largest error reported
+// (excused_pairs, excused_max_error), while a non-reciprocal factor moves f
+// far more than its neighbours differ.
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "validate/checks/bsdf/bsdf_checks.h"
+#include "validate/checks/bsdf/bsdf_common.h"
+#include "validate/checks/evidence.h"
+#include "validate/checks/formatting.h"
+
+namespace warpcheck::bsdf {
+namespace {
+
+/// 2^-12 relative, as bsdf_weight's: f(wo, wi) and f(wi, wo) compute the same
+/// half vector and Fresnel term from the two directions in another order, each
+/// off by a few float roundings, which a sharp lobe's slope (~80 per radian at
+/// alpha = 0.05) multiplies to ~1e-5; a non-reciprocal factor is off by percent.
+constexpr double kRelativeTolerance = 0x1p-12;
+/// Directions of the deterministic grid, spread evenly over the sphere.
+constexpr int kGridDirections = 4096;
+/// The continuous samples' directions tested: at most this many.
+constexpr uint64_t kMaxSampleDirections = uint64_t{1} << 16;
+
+struct Pair {
+    WarpOutput wi{};
+    double forward = 0.0, backward = 0.0, scale = 1.0, error = 0.0;
+};
+
+/// The spherical Fibonacci points: z evenly spaced, azimuths by the golden angle.
+std::vector<WarpOutput> fibonacci_sphere(int n) {
+    std::vector<WarpOutput> out(static_cast<std::size_t>(n));
+    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    for (int k = 0; k < n; ++k) {
+        const double z = 1.0 - (2.0 * k + 1.0) / n, r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        out[static_cast<std::size_t>(k)] = {static_cast<float>(r * std::cos(golden * k)),
+                                            static_cast<float>(r * std::sin(golden * k)), static_cast<float>(z)};
+    }
+    return out;
+}
+
+/// What f(wo, wi) is multiplied by to equal f(wi, wo) under the claimed rule.
+double reciprocity_scale(const BsdfCase& bsdf, const WarpOutput& wi) {
+    if (!bsdf.transmitted(wi)) return 1.0;
+    const double eta = bsdf.claims().eta;
+    const double ratio = wi[2] < 0.0f ? eta : 1.0 / eta;  // eta(wi) / eta(wo)
+    return bsdf.claims().transport == Transport::Radiance ? ratio * ratio : 1.0 / (ratio * ratio);
+}
+
+double relative_difference(double a, double b) {
+    const double diff = std::abs(a - b);
+    if (diff <= FLT_MIN) return 0.0;
+    return diff / std::max(std::abs(a), std::abs(b));
+}
+
+/// The directions: the continuous samples' wi (random draws), then the grid.
+std::vector<WarpOutput> directions(const BsdfCase& bsdf, const CheckContext& ctx) {
+    const uint64_t n = std::min(ctx.options().samples, kMaxSampleDirections);
+    const auto parts = map_bsdf_chunks<std::vector<WarpOutput>>(
+        ctx, bsdf, n, false, [&](std::size_t, std::span<const WarpInput>, std::span<const BsdfRecord> rec) {
+            std::vector<WarpOutput> out;
+            for (const BsdfRecord& r : rec)
+                if (r.sampled() && !r.delta()) out.push_back(r.wi);
+            return out;
+        });
+    std::vector<WarpOutput> all;
+    for (const auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+    const std::vector<WarpOutput> grid = fibonacci_sphere(kGridDirections);
+    all.insert(all.end(), grid.begin(), grid.end());
+    return all;
+}
+
+/// The pair's own rounding is one more draw of the noise seen at its
+/// neighbours: twice the largest of their eight deviations bounds it.
+constexpr double kResolutionFactor = 2.0;
+
+/// How much f(wo, wi) s and f(wi, wo) move over wi's neighbours: their float resolution at the pair.
+double float_resolution(const BsdfCase& bsdf, const Pair& p) {
+    const std::vector<WarpOutput> n = float_neighbours(p.wi);
+    const std::vector<WarpOutput> wo(n.size(), detail::to_output_of(bsdf.wo()));
+    std::vector<double> forward(n.size()), backward(n.size());
+    bsdf.f(wo, n, forward);
+    bsdf.f(n, wo, backward);
+    double spread_f = 0.0, spread_b = 0.0;
+    for (std::size_t k = 0; k < n.size(); ++k) {
+        spread_f = max_nan_wins(spread_f, std::abs(forward[k] * reciprocity_scale(bsdf, n[k]) - p.forward * p.scale));
+        spread_b = max_nan_wins(spread_b, std::abs(backward[k] - p.backward));
+    }
+    return spread_f + spread_b;
+}
+
+struct Stats {
+    uint64_t pairs = 0, violations = 0, excused = 0;
+    double max_error = 0.0, excused_max_error = 0.0;
+    double excused_max_fraction = 0.0;  ///< of the excused pairs: the largest discrepancy over the resolution
+    WorstK<Pair> worst{10};
+    std::vector<double> max_by_degree = std::vector<double>(180, 0.0);  ///< the largest error per degree of theta_i
+};
+
+Stats compute(const BsdfCase& bsdf, const CheckContext& ctx) {
+    const std::vector<WarpOutput> wi = directions(bsdf, ctx);
+    const std::vector<WarpOutput> wo(wi.size(), detail::to_output_of(bsdf.wo()));
+    std::vector<double> forward(wi.size()), backward(wi.size());
+    bsdf.f(wo, wi, forward);
+    bsdf.f(wi, wo, backward);
+    Stats s;
+    for (std::size_t i = 0; i < wi.size(); ++i) {
+        Pair p{wi[i], forward[i], backward[i], reciprocity_scale(bsdf, wi[i]), 0.0};
+        p.error = relative_difference(p.forward * p.scale, p.backward);
+        ++s.pairs;
+        if (!(p.error <= kRelativeTolerance)) {
+            const double gap = std::abs(p.forward * p.scale - p.backward), resolution = float_resolution(bsdf, p);
+            if (gap <= kResolutionFactor * resolution) {
+                ++s.excused;
+                s.excused_max_error = max_nan_wins(s.excused_max_error, p.error);
+                s.excused_max_fraction = max_nan_wins(s.excused_max_fraction, gap / resolution);
+                continue;
+            }
+            ++s.violations;
+        }
+        s.max_error = max_nan_wins(s.max_error, p.error);
+        const double theta = std::acos(std::clamp(static_cast<double>(wi[i][2]), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+        double& bin = s.max_by_degree[std::min<std::size_t>(static_cast<std::size_t>(theta), 179)];
+        bin = max_nan_wins(bin, p.error);
+        if (s.worst.wants(p.error)) s.worst.offer(p.error, i, p);
+    }
+    return s;
+}
+
+Plot error_plot(const BsdfCase& bsdf, const Stats& s) {
+    Plot plot;
+    plot.kind = Plot::Kind::Points;
+    plot.title = "reciprocity error of " + bsdf.name();
+    plot.x_label = "theta_i (degrees)";
+    plot.y_label = "|f(wo, wi) s - f(wi, wo)| / max";
+    Series worst{"largest relative error per degree", {}, {}};
+    for (std::size_t d = 0; d < s.max_by_degree.size(); ++d) {
+        worst.x.push_back(static_cast<double>(d) + 0.5);
+        worst.y.push_back(s.max_by_degree[d]);
+    }
+    plot.series = {std::move(worst),
+                   {"tolerance", {0.0, 180.0}, {kRelativeTolerance, kRelativeTolerance}}};
+    return plot;
+}
+
+Table worst_table(const Stats& s) {
+    Table t{"Largest reciprocity errors", {"wi", "f(wo, wi)", "scale s", "f(wi, wo)", "relative error"}, {}};
+    for (const auto& e : s.worst.entries())
+        t.rows.push_back({format_output(e.item.wi, 3), fmt::format("{:.9g}", e.item.forward),
+                          fmt::format("{:.9g}", e.item.scale), fmt::format("{:.9g}", e.item.backward),
+                          fmt::format("{:.3g}", e.key)});
+    return t;
+}
+
+class BsdfReciprocityCheck final : public BsdfCheck {
+public:
+    std::string name() const override { return "bsdf_reciprocity"; }
+    std::string description() const override {
+        return "BSDF: f(wo, wi) = f(wi, wo), with the eta^2 rule across an interface, where the case claims "
+               "reciprocity (float-rounding tolerance)";
+    }
+
+protected:
+    bool applies_to_bsdf(const BsdfCase& b) const override {
+        return b.claims().reciprocal && has(b.claims().lobes, BsdfFlags::Continuous);
+    }
+    std::string not_applicable_to_bsdf(const BsdfCase& b) const override {
+        if (!b.claims().reciprocal) return "the case does not claim reciprocity";
+        return "only delta lobes: f is 0 everywhere";
+    }
+
+    CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
+        const Stats s = compute(bsdf, ctx);
+        CheckResult r;
+        r.samples = s.pairs;
+        r.figures = {{"pairs", static_cast<double>(s.pairs)},
+                     {"violations", static_cast<double>(s.violations)},
+                     {"excused_pairs", static_cast<double>(s.excused)},
+                     {"excused_max_error", s.excused_max_error},
+                     {"excused_max_fraction_of_resolution", s.excused_max_fraction},
+                     {"max_relative_error", s.max_error},
+                     {"tolerance", kRelativeTolerance}};
+        r.summary = fmt::format("max rel. error {:.3g} over {} pairs, {} at float resolution", s.max_error, s.pairs,
+                                s.excused);
+        r.verdict = s.violations == 0 ? Verdict::Pass : Verdict::Fail;
+        if (s.violations > 0) {
+            const Pair& p = s.worst.front().item;
+            r.summary = fmt::format("not reciprocal at {} of {} pairs", s.violations, s.pairs);
+            r.message = fmt::format("{} of {} pairs differ by more than {:.3g} relative; worst: wi {}, f(wo, wi) {:.9g} "
+                                    "times {:.9g} against f(wi, wo) {:.9g} (relative error {:.3g})",
+                                    s.violations, s.pairs, kRelativeTolerance, format_output(p.wi, 3), p.forward,
+                                    p.scale, p.backward, p.error);
+        }
+        r.plots.push_back(error_plot(bsdf, s));
+        r.tables.push_back(worst_table(s));
+        return r;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Check> make_bsdf_reciprocity_check() { return std::make_unique<BsdfReciprocityCheck>(); }
+
+}  // namespace warpcheck::bsdf

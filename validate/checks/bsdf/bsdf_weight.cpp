@@ -1,0 +1,249 @@
+// "bsdf_weight": what every sample claims, against the BSDF's own functions at
+// its wi (edge inputs included). A renderer multiplies its path throughput by
+// the sample's weight f |cos theta_i| / pdf, computed along the sampler's path
+// (often from the sampled microfacet normal, before wi exists), while MIS and
+// light sampling use f() and pdf() recomputed from wi: where the two disagree,
+// the image is biased even if every wi lands where it should. Rules, each a
+// FAIL by itself (none can fail a correct sampler by chance):
+//  - wi is a unit vector (within kUnitTolerance) on the side its flags say
+//    (reflection: wo's side; transmission: the other; a phase function: any);
+//  - a continuous sample lands where pdf(wo, wi) > 0 and f(wo, wi) > 0, and
+//    its weight equals f(wo, wi) |cos theta_i| / pdf(wo, wi) within
+//    kRelativeTolerance; or, where f() and pdf() recomputed from the rounded
+//    wi are at their float resolution (a refraction through a microfacet seen
+//    edge-on, whose half vector's side is a matter of rounding), within the
+//    range of the weights recomputed at wi's float neighbours (bsdf_common.h)
+//    widened by that range: such samples are excused, counted and their
+//    largest disagreement reported (excused, excused_max_relative);
+//  - a delta sample's weight is finite and positive, and its pdf (the
+//    probability of its lobe) at most 1.
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "validate/checks/bsdf/bsdf_checks.h"
+#include "validate/checks/bsdf/bsdf_common.h"
+#include "validate/checks/evidence.h"
+#include "validate/checks/formatting.h"
+
+namespace warpcheck::bsdf {
+namespace {
+
+/// Largest relative disagreement of the two weights, 2^-12 (4096 float ulps):
+/// the sampler and f() / pdf() compute in float along different paths (the
+/// sampled normal, and the half vector recomputed from the rounded wi), and a
+/// sharp lobe's logarithmic slope (~4 / alpha per radian for Trowbridge-Reitz,
+/// 80 at alpha = 0.05) multiplies the ~1e-7 radians of wi's rounding to ~1e-5,
+/// while a wrong factor (a lobe probability, a Jacobian, a missing cosine) is
+/// off by percent. Below FLT_MIN both are denormal: absolute differences up to
+/// FLT_MIN are accepted.
+constexpr double kRelativeTolerance = 0x1p-12;
+/// How far |wi| may be from 1: 2^-18 (32 float roundings of 2^-23): a direction
+/// normalised and then carried through a reflection, a refraction or a frame
+/// change in float; one never normalised, or built with a wrong sine, is off by percent.
+constexpr double kUnitTolerance = 0x1p-18;
+
+enum Kind { kNotUnit, kWrongSide, kZeroPdf, kZeroF, kWeight, kDeltaWeight, kKinds };
+const char* const kKindFigure[kKinds] = {"not_unit", "wrong_side", "zero_pdf", "zero_f", "weight_mismatches",
+                                         "bad_delta"};
+const char* const kKindText[kKinds] = {
+    "wi is not a unit vector",
+    "wi is on the wrong side for its flags",
+    "a continuous sample lands where pdf(wo, wi) is 0",
+    "a continuous sample lands where f(wo, wi) is 0",
+    "the weight differs from f(wo, wi) |cos theta_i| / pdf(wo, wi)",
+    "a delta sample's weight is not finite and positive, or its probability exceeds 1",
+};
+
+struct Example {
+    WarpInput input;
+    BsdfRecord record;
+    double weight = 0.0, f_at = 0.0, pdf_at = 0.0, weight_at = 0.0;
+};
+
+struct Stats {
+    uint64_t samples = 0, sampled = 0, delta = 0, excused = 0;
+    double max_relative = 0.0, max_unit_error = 0.0, excused_max_relative = 0.0;
+    std::array<Tally<Example>, kKinds> kinds{};
+    WorstK<Example> worst{10};
+    void merge(const Stats& o) {
+        samples += o.samples;
+        sampled += o.sampled;
+        delta += o.delta;
+        excused += o.excused;
+        excused_max_relative = max_nan_wins(excused_max_relative, o.excused_max_relative);
+        max_relative = max_nan_wins(max_relative, o.max_relative);
+        max_unit_error = max_nan_wins(max_unit_error, o.max_unit_error);
+        for (int k = 0; k < kKinds; ++k) kinds[static_cast<std::size_t>(k)].merge(o.kinds[static_cast<std::size_t>(k)]);
+        worst.merge(o.worst);
+    }
+};
+
+double relative_difference(double a, double b) {
+    const double diff = std::abs(a - b);
+    if (diff <= FLT_MIN) return 0.0;
+    return diff / std::max(std::abs(a), std::abs(b));
+}
+
+/// The side rule: whether wi lies where the sample's flags put it.
+bool on_its_side(const BsdfCase& bsdf, const BsdfRecord& r) {
+    if (bsdf.phase_function()) return true;
+    const float side = r.wi[2] * bsdf.wo().z;
+    return has(r.flags, BsdfFlags::Transmission) ? side < 0.0f : side > 0.0f;
+}
+
+/// Whether the returned weight lies within the range of the weights that f()
+/// and pdf() give at wi and its float neighbours, widened by that range.
+bool within_float_resolution(const BsdfCase& bsdf, const Example& e) {
+    std::vector<WarpOutput> wi = float_neighbours(e.record.wi);
+    const std::vector<WarpOutput> wo(wi.size(), detail::to_output_of(bsdf.wo()));
+    std::vector<double> f(wi.size()), pdf(wi.size());
+    bsdf.f(wo, wi, f);
+    bsdf.pdf(wi, pdf);
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    const auto include = [&](double w) {
+        if (!std::isfinite(w)) return;
+        lo = std::min(lo, w);
+        hi = std::max(hi, w);
+    };
+    include(e.weight_at);
+    for (std::size_t k = 0; k < wi.size(); ++k)
+        if (pdf[k] > 0.0) include(f[k] * bsdf.cosine(wi[k]) / pdf[k]);
+    const double width = hi - lo;
+    return lo <= hi && e.weight >= lo - width && e.weight <= hi + width;
+}
+
+/// Judges one sample, given f(wo, wi) and pdf(wo, wi) at its wi.
+void judge_sample(const BsdfCase& bsdf, Stats& s, uint64_t index, Example& e) {
+    const BsdfRecord& r = e.record;
+    const auto add = [&](Kind k) { s.kinds[k].add(index, e); };
+    const double len = std::hypot(static_cast<double>(r.wi[0]), static_cast<double>(r.wi[1]),
+                                  static_cast<double>(r.wi[2]));
+    s.max_unit_error = max_nan_wins(s.max_unit_error, std::abs(len - 1.0));
+    if (!(std::abs(len - 1.0) <= kUnitTolerance)) add(kNotUnit);
+    if (!on_its_side(bsdf, r)) add(kWrongSide);
+    e.weight = static_cast<double>(r.f) * bsdf.cosine(r.wi) / r.pdf;
+    if (r.delta()) {
+        ++s.delta;
+        if (!(e.weight > 0.0 && std::isfinite(e.weight) && r.pdf <= 1.0f)) add(kDeltaWeight);
+        return;
+    }
+    e.weight_at = e.f_at * bsdf.cosine(r.wi) / e.pdf_at;
+    const double rel = relative_difference(e.weight, e.weight_at);
+    const bool agrees = e.pdf_at > 0.0 && e.f_at > 0.0 && rel <= kRelativeTolerance;
+    if (!agrees && within_float_resolution(bsdf, e)) {
+        ++s.excused;
+        s.excused_max_relative = max_nan_wins(s.excused_max_relative, rel);
+        return;
+    }
+    if (!(e.pdf_at > 0.0)) add(kZeroPdf);
+    if (!(e.f_at > 0.0)) add(kZeroF);
+    s.max_relative = max_nan_wins(s.max_relative, rel);
+    if (!(rel <= kRelativeTolerance)) add(kWeight);
+    if (s.worst.wants(rel)) s.worst.offer(rel, index, e);
+}
+
+Stats compute(const BsdfCase& bsdf, const CheckContext& ctx) {
+    const auto parts = map_bsdf_chunks<Stats>(
+        ctx, bsdf, ctx.options().samples, true,
+        [&](std::size_t chunk, std::span<const WarpInput> in, std::span<const BsdfRecord> rec) {
+            std::vector<WarpOutput> wi(rec.size());
+            for (std::size_t i = 0; i < rec.size(); ++i) wi[i] = rec[i].wi;
+            const std::vector<WarpOutput> wo(rec.size(), detail::to_output_of(bsdf.wo()));
+            std::vector<double> f(rec.size()), pdf(rec.size());
+            bsdf.f(wo, wi, f);
+            bsdf.pdf(wi, pdf);
+            Stats s;
+            s.samples = rec.size();
+            for (std::size_t i = 0; i < rec.size(); ++i) {
+                if (!rec[i].sampled()) continue;
+                ++s.sampled;
+                Example e{in[i], rec[i], 0.0, f[i], pdf[i], 0.0};
+                judge_sample(bsdf, s, chunk * kInputChunkSize + i, e);
+            }
+            return s;
+        });
+    return merge_in_order(parts);
+}
+
+std::string describe(const Example& e) {
+    return fmt::format("input {}: wi ({:.9g}, {:.9g}, {:.9g}), f {:.9g}, pdf {:.9g}, weight {:.9g}; f(wo, wi) {:.9g}, "
+                       "pdf(wo, wi) {:.9g}, their weight {:.9g}",
+                       format_input(e.input, InputKind::Uniform3D), e.record.wi[0], e.record.wi[1], e.record.wi[2],
+                       e.record.f, e.record.pdf, e.weight, e.f_at, e.pdf_at, e.weight_at);
+}
+
+void judge(CheckResult& r, const Stats& s) {
+    r.summary = fmt::format("max rel. weight diff {:.3g}, max ||wi| - 1| {:.3g} ({} samples, {} delta, {} at float "
+                            "resolution)", s.max_relative, s.max_unit_error, s.sampled, s.delta, s.excused);
+    std::vector<std::string> reasons;
+    for (int k = 0; k < kKinds; ++k) {
+        const Tally<Example>& t = s.kinds[static_cast<std::size_t>(k)];
+        if (t.count > 0) reasons.push_back(fmt::format("{} at {} of {} samples (first: {})", kKindText[k], t.count,
+                                                       s.sampled, describe(*t.first)));
+    }
+    r.verdict = reasons.empty() ? Verdict::Pass : Verdict::Fail;
+    if (reasons.empty()) return;
+    const int first = static_cast<int>(std::find_if(s.kinds.begin(), s.kinds.end(), [](const auto& t) { return t.count > 0; }) -
+                                       s.kinds.begin());
+    r.summary = fmt::format("{} at {} of {} samples", kKindText[first], s.kinds[static_cast<std::size_t>(first)].count,
+                            s.sampled);
+    r.message = join_reasons(reasons);
+}
+
+Table worst_table(const Stats& s) {
+    Table t{"Largest weight disagreements (continuous samples)",
+            {"input (uc, u.x, u.y)", "wi", "f", "pdf", "weight", "f(wo, wi)", "pdf(wo, wi)", "their weight",
+             "relative difference"},
+            {}};
+    for (const auto& entry : s.worst.entries()) {
+        const Example& e = entry.item;
+        t.rows.push_back({format_input(e.input, InputKind::Uniform3D), format_output(e.record.wi, 3),
+                          fmt::format("{:.9g}", e.record.f), fmt::format("{:.9g}", e.record.pdf),
+                          fmt::format("{:.9g}", e.weight), fmt::format("{:.9g}", e.f_at),
+                          fmt::format("{:.9g}", e.pdf_at), fmt::format("{:.9g}", e.weight_at),
+                          fmt::format("{:.3g}", entry.key)});
+    }
+    return t;
+}
+
+class BsdfWeightCheck final : public BsdfCheck {
+public:
+    std::string name() const override { return "bsdf_weight"; }
+    std::string description() const override {
+        return "BSDF: every sample's weight f |cos| / pdf against f() and pdf() at its wi; wi a unit vector on "
+               "its flags' side; none where pdf or f is 0 (float-rounding tolerance)";
+    }
+
+protected:
+    bool applies_to_bsdf(const BsdfCase&) const override { return true; }
+
+    CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
+        const Stats s = compute(bsdf, ctx);
+        CheckResult r;
+        r.samples = s.samples;
+        r.figures = {{"samples", static_cast<double>(s.samples)},
+                     {"sampled", static_cast<double>(s.sampled)},
+                     {"delta_samples", static_cast<double>(s.delta)},
+                     {"max_relative_difference", s.max_relative},
+                     {"tolerance", kRelativeTolerance},
+                     {"max_unit_error", s.max_unit_error},
+                     {"excused", static_cast<double>(s.excused)},
+                     {"excused_max_relative", s.excused_max_relative},
+                     {"unit_tolerance", kUnitTolerance}};
+        for (int k = 0; k < kKinds; ++k)
+            r.figures.push_back({kKindFigure[k], static_cast<double>(s.kinds[static_cast<std::size_t>(k)].count)});
+        judge(r, s);
+        r.tables.push_back(worst_table(s));
+        return r;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Check> make_bsdf_weight_check() { return std::make_unique<BsdfWeightCheck>(); }
+
+}  // namespace warpcheck::bsdf

@@ -1,0 +1,589 @@
+#include "validate/cli/cli.h"
+
+#include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <cmath>
+#include <cstdio>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <new>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "chi2/multiple_testing.h"
+#include "reports/atomic_file.h"
+#include "reports/outputs.h"
+#include "reports/text.h"
+#include "reports/render.h"
+#include "reports/progress.h"
+#include "reports/terminal_table.h"
+#include "validate/cli/cli_input.h"
+#include "validate/run/merge.h"
+#include "validate/run/run_digest.h"
+#include "validate/run/runner.h"
+#include "warpcheck/version.h"
+
+namespace warpcheck {
+namespace {
+
+struct CliOptions {
+    RunOptions run;
+    std::string program_name = "validate";  ///< how messages name the program: argv[0]'s file name
+    bool all = false;
+    bool list = false;
+    bool failures_only = false;
+    bool timings = false;
+    bool wide = false;
+    bool settings_from_environment = false;
+    std::string color = "auto";
+    std::string progress = "auto";
+    std::string report_on_failure_path;
+    std::vector<std::string> filters;
+    std::vector<std::string> checks;
+    std::string report_path, json_path, junit_path;
+    bool no_isolation = false;
+    uint64_t memory_limit_mib = 0;
+    bool memory_limit_set = false;
+    bool list_jobs = false;
+    std::optional<std::string> shard_spec;
+    Shard shard;
+    std::vector<std::string> merge_paths;
+};
+
+struct Output {
+    const char* option;
+    const std::string* path;  ///< as given, for messages
+    std::string (*render)(const RunResult&);
+    const char* what;               ///< for "... written to PATH"
+    bool only_on_failure = false;  ///< --report-on-failure: written only when a check failed or errored
+    /// Where the file goes: the path made absolute when the command starts, so
+    /// that a warp's chdir() in an in-process run does not move it.
+    std::string target{};
+};
+
+std::vector<Output> requested_outputs(const CliOptions& o) {
+    std::vector<Output> outputs;
+    for (const Output& out : {Output{"--report", &o.report_path, render_html, "HTML report"},
+                              Output{"--report-on-failure", &o.report_on_failure_path, render_html, "HTML report", true},
+                              Output{"--json", &o.json_path, render_json, "JSON results"},
+                              Output{"--junit", &o.junit_path, render_junit, "JUnit XML"}})
+        if (!out.path->empty()) {
+            std::error_code ec;
+            const std::filesystem::path absolute = std::filesystem::absolute(*out.path, ec);
+            outputs.push_back(out);
+            outputs.back().target = *out.path == "-" || ec ? *out.path : absolute.string();
+        }
+    return outputs;
+}
+
+/// Whether `a` and `b` both exist and are one file (through links, hard links too).
+bool same_file(const std::string& a, const std::string& b) {
+    struct stat sa {}, sb {};
+    return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev &&
+           sa.st_ino == sb.st_ino;
+}
+
+// Every output is probed before the run, so that a typo does not cost a whole
+// run: '-' (standard output) at most once, each path writable, no two outputs
+// landing in the same file, none of them a file to merge. Returns the problem, or empty.
+std::string output_problem(const std::vector<Output>& outputs, const std::vector<std::string>& inputs) {
+    std::set<std::string> targets;
+    int to_stdout = 0;
+    for (const Output& out : outputs) {
+        if (*out.path == "-") {
+            if (++to_stdout > 1) return "only one output can be '-' (standard output)";
+            continue;
+        }
+        if (const std::string why = output_path_problem(*out.path); !why.empty())
+            return fmt::format("cannot write '{}' ({}): {}", *out.path, out.option, why);
+        if (!targets.insert(resolved_output_path(*out.path)).second)
+            return fmt::format("'{}' ({}) is the same file as another output", *out.path, out.option);
+        for (const std::string& input : inputs)
+            if (same_file(*out.path, input))
+                return fmt::format("'{}' ({}) is the file to merge '{}': the merge would overwrite it", *out.path,
+                                   out.option, input);
+    }
+    return {};
+}
+
+// Writes every output it can, even after one failed, and says where each
+// file went on `notes` (the table's stream); false if any failed.
+bool write_outputs(const std::vector<Output>& outputs, const RunResult& run, const std::string& program,
+                   std::ostream& notes) {
+    bool ok = true;
+    for (const Output& out : outputs) {
+        if (out.only_on_failure && run.all_passed()) continue;
+        try {
+            if (*out.path == "-") {
+                std::cout << out.render(run) << std::flush;
+                continue;
+            }
+            write_file_atomically(out.target, out.render(run));
+            notes << out.what << " written to " << *out.path << "\n";
+        } catch (const std::exception& e) {
+            std::cerr << program << ": " << out.option << ": " << e.what() << "\n";
+            ok = false;
+        }
+    }
+    return ok;
+}
+
+// Counts and real numbers are read by validate/cli/cli_input.h (1e6, 10M and
+// 1_000_000 for counts; the range said in words). A transform rewrites a
+// count as plain digits for CLI11 to store. No description: --help shows the
+// ranges in the options' own text instead of validator names.
+CLI::Validator count_in(uint64_t min, uint64_t max, std::string unit = "") {
+    return CLI::Validator(
+        [=](std::string& text) {
+            const ParsedCount c = parse_count_in(text, min, max);
+            if (!c.problem.empty()) return c.problem + unit;
+            text = std::to_string(c.value);
+            return std::string();
+        },
+        "");
+}
+
+const CLI::Validator kSeed(
+    [](std::string& text) {
+        const ParsedCount c = parse_count(text);
+        if (!c.problem.empty())
+            return fmt::format("'{}' is not a seed: give a whole number from 0 to {}", text, format_count(UINT64_MAX));
+        text = std::to_string(c.value);
+        return std::string();
+    },
+    "");
+
+CLI::Validator real_in(double min, double max, std::string unit = "") {
+    return CLI::Validator(
+        [=](std::string& text) {
+            const ParsedReal r = parse_real_in(text, min, max);
+            return r.problem.empty() ? r.problem : r.problem + unit;
+        },
+        "");
+}
+
+void list_cases(const Registry& registry, const std::vector<Job>& jobs, std::ostream& out) {
+    out << "Checks:\n";
+    for (const auto& c : registry.checks())
+        out << fmt::format("  {:<22} {}\n", terminal_text(c->name()), terminal_text(c->description()));
+    out << "\nWarp cases (with the checks that apply):\n";
+    const WarpCase* current = nullptr;
+    for (const Job& job : jobs) {
+        if (job.warp != current) {
+            current = job.warp;
+            const std::string flaw = registry.known_flaw(*current);
+            out << fmt::format("  {}\n      {}\n", terminal_text(current->name()),
+                               terminal_text(current->info().description));
+            if (!flaw.empty())
+                out << fmt::format("      known flaw (runs with --include-flawed): {}\n", terminal_text(flaw));
+            out << "      checks:";
+        }
+        out << " " << terminal_text(job.check->name())
+            << (job.not_applicable.empty() ? "" : " (n/a: " + terminal_text(job.not_applicable) + ")");
+        if (&job == &jobs.back() || (&job + 1)->warp != current) out << "\n";
+    }
+}
+
+
+void add_selection_options(CLI::App& app, CliOptions& o) {
+    app.add_flag("--all", o.all, "Run every warp case");
+    app.add_option("--filter", o.filters,
+                   "Run the cases whose name contains PATTERN (or matches it as a glob with * and ?; "
+                   "a full case name selects exactly that case). Repeatable.")
+        ->type_name("PATTERN")
+        // One pattern per --filter, taken whole: CLI11 would otherwise split a
+        // value in brackets at its commas ('[a=1,b=3]' as '[a=1' and 'b=3]').
+        ->allow_extra_args(false);
+    app.add_option("--check", o.checks, "Run only this check (repeatable); see --list for names")->type_name("NAME");
+    app.add_flag("--list", o.list, "List the checks and the warp cases (those selected by --filter), then exit");
+    app.add_flag("--list-jobs", o.list_jobs,
+                 "List the (case, check) jobs the selection would run (of the --shard, if given), one per line: "
+                 "the check, a tab, the case; then exit");
+    app.add_option("--shard",
+                   "Run only part I of N of the selected (case, check) jobs (1 <= I <= N), judged at the Sidak level "
+                   "of the whole selection: the N shards' --json files merge (--merge) into the whole run")
+        ->type_name("I/N")
+        ->each([&o](const std::string& spec) { o.shard_spec = spec; });
+    app.add_option("--merge", o.merge_paths,
+                   "Combine the --json files of the shards of one run into its table and reports, then exit")
+        ->type_name("FILE")
+        ->expected(1, -1);
+    app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
+    app.add_flag("--include-flawed", o.run.include_flawed,
+                 "Also run the cases that demonstrate known flaws (e.g. u * 2^-32 reaching 1.0); they fail");
+    app.add_flag("--strict", o.run.strict,
+                 "Grant no float-resolution allowance: a pdf whose float rounding moves its integral, or an inverse "
+                 "that returns 1 for u within a float of 1, fails instead of passing with its size and count");
+}
+
+// The limits, stated once here and in validate/cli/cli_input.h (samples and
+// alpha, shared with the WARPCHECK_* variables); validate/cli/README.md says them too.
+constexpr unsigned kMaxThreads = 1024;
+constexpr double kMinBudget = 0.1, kMaxBudget = 86400.0;
+constexpr uint64_t kMaxMemoryMib = uint64_t{1} << 30;
+
+void add_run_options(CLI::App& app, CliOptions& o) {
+    app.add_option("--seed", o.run.seed, "Global seed, 0 to 2^64-1; every (case, check) stream derives from it")
+        ->type_name("N")
+        ->transform(kSeed)
+        ->capture_default_str();
+    app.add_option("--samples", o.run.samples,
+                   fmt::format("Samples per statistical check, {} to {} (1e6, 10M and 1_000_000 are read)",
+                               format_count(kMinSamples), format_count(kMaxSamples)))
+        ->type_name("N")
+        ->transform(count_in(kMinSamples, kMaxSamples))
+        ->capture_default_str();
+    app.add_option("--threads", o.run.threads,
+                   fmt::format("Worker threads, 0 (all hardware threads) to {}; results do not depend on it", kMaxThreads))
+        ->type_name("N")
+        ->transform(count_in(0, kMaxThreads))
+        ->capture_default_str();
+    app.add_option("--alpha", o.run.alpha,
+                   fmt::format("Family-wise significance level over all statistical tests of the run, {} to {}",
+                               format_limit(kMinAlpha), format_limit(kMaxAlpha)))
+        ->type_name("A")
+        ->check(real_in(kMinAlpha, kMaxAlpha))
+        ->capture_default_str();
+    app.add_option("--time-budget", o.run.check_time_budget,
+                   fmt::format("CPU seconds one check may use, {} to {} (rounded up to whole seconds), before its "
+                               "worker is killed and the check reported as an error; a worker asleep for 10x the "
+                               "budget in wall time is killed too. With --no-isolation the check is only asked to "
+                               "stop after this many wall seconds, and a warp that never returns hangs the run",
+                               format_limit(kMinBudget), format_limit(kMaxBudget)))
+        ->type_name("S")
+        ->check(real_in(kMinBudget, kMaxBudget, " (seconds)"))
+        ->capture_default_str()
+        ->each([&o](const std::string&) { o.run.time_budget_set = true; });
+    app.add_flag("--no-isolation", o.no_isolation,
+                 "Run the checks in this process instead of one worker process per check (for debuggers): a "
+                 "crash or endless loop in a warp then takes the whole run down, and a warp's exit() ends it with "
+                 "status 1 and a message naming the check, without reports");
+    app.add_option("--memory-limit", o.memory_limit_mib,
+                   fmt::format("Address space in MiB that the run's worker processes may use together, 0 (no limit) "
+                               "to {}: the workers that run at once share it equally, and a check over its share is "
+                               "an error. Default: the machine's physical memory, at most 8192 MiB per worker. Not "
+                               "applied under AddressSanitizer",
+                               format_count(kMaxMemoryMib)))
+        ->type_name("MIB")
+        ->transform(count_in(0, kMaxMemoryMib, " (MiB)"))
+        ->each([&o](const std::string&) { o.memory_limit_set = true; });
+    app.add_option("--max-float-bias", o.run.max_float_bias,
+                   "Fail an exhaustive sweep when a float's count is off its ideal by more than this factor, 1 to 1e6")
+        ->type_name("R")
+        ->check(real_in(1.0, 1e6));
+    app.add_flag("--settings-from-environment", o.settings_from_environment,
+                 "WARPCHECK_SEED, WARPCHECK_SAMPLES and WARPCHECK_ALPHA, where set, replace --seed, --samples and "
+                 "--alpha (an invalid value is an error naming the variable); what warpcheck_discover_tests runs");
+}
+
+void add_output_options(CLI::App& app, CliOptions& o) {
+    // A symbolic link is written through to its target; '-' is standard output
+    // (for one of them; the table then goes to standard error).
+    app.add_option("--report", o.report_path, "Write a self-contained HTML report ('-': standard output)")
+        ->type_name("FILE");
+    app.add_option("--report-on-failure", o.report_on_failure_path,
+                   "Write the HTML report only if a check failed or errored: the evidence of a CI or ctest run")
+        ->type_name("FILE");
+    app.add_option("--json", o.json_path, "Write the results as JSON ('-': standard output)")->type_name("FILE");
+    app.add_option("--junit", o.junit_path, "Write the results as JUnit XML ('-': standard output)")
+        ->type_name("FILE");
+    app.add_flag("--failures-only", o.failures_only, "Print only the rows that did not pass");
+    app.add_flag("--wide", o.wide,
+                 "Print case names and key figures whole, however wide (the table otherwise fits the terminal, "
+                 "or 120 columns)");
+    app.add_flag("--timings", o.timings,
+                 "After the table, where the run's time went: seconds per check, the slowest rows and their parts");
+    app.add_option("--color", o.color, "Colour the table: auto (on a terminal), always, never")
+        ->type_name("WHEN")
+        ->check(CLI::IsMember({"auto", "always", "never"}).description(""))
+        ->capture_default_str();
+    app.add_option("--progress", o.progress,
+                   "Show progress on standard error: auto (a bar on a terminal, else a line every 10 s or 10%), "
+                   "bar, log, none. Failures are shown as they happen")
+        ->type_name("HOW")
+        ->check(CLI::IsMember({"auto", "bar", "log", "none"}).description(""))
+        ->capture_default_str();
+}
+
+/// The check names, with a suggestion for a misspelt one.
+std::string unknown_check(const std::string& name, const Registry& registry) {
+    std::vector<std::string> names;
+    for (const auto& c : registry.checks()) names.push_back(c->name());
+    std::string list;
+    for (const auto& n : names) list += " " + n;
+    return fmt::format("unknown check '{}'{}; the checks are:{}", name, did_you_mean(closest_names(name, names)), list);
+}
+
+/// A --filter that matches nothing, with the closest families (or, for a
+/// pattern with parameters, the closest case names).
+std::string no_case_matches(const std::string& pattern, const Registry& registry, const std::string& program) {
+    std::vector<std::string> names;
+    const bool whole_names = pattern.find('[') != std::string::npos;
+    for (const auto& c : registry.cases()) {
+        const std::string& name = c->name();
+        names.push_back(whole_names ? name : name.substr(0, name.find('[')));
+    }
+    const bool glob = pattern.find_first_of("*?") != std::string::npos;
+    const std::string hint = glob ? "" : did_you_mean(closest_names(pattern, names, !whole_names));
+    return fmt::format("no warp case matches '{}'{}; '{} --list' shows them all", pattern, hint, program);
+}
+
+/// What is wrong with the selection, or empty; reads --shard into o.shard.
+std::string selection_problem(CliOptions& o, const Registry& registry) {
+    if (!o.merge_paths.empty())
+        return o.all || !o.filters.empty() || o.list || o.list_jobs || o.shard_spec
+                   ? "--merge takes the shards' results files, not a selection (--all, --filter, --list, --shard)"
+                   : "";
+    if (!o.all && o.filters.empty() && !o.list && !o.list_jobs)
+        return "nothing selected: use --all, --filter PATTERN or --list";
+    if (o.all && !o.filters.empty()) return "--all and --filter exclude each other";
+    if (!o.report_path.empty() && !o.report_on_failure_path.empty())
+        return "--report and --report-on-failure exclude each other";
+    if (o.shard_spec) {
+        const auto shard = parse_shard(*o.shard_spec);
+        if (!shard)
+            return fmt::format("--shard: '{}' is not a shard: give I/N, part I of N with 1 <= I <= N (e.g. 2/4)",
+                               terminal_text(*o.shard_spec));
+        o.shard = *shard;
+    }
+    for (const auto& name : o.checks)
+        if (!registry.find_check(name)) return unknown_check(name, registry);
+    for (const auto& pattern : o.filters) {
+        bool any = false;
+        for (const auto& c : registry.cases()) any = any || name_matches(c->name(), pattern);
+        if (!any) return no_case_matches(pattern, registry, o.program_name);
+    }
+    return {};
+}
+
+/// Whether all that was written to standard output got there; if not, says
+/// so on standard error. A pipe whose reader left early (`| head`) is the
+/// reader's choice, not an error: the exit status then still says what the
+/// checks said.
+bool stdout_written(const std::string& program, const char* what) {
+    errno = 0;
+    std::cout.flush();
+    const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+    const int error = errno;
+    struct stat out_stat {};
+    const bool to_pipe = fstat(STDOUT_FILENO, &out_stat) == 0 && S_ISFIFO(out_stat.st_mode);
+    if (!failed || to_pipe) return true;
+    std::cerr << program << ": could not write " << what << " to standard output"
+              << (error ? std::string(": ") + std::strerror(error) : std::string()) << "\n";
+    return false;
+}
+
+/// For an in-process run: what warps print to standard output goes to standard
+/// error while the checks run, so that standard output carries only the tool's
+/// own (a `--json -` stays parseable). Isolated runs capture it per job.
+class StdoutToStderr {
+public:
+    StdoutToStderr() {
+        std::cout.flush();
+        std::fflush(stdout);
+        saved_ = ::dup(STDOUT_FILENO);
+        if (saved_ >= 0) ::dup2(STDERR_FILENO, STDOUT_FILENO);
+    }
+    ~StdoutToStderr() {
+        std::cout.flush();
+        std::fflush(stdout);
+        if (saved_ < 0) return;
+        ::dup2(saved_, STDOUT_FILENO);
+        ::close(saved_);
+        std::cout.clear();  // a warp's failed write was not the tool's
+        std::clearerr(stdout);
+    }
+    StdoutToStderr(const StdoutToStderr&) = delete;
+    StdoutToStderr& operator=(const StdoutToStderr&) = delete;
+
+private:
+    int saved_ = -1;
+};
+
+/// The table's look: colour and width follow the terminal it goes to, if any.
+TableStyle table_style(const CliOptions& o, int fd) {
+    TableStyle style;
+    const bool terminal = isatty(fd) == 1;
+    style.color = o.color == "always" || (o.color == "auto" && terminal);
+    style.failures_only = o.failures_only;
+    style.timings = o.timings;
+    winsize size{};
+    if (o.wide) style.width = 0;
+    else if (terminal && ::ioctl(fd, TIOCGWINSZ, &size) == 0 && size.ws_col >= 60) style.width = size.ws_col;
+    return style;
+}
+
+/// Prints the table and writes the outputs; the exit status.
+int present(const RunResult& run, const CliOptions& o, const std::vector<Output>& outputs) {
+    // With a report on standard output, the table goes to standard error.
+    const bool report_to_stdout =
+        std::any_of(outputs.begin(), outputs.end(), [](const Output& out) { return *out.path == "-"; });
+    std::ostream& table = report_to_stdout ? std::cerr : std::cout;
+    print_table(run, table, table_style(o, report_to_stdout ? STDERR_FILENO : STDOUT_FILENO));
+    if (!write_outputs(outputs, run, o.program_name, table) || !stdout_written(o.program_name, "the table"))
+        return kExitUsage;
+    return run.all_passed() ? kExitPass : kExitFail;
+}
+
+std::string command_line(int argc, char** argv) {
+    std::ostringstream command;
+    for (int i = 0; i < argc; ++i) command << (i ? " " : "") << argv[i];
+    return command.str();
+}
+
+/// --merge: the shards' JSON files read, checked and combined.
+int run_merge(const CliOptions& o, const std::vector<Output>& outputs, const std::string& command) {
+    std::vector<ShardFile> shards;
+    RunResult merged;
+    try {
+        for (const std::string& path : o.merge_paths) shards.push_back(read_shard_file(path));
+        merged = merge_shards(shards);
+    } catch (const MergeError& e) {
+        std::cerr << o.program_name << ": --merge: " << e.what() << "\n";
+        return kExitUsage;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "validate: --merge: out of memory reading the shards\n";
+        return kExitUsage;
+    }
+    merged.info.command_line = command;
+    return present(merged, o, outputs);
+}
+
+/// Runs the selection (or its shard) and presents it.
+int run_selection(const CliOptions& o, const Registry& registry, const std::vector<Output>& outputs,
+                  const std::string& command) {
+    const std::vector<Job> all_jobs = select_jobs(registry, o.filters, o.checks, o.run);
+    const std::vector<Job> jobs = shard_jobs(all_jobs, o.shard);
+    if (o.list_jobs) {
+        for (const Job& job : jobs)
+            std::cout << terminal_text(job.check->name()) << '\t' << terminal_text(job.warp->name()) << '\n';
+        return stdout_written(o.program_name, "the job list") ? kExitPass : kExitUsage;
+    }
+    if (all_jobs.empty()) {
+        std::cerr << o.program_name << ": the selected checks apply to none of the selected cases\n";
+        return kExitUsage;
+    }
+    RunOptions options = o.run;
+    options.family_tests = statistical_tests(all_jobs);  // a shard is judged as part of the whole run
+    Isolation isolation;
+    isolation.enabled = !o.no_isolation;
+    if (o.memory_limit_set) isolation.memory_budget = o.memory_limit_mib << 20;
+    ProgressDisplay::Options progress;
+    progress.mode = progress_mode(o.progress, isatty(STDERR_FILENO) == 1).value_or(ProgressMode::Off);
+    progress.level = chi2::sidak_level(options.alpha, *options.family_tests);
+    progress.program = o.program_name;
+    RunResult run = [&] {
+        std::optional<StdoutToStderr> warps_print_to_stderr;
+        if (o.no_isolation) warps_print_to_stderr.emplace();
+        return run_jobs(jobs, options, stderr_progress(std::move(progress)), isolation);
+    }();
+    run.info.command_line = command;
+    run.info.tool_version = WARPCHECK_VERSION;
+    if (o.shard_spec) {
+        run.info.shard_index = o.shard.index;
+        run.info.shard_count = o.shard.count;
+        run.info.run_jobs = all_jobs.size();
+    }
+    std::vector<JobName> whole_run;
+    for (const Job& job : all_jobs) whole_run.push_back({job.warp->name(), job.check->name()});
+    seal_run(run, whole_run);
+    return present(run, o, outputs);
+}
+
+/// The unknown options CLI11 left over, each with the closest known option.
+std::string unknown_options(const CLI::App& app) {
+    std::vector<std::string> known;
+    for (const CLI::Option* option : app.get_options())
+        for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
+    std::string text;
+    for (const std::string& arg : app.remaining()) {
+        if (arg.size() < 2 || arg[0] != '-') continue;  // a value given to an unknown option
+        const std::string typed = arg.substr(0, arg.find('='));
+        text += fmt::format("{}unknown option '{}'{}", text.empty() ? "" : "; ", typed,
+                            did_you_mean(closest_names(typed, known)));
+    }
+    return text;
+}
+
+/// Parses the command line into `o`; the exit status if the program is done
+/// (help, version, bad usage), else nullopt.
+std::optional<int> parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ExtrasError& e) {
+        const std::string unknown = unknown_options(app);
+        std::cerr << o.program_name << ": " << (unknown.empty() ? std::string(e.what()) : unknown) << "\nRun '"
+                  << o.program_name << " --help' for the options.\n";
+        return kExitUsage;
+    } catch (const CLI::ParseError& e) {
+        std::cerr << o.program_name << ": " << e.what() << "\nRun '" << o.program_name << " --help' for the options.\n";
+        return kExitUsage;
+    }
+    if (o.settings_from_environment) {
+        if (const std::string problem = apply_environment_settings(o.run); !problem.empty()) {
+            std::cerr << o.program_name << ": " << problem << "\n";
+            return kExitUsage;
+        }
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv, const Registry& registry) {
+    // A reader that closes early (`validate --all | head`) must not kill the run
+    // before the reports are written; a failed write to stdout is reported below.
+    std::signal(SIGPIPE, SIG_IGN);
+    // A report over the file size limit (ulimit -f) is a write error with a
+    // message, not a death that leaves the temporary file behind.
+    std::signal(SIGXFSZ, SIG_IGN);
+    remove_temporary_files_on_signals();
+    CliOptions o;
+    if (argc > 0 && argv[0] && *argv[0]) {
+        o.run.program = argv[0];
+        o.program_name = std::filesystem::path(argv[0]).filename().string();
+    }
+    CLI::App app{"warpcheck " + o.program_name +
+                     ": statistical and exhaustive checks of sampling routines (warps).\n"
+                     "Exit status: 0 all passed, 1 a check failed or errored, 2 bad usage.",
+                 o.program_name};
+    add_selection_options(app, o);
+    add_run_options(app, o);
+    add_output_options(app, o);
+    app.set_version_flag("--version", "warpcheck " + o.program_name + " " WARPCHECK_VERSION);
+    if (const auto done = parse(app, o, argc, argv)) return *done;
+    const std::vector<Output> outputs = requested_outputs(o);
+    std::string problem = selection_problem(o, registry);
+    if (problem.empty()) problem = output_problem(outputs, o.merge_paths);
+    if (!problem.empty()) {
+        std::cerr << o.program_name << ": " << problem << "\n";
+        return kExitUsage;
+    }
+    if (!o.merge_paths.empty()) return run_merge(o, outputs, command_line(argc, argv));
+    if (o.list) {
+        RunOptions everything = o.run;  // list the known-flawed cases too, marked
+        everything.include_flawed = true;
+        list_cases(registry, select_jobs(registry, o.filters, o.checks, everything), std::cout);
+        return stdout_written(o.program_name, "the list") ? kExitPass : kExitUsage;
+    }
+    return run_selection(o, registry, outputs, command_line(argc, argv));
+}
+
+}  // namespace warpcheck

@@ -1,7 +1,0 @@
-// warpcheck_fpr: measures how often the default suite fails on the built-in
-// warps (validate/fpr.h says how, and how a program measures its own warps).
-#include "validate/fpr.h"
-
-int main(int argc, char** argv) {
-    return warpcheck::fpr_main(argc, argv, {.register_cases = warpcheck::register_builtin_cases, .power_check = true});
-}

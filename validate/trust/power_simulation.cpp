@@ -1,0 +1,90 @@
+#include "validate/trust/power_simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "chi2/multiple_testing.h"
+#include "validate/checks/power_level.h"
+#include "validate/run/runner.h"
+#include "validate/api/thread_pool.h"
+
+namespace warpcheck {
+
+double inverse_tilt(double u, double eps) {
+    const double b = 1.0 - eps;
+    return 2.0 * u / (b + std::sqrt(b * b + 4.0 * eps * u));
+}
+
+namespace {
+
+class TiltedCase final : public WarpCase {
+public:
+    TiltedCase(const WarpCase& base, WarpCaseInfo info, int coordinate, double eps)
+        : WarpCase(std::move(info)), base_(base), coordinate_(static_cast<std::size_t>(coordinate)), eps_(eps) {}
+
+    void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override {
+        std::vector<WarpInput> tilted(in.begin(), in.end());
+        for (WarpInput& w : tilted) {
+            // Rounded down to a float, as the inputs themselves are, so that no
+            // input reaches 1.
+            const double t = inverse_tilt(w.u[coordinate_], eps_);
+            float f = static_cast<float>(t);
+            if (static_cast<double>(f) > t) f = std::nextafter(f, 0.0f);
+            w.u[coordinate_] = f;
+        }
+        base_.sample(tilted, out);
+    }
+    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override { base_.pdf(x, out); }
+    void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override { base_.invert(x, out); }
+    bool has_inverse() const override { return base_.has_inverse(); }
+
+private:
+    const WarpCase& base_;
+    std::size_t coordinate_;
+    double eps_;
+};
+
+CheckResult run_once(const WarpCase& warp, const Check& check, const RunOptions& options, ThreadPool& pool) {
+    const CheckContext ctx(options, pool, job_stream(warp, check, options.seed));
+    return check.run(warp, ctx);
+}
+
+}  // namespace
+
+std::unique_ptr<WarpCase> tilted_case(const WarpCase& base, int coordinate, double eps) {
+    if (coordinate < 0 || coordinate > 1) throw std::invalid_argument("tilted_case: coordinate must be 0 or 1");
+    if (!(std::abs(eps) < 1.0)) throw std::invalid_argument("tilted_case: |eps| must be below 1");
+    WarpCaseInfo info = base.info();
+    info.family += "_tilted";
+    info.params.push_back({coordinate == 0 ? "eps_u0" : "eps_u1", eps});
+    return std::make_unique<TiltedCase>(base, std::move(info), coordinate, eps);
+}
+
+PowerSimulation simulate_stated_power(const WarpCase& base, const Check& check, int coordinate,
+                                      const std::string& figure, const RunOptions& options, int runs,
+                                      double scale) {
+    const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    ThreadPool pool(threads);
+    PowerSimulation s;
+    s.case_name = base.name();
+    s.check_name = check.name();
+    s.figure = figure;
+    s.stated_eps = run_once(base, check, options, pool).figure(figure).value_or(std::nan(""));
+    if (!std::isfinite(s.stated_eps)) throw std::runtime_error(check.name() + " states no " + figure + " for " + base.name());
+    s.eps = scale * s.stated_eps;
+    s.level = chi2::sidak_level(options.alpha, kPlannedTestsPerRun);
+    const std::unique_ptr<WarpCase> tilted = tilted_case(base, coordinate, s.eps);
+    RunOptions o = options;
+    for (int i = 0; i < runs; ++i) {
+        o.seed = options.seed + static_cast<uint64_t>(i);
+        const CheckResult r = run_once(*tilted, check, o, pool);
+        s.detected += r.verdict != Verdict::Pass || !(r.p_value.value_or(std::nan("")) >= s.level);
+        ++s.runs;
+    }
+    return s;
+}
+
+}  // namespace warpcheck
