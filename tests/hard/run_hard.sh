@@ -26,7 +26,7 @@ awk '/^  [^ ]/ { name = $1 }
        sub(/.*wrong twin, caught by /, ""); sub(/:.*/, ""); print name "\t" $0 }' "$work/list.txt" > "$work/twins.tsv"
 [ -s "$work/twins.tsv" ] || { echo "no wrong twins found in hard_warps --list"; exit 1; }
 # The default checks that apply to some case, for the later seeds (all but exhaustive).
-seeded_checks=$(awk '/^      checks:/ { for (i = 2; i <= NF; ++i) if ($i !~ /^\(/ && $i != "exhaustive") print $i }' \
+seeded_checks=$(awk '/^      checks:/ { sub(/^ *checks:/, ""); gsub(/\([^)]*\)/, ""); for (i = 1; i <= NF; ++i) if ($i != "exhaustive") print $i }' \
                   "$work/list.txt" | sort -u | sed 's/^/--check /' | tr '\n' ' ')
 
 violations=0
@@ -84,7 +84,7 @@ for seed in "${seeds[@]}"; do
   echo "== hard_warps --all --include-flawed --seed $seed $extra"
   status=0
   # shellcheck disable=SC2086  # $extra is a list of options
-  "$program" --all --include-flawed --seed "$seed" $extra --color never --json "$work/seed$seed.json" > "$table" 2>&1 ||
+  "$program" --all --include-flawed --seed "$seed" $extra --color never --wide --json "$work/seed$seed.json" > "$table" 2>&1 ||
     status=$?
   if [ "$status" -gt 1 ] || ! grep -Eq '^[0-9]+ checks: ' "$table"; then
     cat "$table"

@@ -9,6 +9,7 @@
 
 #include "support/check_harness.h"
 #include "support/support_warps.h"
+#include "sampling/hemisphere.h"
 #include "validate/checks/checks.h"
 
 namespace warpcheck {
@@ -93,6 +94,38 @@ TEST(ConsistencySupport, StrictFailsTheRoundedSamples) {
         if (r.check_name != "consistency") continue;
         EXPECT_EQ(r.verdict, Verdict::Fail);
         EXPECT_NE(r.message.find("--strict"), std::string::npos) << r.message;
+    }
+}
+
+// Zero densities on the domain's boundary from random inputs: the cosine
+// hemisphere's pdf z / pi is 0 on its rim, which the float warp reaches from
+// random inputs only by rounding (edge inputs reach it 456 times, counted
+// apart); a twin that clamps 0.01% of its samples onto the rim (100 per 10^6,
+// against a bound of 44) puts mass where its pdf is 0 and fails.
+TEST(ConsistencySupport, RimZerosOfRandomInputsAreBounded) {
+    for (bool clamps : {false, true}) {
+        auto warp = make_warp_case({.family = clamps ? "cosine_rim_clamped" : "cosine_rim", .domain = chi2::Domain::hemisphere()},
+                                   [clamps](Point2f u) {
+                                       Vector3f w = CosineHemisphere{}.sample(u);
+                                       if (clamps && u.y < 1e-4f) {
+                                           const float r = std::sqrt(w.x * w.x + w.y * w.y);
+                                           if (r > 0) w = Vector3f{w.x / r, w.y / r, 0.0f};
+                                       }
+                                       return w;
+                                   },
+                                   [](Vector3f w) { return CosineHemisphere{}.pdf(w); });
+        for (uint64_t seed : kSeeds) {
+            const CheckResult r = run_check(*make_consistency_check(), *warp, 1'000'000, 2, seed);
+            if (!clamps) {
+                EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
+                EXPECT_GT(*r.figure("zero_pdf_on_boundary"), 0.0);
+                EXPECT_LE(*r.figure("zero_pdf_on_boundary_random"), *r.figure("zero_pdf_rounded_bound"));
+            } else {
+                EXPECT_EQ(r.verdict, Verdict::Fail) << "seed " << seed;
+                EXPECT_GT(*r.figure("zero_pdf_on_boundary_random"), *r.figure("zero_pdf_rounded_bound"));
+                EXPECT_NE(r.message.find("on the domain's boundary with pdf 0"), std::string::npos) << r.message;
+            }
+        }
     }
 }
 
