@@ -31,7 +31,7 @@ float step_floats(float c, int steps) {
 }  // namespace
 
 FloatResolution::FloatResolution(const Binning& binning, int axis, int steps)
-    : binning_(binning), steps_(steps) {
+    : binning_(binning), axis_(axis), steps_(steps) {
     if (steps < 1) throw std::invalid_argument("FloatResolution: steps must be at least 1");
     if (axis < 0 || axis >= binning.parameter_dimension())
         throw std::invalid_argument("FloatResolution: no such parameter");

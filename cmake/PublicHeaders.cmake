@@ -6,6 +6,7 @@
 # and that a private header is not installed.
 set(warpcheck_public_entry_headers
   validate/api/external.h
+  validate/api/bsdf_grid.h
   validate/api/register17.h
   validate/gtest/warpcheck_gtest.h)
 

@@ -5,9 +5,13 @@
 //   the exact remap. KS over 10^6 values sees sqrt(N) D ~ 0.98, and the
 //   per-category histogram's 16 bins divide 1024, so remapped_u passed it.
 // - hemisphere_azimuth_gap: the uniform hemisphere whose azimuth covers only
-//   [0, 0.999) of the turn (a 0.1% gap), beside the correct one. Kuiper's
-//   statistic, the only judged test of the azimuth, missed it; the computed
-//   but unjudged Anderson-Darling saw it at p 2e-5.
+//   [0, 0.995) of the turn (a 0.5% gap), beside the correct one. Kuiper's
+//   statistic, once the only judged test of the azimuth, missed a 0.1% gap
+//   that the computed but unjudged Anderson-Darling saw at p 2e-5; now both
+//   judge it. A 0.1% gap at 10^6 samples moves the CDF by 1/sqrt(N), below
+//   any test's reliable reach (alone, at level 0.01, it fails on 5 of seeds
+//   1..6; among the catalogue's 119 tests on fewer), so the twin the catalogue
+//   asserts on every seed is 0.5%: sqrt(N) D = 5.
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -56,10 +60,10 @@ void register_misses(warpcheck::Registry& registry) {
     for (bool twin : {false, true})
         registry.add_case(warpcheck::make_warp_case(
             {.family = twin ? "hemisphere_azimuth_gap" : "hemisphere_uniform",
-             .description = "uniform hemisphere, cos theta = u.x, phi = 2 pi u.y (the twin: 2 pi 0.999 u.y)",
+             .description = "uniform hemisphere, cos theta = u.x, phi = 2 pi u.y (the twin: 2 pi 0.995 u.y)",
              .domain = Domain::hemisphere()},
-            UniformHemisphere{twin ? 0.999f : 1.0f}));
-    mark_twin(registry, "hemisphere_azimuth_gap", "unbinned", "the azimuth never reaches the last 0.1% of the turn");
+            UniformHemisphere{twin ? 0.995f : 1.0f}));
+    mark_twin(registry, "hemisphere_azimuth_gap", "unbinned", "the azimuth never reaches the last 0.5% of the turn");
 }
 
 }  // namespace hard
