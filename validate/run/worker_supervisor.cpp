@@ -76,7 +76,7 @@ bool write_all(int fd, const void* data, std::size_t size) {
 
 // The worker's limits. RLIMIT_CPU counts the CPU time of all its threads: past
 // the soft limit the kernel sends SIGXCPU, one second later SIGKILL.
-void limit_worker(const WorkerSetup& setup, int cpu_budget) {
+void limit_worker([[maybe_unused]] const WorkerSetup& setup, int cpu_budget) {
     const rlimit cpu_limit{static_cast<rlim_t>(cpu_budget), static_cast<rlim_t>(cpu_budget) + 1};
     setrlimit(RLIMIT_CPU, &cpu_limit);
     const rlimit no_core{0, 0};  // a warp that crashes in every job leaves no core file per job
