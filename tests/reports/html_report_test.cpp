@@ -109,6 +109,8 @@ const html::JudgedLine* line_starting(const std::vector<html::JudgedLine>& lines
         if (l.quantity.starts_with(start)) return &l;
     return nullptr;
 }
+// A pointer into a temporary vector would dangle (AddressSanitizer caught it).
+const html::JudgedLine* line_starting(std::vector<html::JudgedLine>&& lines, std::string_view start) = delete;
 
 // ---- order ------------------------------------------------------------------
 
@@ -229,9 +231,11 @@ TEST(JudgedLines, ALargeResidualFailsItsShareWhilePearsonPasses) {
 TEST(JudgedLines, APValueOfAnotherRuleIsShownWholeAndNaNIsNeverWithin) {
     CheckResult r = chi2_row(0.887, 0.144);
     r.p_value = 0.3;  // not min(P / 0.8, L / 0.2): this file does not know the rule, so it does not split it
-    EXPECT_EQ(line_starting(html::judged_lines(r), "Pearson"), nullptr);
+    const auto other_rule = html::judged_lines(r);
+    EXPECT_EQ(line_starting(other_rule, "Pearson"), nullptr);
     r.p_value = std::numeric_limits<double>::quiet_NaN();
-    const auto* combined = line_starting(html::judged_lines(r), "p-value");
+    const auto lines = html::judged_lines(r);
+    const auto* combined = line_starting(lines, "p-value");
     ASSERT_TRUE(combined);
     EXPECT_EQ(combined->value, "NaN");
     EXPECT_EQ(combined->state, html::JudgedLine::State::Beyond);
@@ -261,13 +265,15 @@ TEST(JudgedLines, ToleranceRulesCountsAndExcusesOfARoundTrip) {
 TEST(JudgedLines, ConsistencyBoundsTheZeroPdfsOfFloatRoundingByTheirPoissonBound) {
     CheckResult r = row("triangle", "consistency", Verdict::Pass);
     r.figures = {{"zero_pdf", 0}, {"zero_pdf_rounded_random", 12}, {"zero_pdf_rounded_edge_inputs", 3}, {"zero_pdf_rounded_bound", 44}};
-    const auto* rounded = line_starting(html::judged_lines(r), "random samples with pdf 0 beside a positive pdf");
+    const auto lines = html::judged_lines(r);
+    const auto* rounded = line_starting(lines, "random samples with pdf 0 beside a positive pdf");
     ASSERT_TRUE(rounded);
     EXPECT_EQ(rounded->limit, "\u2264 44");
     EXPECT_EQ(rounded->state, html::JudgedLine::State::Within);
     r.figures[1].value = 45;  // one past the bound: the check fails, and so does the line
-    EXPECT_EQ(line_starting(html::judged_lines(r), "random samples with pdf 0")->state, html::JudgedLine::State::Beyond);
-    EXPECT_EQ(line_starting(html::judged_lines(r), "edge inputs with pdf 0")->state, html::JudgedLine::State::Reported);
+    const auto beyond = html::judged_lines(r);
+    EXPECT_EQ(line_starting(beyond, "random samples with pdf 0")->state, html::JudgedLine::State::Beyond);
+    EXPECT_EQ(line_starting(beyond, "edge inputs with pdf 0")->state, html::JudgedLine::State::Reported);
 }
 
 TEST(JudgedLines, BinadeSharesTheLevelOverTheTestsItMade) {

@@ -50,10 +50,17 @@ inline std::string inflated(const std::string& stream) {
 
 /// Every pack of a report: its id -> {row index -> details markup}.
 inline std::map<std::string, nlohmann::json> report_packs(const std::string& html) {
+    // Found by plain search: std::regex recurses once per character of a
+    // pack's text and overflows the stack on a long one (AddressSanitizer).
     std::map<std::string, nlohmann::json> packs;
-    const std::regex pack_re("<script type=\"application/x-warpcheck-pack\" id=\"pack-(\\d+)\">([^<]*)</script>");
-    for (auto it = std::sregex_iterator(html.begin(), html.end(), pack_re); it != std::sregex_iterator(); ++it)
-        packs[(*it)[1]] = nlohmann::json::parse(inflated(base64_decoded((*it)[2])));
+    const std::string open = "<script type=\"application/x-warpcheck-pack\" id=\"pack-", close = "</script>";
+    for (std::size_t at = html.find(open); at != std::string::npos; at = html.find(open, at + 1)) {
+        const std::size_t id = at + open.size(), id_end = html.find("\">", id);
+        if (id_end == std::string::npos) throw std::runtime_error("a pack without its id's end");
+        const std::size_t text = id_end + 2, end = html.find(close, text);
+        if (end == std::string::npos) throw std::runtime_error("a pack without </script>");
+        packs[html.substr(id, id_end - id)] = nlohmann::json::parse(inflated(base64_decoded(html.substr(text, end - text))));
+    }
     return packs;
 }
 
