@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -190,6 +192,77 @@ TEST(TabulatedReferenceTable, ALobeBelowTheSmallestFloatKeepsItsQuantiles) {
                                     testing::builtin_case("cosine_power_hemisphere[exponent=50]"), 200'000);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     EXPECT_LT(*r.figure("cos_theta_max_x_error"), 1e-6);
+}
+
+/// The inputs a table lookup is tried at: the ends, every 97th guide boundary
+/// g / 2^16 and the floats around it, each edge's CDF value itself (an exact
+/// tie with the table) and its neighbours, and a spread of others.
+std::vector<double> lookup_inputs(const TabulatedReference& ref) {
+    std::vector<double> u = {0.0, 0x1p-60, 0.5, 1.0 - 0x1p-53, 1.0};
+    const int n = TabulatedReference::kBuckets;
+    for (int g = 0; g <= n; g += 97) {
+        const double v = static_cast<double>(g) / n;
+        u.insert(u.end(), {v, std::nextafter(v, 0.0), std::nextafter(v, 2.0)});
+    }
+    for (int k = 0; k <= n; k += 13) {
+        const double c = ref.cdf(static_cast<double>(k) / n);  // the table's CDF at edge k: exact on [0, 1]
+        u.insert(u.end(), {c, std::nextafter(c, 0.0), std::nextafter(c, 2.0)});
+    }
+    for (int i = 0; i < 5000; ++i) u.push_back(std::fmod(i * 0.6180339887498949, 1.0));
+    std::erase_if(u, [](double v) { return !(v >= 0.0 && v <= 1.0); });
+    return u;
+}
+
+/// The table's CDF at its edges: on [0, 1], cdf(k / n) is exactly the value at edge k.
+std::vector<double> edge_cdf(const TabulatedReference& ref) {
+    const int n = TabulatedReference::kBuckets;
+    std::vector<double> edges(n + 1);
+    for (int k = 0; k <= n; ++k) edges[static_cast<std::size_t>(k)] = ref.cdf(static_cast<double>(k) / n);
+    return edges;
+}
+
+/// The bucket std::upper_bound over the whole table finds for u.
+int whole_table_bucket(const std::vector<double>& edges, double u) {
+    const auto it = std::upper_bound(edges.begin(), edges.end(), u);
+    return std::clamp(static_cast<int>(it - edges.begin()) - 1, 0, TabulatedReference::kBuckets - 1);
+}
+
+TEST(TabulatedReferenceTable, AGuidedLookupFindsTheBucketOfASearchOfTheWholeTable) {
+    // A lobe whose mass lies in a few hundred buckets (thousands of guide
+    // cells in one bucket), a density with a gap of zero mass (runs of equal
+    // edges), and one negative on a stretch (a CDF that steps back: no guide).
+    const std::vector<std::function<double(double)>> densities = {
+        [](double x) { return 2000.0 * std::exp(2000.0 * (x - 1.0)); },
+        [](double x) { return x > 0.3 && x < 0.6 ? 0.0 : 1.0 / 0.7; },
+        [](double x) { return x > 0.4 && x < 0.45 ? -1.0 : 1.0; },
+    };
+    for (std::size_t d = 0; d < densities.size(); ++d) {
+        const TabulatedReference ref(densities[d], 0.0, 1.0, 1.0);
+        const std::vector<double> edges = edge_cdf(ref);
+        for (double v : lookup_inputs(ref))
+            ASSERT_EQ(ref.sample(v).offset, whole_table_bucket(edges, v)) << "density " << d << ", u = " << v;
+    }
+}
+
+TEST(TabulatedReferenceTable, ABatchOfLookupsGivesWhatOneAtATimeGives) {
+    const TabulatedReference ref([](double x) { return 11.0 * std::pow(x, 10.0); }, 0.0, 1.0, 1.0);
+    std::vector<double> u = lookup_inputs(ref), x(u.size());
+    for (std::size_t i = 0; i < u.size(); ++i) x[i] = 1.3 * u[(i * 7) % u.size()] - 0.15;  // some outside [0, 1]
+    u[3] = std::numeric_limits<double>::quiet_NaN();  // a tail input: only the envelope is looked up
+    x[5] = std::numeric_limits<double>::quiet_NaN();
+    std::vector<TabulatedReference::Lookup> batch(u.size());
+    ref.lookup(u, x, batch);
+    for (std::size_t i = 0; i < u.size(); ++i) {
+        const TabulatedReference::Envelope e = ref.envelope(x[i]);
+        EXPECT_EQ(batch[i].envelope.lo, e.lo);
+        EXPECT_EQ(batch[i].envelope.hi, e.hi);
+        EXPECT_EQ(batch[i].envelope.table_pdf, e.table_pdf);
+        if (std::isnan(u[i])) continue;
+        const TabulatedReference::Sample s = ref.sample(u[i]);
+        ASSERT_EQ(batch[i].sample.x, s.x) << "u = " << u[i];
+        EXPECT_EQ(batch[i].sample.offset, s.offset);
+        EXPECT_EQ(batch[i].x_tolerance, ref.x_tolerance(s.offset, u[i]));
+    }
 }
 
 // --- What a float warp can reach ----------------------------------------------

@@ -181,13 +181,11 @@ struct Comparison {
         s.worst.offer(std::numeric_limits<double>::infinity(), index, p);
     }
 
-    void body(Stats& s, Point p, double u, double warp_pdf, uint64_t index) const {
-        const double u_body = u / body_mass;
-        const TabulatedReference::Sample t = ref.sample(u_body);
-        p.x_table = t.x;
-        p.x_tol = ref.x_tolerance(t.offset, u_body);
+    void body(Stats& s, Point p, const TabulatedReference::Lookup& t, double warp_pdf, uint64_t index) const {
+        p.x_table = t.sample.x;
+        p.x_tol = t.x_tolerance;
         p.pdf_warp = f.view.use_warp_pdf ? warp_pdf : f.view.m.pdf(p.x_warp);
-        const TabulatedReference::Envelope env = ref.envelope(p.x_warp);
+        const TabulatedReference::Envelope& env = t.envelope;
         p.pdf_table = env.table_pdf;
         if (std::isfinite(p.x_warp)) {
             s.reach_lo = std::min(s.reach_lo, p.x_warp);
@@ -221,11 +219,29 @@ struct Comparison {
         if (s.worst.wants(ratio)) s.worst.offer(ratio, index, p);
     }
 
-    void operator()(Stats& s, const WarpInput& in, const WarpOutput& out, double warp_pdf, uint64_t index) const {
+    /// The view's input u, in the direction the coordinate grows.
+    double view_u(const WarpInput& in) const {
+        const double u_in = in.u[static_cast<std::size_t>(f.view.m.input_coordinate)];
+        return f.view.m.increasing ? u_in : 1.0 - u_in;  // exact for u on the float grid of [0,1)
+    }
+    bool in_tail(double u) const {
+        const double lower = f.view.m.lower_tail_mass;
+        return u < lower || u >= lower + body_mass;
+    }
+    /// Where the table is looked up for this input: its u within the body; NaN for a tail input.
+    double u_body(const WarpInput& in) const {
+        const double u = view_u(in);
+        return in_tail(u) ? std::numeric_limits<double>::quiet_NaN() : (u - f.view.m.lower_tail_mass) / body_mass;
+    }
+
+    /// Compares one input's sample, whose view coordinate is `x`; `t` is the
+    /// table's lookup at u_body(in) and x.
+    void operator()(Stats& s, const WarpInput& in, const WarpOutput& out, double x, double warp_pdf,
+                    const TabulatedReference::Lookup& t, uint64_t index) const {
         ++s.count;
         Point p;
         p.input = in;
-        p.x_warp = f.coordinate(out);
+        p.x_warp = x;
         if (f.undetermined(p.x_warp, out)) {
             ++s.undetermined;
             return;
@@ -235,11 +251,9 @@ struct Comparison {
             s.worst.offer(std::numeric_limits<double>::quiet_NaN(), index, p);
             return;
         }
-        const double u_in = in.u[static_cast<std::size_t>(f.view.m.input_coordinate)];
-        const double u = f.view.m.increasing ? u_in : 1.0 - u_in;  // exact for u on the float grid of [0,1)
-        const double lower = f.view.m.lower_tail_mass;
-        if (u < lower || u >= lower + body_mass) tail(s, p, u >= lower, index);
-        else body(s, p, u - lower, warp_pdf, index);
+        const double u = view_u(in);
+        if (in_tail(u)) tail(s, p, u >= f.view.m.lower_tail_mass, index);
+        else body(s, p, t, warp_pdf, index);
     }
 };
 
@@ -247,11 +261,24 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx, const Comparison& c
     auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, true,
                                          [&](std::size_t chunk, std::span<const WarpInput> inputs) {
         Stats s;
-        std::vector<WarpOutput> x(inputs.size());
-        std::vector<double> warp_pdf(inputs.size());
-        warp.sample(inputs, x);
-        if (compare.f.view.use_warp_pdf) warp.pdf(x, warp_pdf);
-        for (std::size_t i = 0; i < inputs.size(); ++i) compare(s, inputs[i], x[i], warp_pdf[i], chunk * kInputChunkSize + i);
+        // In blocks that stay in the cache between the steps.
+        constexpr std::size_t kBlock = 2048;
+        std::vector<WarpOutput> x(kBlock);
+        std::vector<double> warp_pdf(kBlock), u_body(kBlock), coordinate(kBlock);
+        std::vector<TabulatedReference::Lookup> table(kBlock);
+        for (std::size_t first = 0; first < inputs.size(); first += kBlock) {
+            const std::size_t n = std::min(kBlock, inputs.size() - first);
+            const std::span<const WarpInput> in = inputs.subspan(first, n);
+            warp.sample(in, std::span(x).first(n));
+            if (compare.f.view.use_warp_pdf) warp.pdf(std::span(x).first(n), std::span(warp_pdf).first(n));
+            for (std::size_t i = 0; i < n; ++i) {
+                u_body[i] = compare.u_body(in[i]);
+                coordinate[i] = compare.f.coordinate(x[i]);
+            }
+            compare.ref.lookup(std::span(u_body).first(n), std::span(coordinate).first(n), std::span(table).first(n));
+            for (std::size_t i = 0; i < n; ++i)
+                compare(s, in[i], x[i], coordinate[i], warp_pdf[i], table[i], chunk * kInputChunkSize + first + i);
+        }
         return s;
     });
     return merge_in_order(parts);

@@ -58,6 +58,19 @@ void TabulatedReference::build_cdf() {
         for (std::size_t i = 0; i <= n; ++i) cdf_[i] = static_cast<double>(i) / static_cast<double>(n);
     }
     cdf_[n] = 1.0;
+    build_guide();
+}
+
+void TabulatedReference::build_guide() {
+    guide_.clear();
+    if (!std::is_sorted(cdf_.begin(), cdf_.end())) return;
+    guide_.resize(kGuideCells + 1);
+    std::size_t at = 0;  // one walk up the table: the first edge above each g / kGuideCells
+    for (int g = 0; g <= kGuideCells; ++g) {
+        const double v = static_cast<double>(g) / kGuideCells;  // exact: kGuideCells is a power of two
+        while (at < cdf_.size() && !(cdf_[at] > v)) ++at;
+        guide_[static_cast<std::size_t>(g)] = static_cast<uint32_t>(at);
+    }
 }
 
 double TabulatedReference::quadrature_error(const std::function<double(double)>& density) const {
@@ -87,7 +100,16 @@ double TabulatedReference::cdf(double x) const {
 
 TabulatedReference::Located TabulatedReference::locate(double v) const {
     v = std::clamp(v, 0.0, 1.0);
-    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), v);
+    // std::upper_bound over the whole table; with the guide, over the edges
+    // between those above g / G and above (g + 1) / G, which hold the answer
+    // (the table is sorted, and g / G <= v < (g + 1) / G; v = 1 is cell G).
+    auto first = cdf_.begin(), last = cdf_.end();
+    if (!guide_.empty() && !std::isnan(v)) {
+        const auto g = static_cast<std::size_t>(v * kGuideCells);  // exact product: a power of two
+        first = cdf_.begin() + guide_[g];
+        if (g < static_cast<std::size_t>(kGuideCells)) last = cdf_.begin() + guide_[g + 1];
+    }
+    const auto it = std::upper_bound(first, last, v);
     const std::size_t o = std::min<std::size_t>(
         static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - cdf_.begin() - 1, 0)), buckets_.size() - 1);
     const double w = cdf_[o + 1] - cdf_[o];
@@ -115,6 +137,37 @@ double TabulatedReference::x_tolerance(int bucket, double u_body) const {
     const double above = u_body + cdf_delta_ >= 1.0 ? hi_ : inverse_cdf(u_body + cdf_delta_);
     const double cdf_spread = above - below;
     return kMargin * std::min(width_, shape) + x_slack_abs_ + cdf_spread;
+}
+
+void TabulatedReference::lookup(std::span<const double> u_body, std::span<const double> x,
+                                std::span<Lookup> out) const {
+    // The tables' lines for the inputs ahead of the current one are requested
+    // (for the CDF, once the guide entry has arrived), so the loads of many
+    // inputs overlap.
+    constexpr std::size_t kGuideAhead = 16, kTableAhead = 8;
+    const auto guide_cell = [](double v) {
+        return static_cast<std::size_t>(std::clamp(v, 0.0, 1.0) * kGuideCells);  // v is not NaN
+    };
+    const auto prefetch_bucket = [this](double at) {
+        const double t = (at - lo_) / width_;
+        if (t >= 0.0 && t < kBuckets) __builtin_prefetch(&buckets_[static_cast<std::size_t>(t)]);
+    };
+    const std::size_t n = u_body.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        if (const std::size_t a = i + kGuideAhead; a < n && !guide_.empty() && !std::isnan(u_body[a]))
+            __builtin_prefetch(&guide_[guide_cell(u_body[a])]);
+        if (const std::size_t a = i + kTableAhead; a < n) {
+            prefetch_bucket(x[a]);
+            if (!guide_.empty() && !std::isnan(u_body[a])) {
+                const std::size_t at = guide_[guide_cell(u_body[a])];
+                __builtin_prefetch(&cdf_[std::min(at, cdf_.size() - 1)]);
+            }
+        }
+        out[i].envelope = envelope(x[i]);
+        if (std::isnan(u_body[i])) continue;
+        out[i].sample = sample(u_body[i]);
+        out[i].x_tolerance = x_tolerance(out[i].sample.offset, u_body[i]);
+    }
 }
 
 double TabulatedReference::tail_allowance(bool upper) const {

@@ -41,6 +41,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "sampling/tabulate.h"
@@ -82,6 +83,19 @@ public:
     /// `reference` (the larger of the two).
     double pdf_tolerance(const Envelope& e, double reference) const;
 
+    /// For a batch of inputs, at each u (in the body) and the warp's x: sample(u),
+    /// x_tolerance there and envelope(x), the same numbers as one call at a time,
+    /// found with the lookups of many inputs in flight at once (each one's table
+    /// lines are fetched ahead of it: a lookup is a few loads from tables larger
+    /// than the cache). Where u is NaN (an input outside the body) only the
+    /// envelope is set.
+    struct Lookup {
+        Sample sample;
+        double x_tolerance = 0.0;
+        Envelope envelope;
+    };
+    void lookup(std::span<const double> u_body, std::span<const double> x, std::span<Lookup> out) const;
+
     /// How far beyond the truncation point lo (upper: hi) a sample of a tail
     /// input may stay: the x extent of the CDF uncertainty at that end (the
     /// same allowance a body input near the end gets) plus the float slack.
@@ -114,12 +128,21 @@ private:
     double inverse_cdf(double v) const;
     double quadrature_error(const std::function<double(double)>& density) const;
     void build_cdf();
+    void build_guide();
 
     double lo_, hi_, width_, body_mass_;
     uint64_t nan_values_ = 0, evaluations_ = 0;
     double first_nan_x_ = 0.0;
     std::vector<BucketSummary> buckets_;
     std::vector<double> cdf_;  ///< the table's CDF at bucket edges, in double
+    /// guide_[g]: the position in cdf_ of the first edge above g / kGuideCells,
+    /// g = 0 .. kGuideCells, so that locate searches only between two of them
+    /// (every check input looks up three CDF values: a search of the whole
+    /// table cost three quarters of the check's time). Empty where cdf_ is not
+    /// monotone (a negative density): locate then searches the whole table, as
+    /// it always did, so the result is the same either way.
+    std::vector<uint32_t> guide_;
+    static constexpr int kGuideCells = kBuckets;
     double integral_ = 0.0, integral_tol_ = 1e-5, cdf_delta_ = 0.0, x_slack_abs_ = 0.0;
 };
 
