@@ -58,11 +58,15 @@
 //
 // The check is three parts: compute (one pass over the input chunks, counting),
 // judge (the rule above, on the counts) and evidence (the worst inputs, the
-// worst excused inputs of each class and the error histogram).
+// worst excused inputs of each class and the error histogram). sample(invert(x))
+// and a 1D warp's pdf(x) are computed only for the trips whose rule reads them
+// (beyond the tolerance, or rounded to 1; every raw-bit trip).
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <span>
 
 #include <fmt/format.h>
 
@@ -223,12 +227,33 @@ Outcome bits_outcome(Trip& t, const WarpOutput& x2, const Rule& rule) {
     return same && t.back.bits <= t.input.bits ? Outcome::Within : Outcome::Failed;
 }
 
-/// What judging a trip of uniform inputs needs besides the trip.
-struct TripInputs {
+/// What judging a trip needs besides the trip: sample(back), and pdf(x) for a
+/// 1D warp. A trip of uniform inputs within the tolerance (nearly every one)
+/// reads neither, so each is computed when the rule first reads it; raw-bit
+/// trips read sample(back) always, and it comes computed for the chunk.
+class TripInputs {
+public:
+    TripInputs(const WarpCase& w, const Rule& r, const WarpInput& back, const WarpOutput& x,
+               const WarpOutput* x2 = nullptr)
+        : warp(w), rule(r), back_(back), x_(x), x2_(x2 ? std::optional(*x2) : std::nullopt) {}
+
     const WarpCase& warp;
     const Rule& rule;
-    const WarpOutput& x2;  ///< sample(back)
-    double pdf;            ///< pdf(x), 1D warps only
+
+    const WarpOutput& x2() const {
+        if (!x2_) warp.sample(std::span(&back_, 1), std::span(&x2_.emplace(), 1));
+        return *x2_;
+    }
+    double pdf() const {
+        if (!pdf_) warp.pdf(std::span(&x_, 1), std::span(&pdf_.emplace(), 1));
+        return *pdf_;
+    }
+
+private:
+    const WarpInput& back_;
+    const WarpOutput& x_;
+    mutable std::optional<WarpOutput> x2_;
+    mutable std::optional<double> pdf_;
 };
 
 /// The extents of x's float cell along each input axis (1D: pdf(x) spacing(x),
@@ -236,7 +261,7 @@ struct TripInputs {
 FloatCell cell_of(const TripInputs& in, const Trip& t) {
     if (in.rule.one_dimensional()) {
         FloatCell cell;
-        cell.extent[0] = in.pdf * float_spacing(t.output[0]);
+        cell.extent[0] = in.pdf() * float_spacing(t.output[0]);
         return cell;
     }
     return measure_float_cell(in.warp, t.input, t.output, in.rule.in_dims, in.rule.out_dims);
@@ -264,7 +289,7 @@ bool lands_in_cells(const TripInputs& in, const Trip& t, const FloatCell& cell) 
         double reach = 2.0 * float_spacing(t.output[k]);
         for (int j = 0; j < in.rule.in_dims; ++j)
             if (!cell.flat(j)) reach += std::abs(cell.jacobian[k][j]) * kCellFactor * cell.extent[j];
-        const double dx = std::abs(static_cast<double>(in.x2[k]) - t.output[k]);
+        const double dx = std::abs(static_cast<double>(in.x2()[k]) - t.output[k]);
         if (!(dx <= std::max(reach, in.rule.tolerance))) return false;
     }
     return true;
@@ -276,9 +301,10 @@ bool lands_in_cells(const TripInputs& in, const Trip& t, const FloatCell& cell) 
 Outcome resolution_outcome(const TripInputs& in, Trip& t) {
     if (in.rule.one_dimensional()) {
         const double spacing = float_spacing(t.output[0]);
-        const double dx = max_abs_diff(in.x2, t.output, 1);
-        t.cells = t.error / (in.pdf * spacing);
-        return dx <= 2.0 * spacing && t.error <= kCellFactor * in.pdf * spacing ? Outcome::Resolution : Outcome::Failed;
+        const double dx = max_abs_diff(in.x2(), t.output, 1);
+        t.cells = t.error / (in.pdf() * spacing);
+        return dx <= 2.0 * spacing && t.error <= kCellFactor * in.pdf() * spacing ? Outcome::Resolution
+                                                                                 : Outcome::Failed;
     }
     const FloatCell cell = cell_of(in, t);
     bool on_pole = false;
@@ -310,7 +336,7 @@ Trip judge_trip(const TripInputs& in, const WarpInput& u, const WarpOutput& x, c
             t.error = static_cast<double>(back.bits);
             t.outcome = Outcome::OutsideInputs;
         } else {
-            t.outcome = bits_outcome(t, in.x2, rule);
+            t.outcome = bits_outcome(t, in.x2(), rule);
         }
         return t;
     }
@@ -322,7 +348,7 @@ Trip judge_trip(const TripInputs& in, const WarpInput& u, const WarpOutput& x, c
     } else if (!(t.error <= rule.tolerance)) {
         t.outcome = resolution_outcome(in, t);
         if (t.outcome == Outcome::Failed)
-            t.outcome = max_abs_diff(in.x2, x, rule.out_dims) <= rule.tolerance ? Outcome::OtherPreimage
+            t.outcome = max_abs_diff(in.x2(), x, rule.out_dims) <= rule.tolerance ? Outcome::OtherPreimage
                                                                                   : Outcome::Failed;
     }
     return t;
@@ -393,16 +419,15 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx, const Rule& rule) {
     auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, true,
                                          [&](std::size_t chunk, std::span<const WarpInput> inputs) {
         Stats s;
-        std::vector<WarpOutput> x(inputs.size()), x2(inputs.size());
+        std::vector<WarpOutput> x(inputs.size()), x2(rule.bits() ? inputs.size() : 0);
         std::vector<WarpInput> back(inputs.size());
-        std::vector<double> pdf(inputs.size(), 0.0);
         warp.sample(inputs, x);
         warp.invert(x, back);
-        warp.sample(back, x2);
-        if (rule.one_dimensional()) warp.pdf(x, pdf);
+        if (rule.bits()) warp.sample(back, x2);
         const uint64_t base = chunk * kInputChunkSize;  // edge inputs first, then the random stream
         for (std::size_t i = 0; i < inputs.size(); ++i) {
-            Trip trip = judge_trip(TripInputs{warp, rule, x2[i], pdf[i]}, inputs[i], x[i], back[i]);
+            const TripInputs trip_inputs(warp, rule, back[i], x[i], rule.bits() ? &x2[i] : nullptr);
+            Trip trip = judge_trip(trip_inputs, inputs[i], x[i], back[i]);
             if (trip.outcome == Outcome::OtherPreimage && !segment_maps_to_x(warp, rule, trip))
                 trip.outcome = Outcome::Failed;
             count_trip(s, rule, std::move(trip), chunk == 0, base + i);
