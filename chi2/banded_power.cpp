@@ -70,6 +70,8 @@ double simulated_power(UnbinnedTest test, double critical, double delta, double 
 
 }  // namespace
 
+void prepare_banded_power() { (void)bridges(); }
+
 double banded_tilt_for_power(UnbinnedTest test, double level, double shift, uint64_t n, double power) {
     if (!(level > 0.0 && level < 1.0) || !(power > level && power < 1.0) || n == 0 || !(shift >= 0.0))
         return std::nan("");

@@ -29,4 +29,9 @@ namespace warpcheck::chi2 {
 /// is unbinned_tilt_for_power's figure, to the simulations' noise.
 double banded_tilt_for_power(UnbinnedTest test, double level, double shift, uint64_t n, double power = 0.9);
 
+/// Simulates the bridges now, which the first banded_tilt_for_power of a
+/// process does otherwise: a process that forks workers calls it first, and
+/// every worker shares them (a few tens of milliseconds each would redo).
+void prepare_banded_power();
+
 }  // namespace warpcheck::chi2

@@ -71,6 +71,39 @@ TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
     EXPECT_NE(run.results[0].rerun_command.find("--filter 'thrower' --check roundtrip"), std::string::npos);
 }
 
+/// A check that counts its prepare calls and reports, in each job, how many
+/// it has seen: a worker inherits the count of the process that forked it.
+class PreparedCheck final : public Check {
+public:
+    std::string name() const override { return "prepared"; }
+    std::string description() const override { return "counts prepare calls"; }
+    bool applies_to(const WarpCase&) const override { return true; }
+    void prepare(const RunOptions&) const override { ++prepared; }
+    CheckResult run(const WarpCase&, const CheckContext&) const override {
+        CheckResult r;
+        r.verdict = Verdict::Pass;
+        r.figures.push_back({"prepared", static_cast<double>(prepared)});
+        return r;
+    }
+    mutable int prepared = 0;
+};
+
+TEST(Runner, PreparesEachCheckOnceBeforeItsJobsInEveryWorker) {
+    auto a = make_warp_case({"a", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, UniformHemisphere{});
+    auto b = make_warp_case({"b", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, UniformHemisphere{});
+    for (const bool isolated : {false, true}) {
+        const PreparedCheck check;
+        RunOptions options;
+        options.threads = 2;
+        Isolation isolation;
+        isolation.enabled = isolated;
+        const RunResult run = run_jobs({{a.get(), &check}, {b.get(), &check}}, options, {}, isolation);
+        ASSERT_EQ(run.results.size(), 2u);
+        for (const CheckResult& r : run.results) EXPECT_EQ(r.figure("prepared"), 1.0) << "isolated " << isolated;
+        EXPECT_EQ(check.prepared, 1);
+    }
+}
+
 // Figures must be bit-identical for any thread count, and for a case run alone
 // or among others. One case of each family, so every check type takes part:
 // consistency, roundtrip, chi2, tabulated, exhaustive, binade.

@@ -161,6 +161,12 @@ public:
     /// the run's budget, unless the check knows it needs more for a correct
     /// warp (a full 2^32 sweep) and the user did not set --time-budget.
     virtual double time_budget(const RunOptions& options) const { return options.check_time_budget; }
+    /// Work the check would repeat in every job of a run and can do once for
+    /// all of them (a table of simulated power at the run's levels, say): the
+    /// runner calls it before the jobs start, in the process whose workers
+    /// inherit what it computed. It runs no warp, and a job that finds the work
+    /// not done does it itself, with the same result: results never depend on it.
+    virtual void prepare(const RunOptions& options) const { (void)options; }
     /// Runs the check. The runner fills in the names, stream, timing and rerun
     /// command, and turns an exception into an Error verdict.
     virtual CheckResult run(const WarpCase& warp, const CheckContext& ctx) const = 0;

@@ -83,6 +83,10 @@ constexpr int kStrictFloatSteps = 1;
 /// the row says so with its error.
 constexpr double kMaxCdfBand = 0.1;
 
+/// Rows test up to this many p-values (an azimuth two, every other marginal
+/// one) at the levels whose simulated power prepare() computes beforehand.
+constexpr int kPreparedTestCounts = 4;
+
 /// How a marginal's CDF is tabulated: strips, the cubature's accuracy
 /// fraction, and the refinement's target as a multiple of 1/sqrt(N).
 struct TableSpec {
@@ -699,6 +703,16 @@ public:
                "float resolution and the CDF's error (Sidak over the tests)";
     }
     bool applies_to(const WarpCase& warp) const override { return warp.has_pdf() && !warp.is_discrete(); }
+
+    /// The simulated power every row states (add_figures: each test at the
+    /// level of 1 to 4 tests in the row, what a case's marginals give) and the
+    /// banded simulation's bridges, computed once for the run's workers.
+    void prepare(const RunOptions& options) const override {
+        for (int tests = 1; tests <= kPreparedTestCounts; ++tests)
+            for (chi2::UnbinnedTest t : chi2::kUnbinnedTests)
+                (void)chi2::unbinned_tilt_for_power(t, power_level(options, tests), options.samples);
+        chi2::prepare_banded_power();
+    }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const Computed c = compute(warp, ctx);

@@ -289,8 +289,13 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
 
     // Only the jobs that apply run; the others become n/a rows in their place.
     std::vector<Job> runnable;
-    for (const Job& job : jobs)
-        if (job.not_applicable.empty()) runnable.push_back(job);
+    std::vector<const Check*> checks;  // each once, in order of first use
+    for (const Job& job : jobs) {
+        if (!job.not_applicable.empty()) continue;
+        runnable.push_back(job);
+        if (std::find(checks.begin(), checks.end(), job.check) == checks.end()) checks.push_back(job.check);
+    }
+    for (const Check* check : checks) check->prepare(options);  // before the workers fork: they inherit it
     std::vector<CheckResult> ran =
         isolation.enabled ? run_jobs_isolated(runnable, options, isolation, threads, progress, run.info.abandoned_checks)
                           : run_jobs_in_process(runnable, options, threads, progress);
