@@ -25,9 +25,9 @@
 // reports p = min(1, k min(p_i)) over its k tests (Bonferroni), which the
 // runner compares with its Šidák-corrected level.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -131,8 +131,12 @@ struct Strays {
 Strays count_binades(const WarpCase& warp, const CheckContext& ctx, uint64_t samples, std::vector<Cell>& cells,
                        chi2::DigitCounts& digits, bool test_digits) {
     const double a = warp.domain().a(), b = warp.domain().b();
-    std::map<int, std::size_t> index;
-    for (std::size_t k = 0; k < cells.size(); ++k) index[cells[k].key] = k;
+    // The cell of each binade key (-256 .. 256, offset by kKeys), or -1: a
+    // table, as every one of the 2^24 samples or more looks its key up.
+    constexpr int kKeys = 256;
+    std::array<int, 2 * kKeys + 1> index;
+    index.fill(-1);
+    for (std::size_t k = 0; k < cells.size(); ++k) index[static_cast<std::size_t>(cells[k].key + kKeys)] = static_cast<int>(k);
     auto chunks = map_input_chunks<Counts>(ctx, warp.input_kind(), samples, false, [&](std::size_t, auto inputs) {
         Counts c{std::vector<uint64_t>(cells.size(), 0), std::vector<uint64_t>(cells.size(), 0), 0, 0,
                  chi2::DigitCounts(digits.digits())};
@@ -140,14 +144,15 @@ Strays count_binades(const WarpCase& warp, const CheckContext& ctx, uint64_t sam
         warp.sample(inputs, x);
         for (const WarpOutput& o : x) {
             const float v = o[0];
-            const auto it = (v >= a && v < b) ? index.find(binade_key(v)) : index.end();
-            if (it == index.end()) {
+            const int cell = (v >= a && v < b) ? index[static_cast<std::size_t>(binade_key(v) + kKeys)] : -1;
+            if (cell < 0) {
                 ++c.outside;
                 c.nan += std::isnan(v);
                 continue;
             }
-            ++c.in[it->second];
-            c.even[it->second] += (float_to_bits(v) & 1u) == 0;
+            const auto k = static_cast<std::size_t>(cell);
+            ++c.in[k];
+            c.even[k] += (float_to_bits(v) & 1u) == 0;
             // x - a is exact in double unless |x| < 2^-29 |a|, which can move x
             // across the grid line at 0 only from within 2^-53 |a| of it.
             if (test_digits) c.digits.add((static_cast<double>(v) - a) / (b - a));
