@@ -1,6 +1,7 @@
 // Lane forms of the common spherical and disk warps: eight samples at once,
-// each step the same IEEE operation as the scalar form in disk.h, hemisphere.h
-// and sphere.h, so they return the same bits (tests/sampling/test_lanes.cpp).
+// each step the same IEEE operation as the scalar form in disk.h, hemisphere.h,
+// sphere.h and trowbridge_reitz.h, so they return the same bits
+// (tests/sampling/test_lanes.cpp).
 // The scalar forms stay the readable definition; these feed the vectorised
 // chi-square path (validate/lanes/lane_sampling.h). Branches of the scalar forms
 // become selects: both sides are computed and the lane picks one.
@@ -74,6 +75,33 @@ struct UniformSphereLanes {
         const F32 phi = kTwoPi * u1;
         const SinCos sc = sin_cos(phi);
         return {r * sc.cos, r * sc.sin, z};
+    }
+};
+
+/// UniformCone::sample, for the cap z >= cos_theta_max.
+struct UniformConeLanes {
+    float cos_theta_max = 0.0f;
+
+    WARPCHECK_LANE Points operator()(F32 u0, F32 u1) const {
+        const F32 one_minus_cos = u0 * (1.0f - cos_theta_max);
+        const F32 z = 1.0f - one_minus_cos;
+        const F32 r = safe_sqrt(one_minus_cos * (2.0f - one_minus_cos));
+        const F32 phi = kTwoPi * u1;
+        const SinCos sc = sin_cos(phi);
+        return {r * sc.cos, r * sc.sin, z};
+    }
+};
+
+/// TrowbridgeReitzNormals::sample: the polar disk point stretched by the
+/// roughness and lifted, normalised as normalize() does (1 / length, times each).
+struct TrowbridgeReitzNormalsLanes {
+    float alpha_x = 1.0f, alpha_y = 1.0f;
+
+    WARPCHECK_LANE Points operator()(F32 u0, F32 u1) const {
+        const Points p = UniformDiskPolarLanes{}(u0, u1);
+        const F32 x = alpha_x * p.x, y = alpha_y * p.y, z = safe_sqrt(1.0f - u0);
+        const F32 inv_length = 1.0f / sqrt(x * x + y * y + z * z);
+        return {inv_length * x, inv_length * y, inv_length * z};
     }
 };
 

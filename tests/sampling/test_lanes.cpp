@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "sampling/disk.h"
@@ -16,6 +17,7 @@
 #include "sampling/lanes.h"
 #include "sampling/pcg32.h"
 #include "sampling/sphere.h"
+#include "sampling/trowbridge_reitz.h"
 
 #pragma GCC diagnostic ignored "-Wpsabi"  // lane vectors between inline test helpers
 
@@ -151,6 +153,14 @@ TEST(LaneWarps, GiveTheScalarWarpsBits) {
     EXPECT_EQ(lane_differences(CosineHemisphere{}, lanes::CosineHemisphereLanes{}), 0u);
     EXPECT_EQ(lane_differences(UniformHemisphere{}, lanes::UniformHemisphereLanes{}), 0u);
     EXPECT_EQ(lane_differences(UniformSphere{}, lanes::UniformSphereLanes{}), 0u);
+    for (const float c : {-1.0f, -0.5f, 0.0f, 0.3f, 0.99f, 0.99999f})
+        EXPECT_EQ(lane_differences(UniformCone(c), lanes::UniformConeLanes{c}), 0u) << "cos_theta_max " << c;
+    for (const auto& [ax, ay] : {std::pair{1e-4f, 1e-4f}, {0.05f, 0.05f}, {0.3f, 0.05f}, {1.0f, 1.0f}, {0.05f, 0.4f},
+                                {1e4f, 1e4f}}) {
+        const TrowbridgeReitz tr(ax, ay);
+        EXPECT_EQ(lane_differences(tr.normals(), lanes::TrowbridgeReitzNormalsLanes{ax, ay}), 0u)
+            << "alpha " << ax << ", " << ay;
+    }
 }
 
 TEST(LaneWarps, ComparisonCanFail) {

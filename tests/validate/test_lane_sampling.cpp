@@ -24,8 +24,15 @@
 namespace warpcheck {
 namespace {
 
-const char* const kLaneCases[] = {"uniform_disk_polar", "uniform_disk_concentric", "cosine_hemisphere",
-                                  "uniform_hemisphere", "uniform_sphere"};
+const char* const kLaneCases[] = {"uniform_disk_polar",
+                                  "uniform_disk_concentric",
+                                  "cosine_hemisphere",
+                                  "uniform_hemisphere",
+                                  "uniform_sphere",
+                                  "uniform_cone[cos_theta_max=-0.5]",
+                                  "uniform_cone[cos_theta_max=0.99]",
+                                  "trowbridge_reitz_normals[ax=0.05,ay=0.05]",
+                                  "trowbridge_reitz_normals[ax=0.3,ay=0.05]"};
 
 std::vector<LanePath> paths() {
     std::vector<LanePath> p = {LanePath::Portable};

@@ -94,7 +94,8 @@ void register_geometric_cases(Registry& registry) {
              .params = {{"cos_theta_max", c}},
              .description = "uniform over the cap z >= cos_theta_max; pdf 1/(2 pi (1 - cos_theta_max))",
              .domain = Domain::spherical_cap(z_min),
-             .views = {cos_theta_marginal(false, z_min, [z_min](double) { return 1.0 / (1.0 - z_min); }), azimuth()}},
+             .views = {cos_theta_marginal(false, z_min, [z_min](double) { return 1.0 / (1.0 - z_min); }), azimuth()},
+             .lanes = &builtin_lanes::uniform_cone(cone.cos_theta_max())},
             cone));
     }
 }

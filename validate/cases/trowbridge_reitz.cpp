@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sampling/trowbridge_reitz.h"
+#include "validate/lanes/lane_sampling.h"
 #include "validate/api/registry.h"
 
 namespace warpcheck {
@@ -52,7 +53,8 @@ void register_trowbridge_reitz_cases(Registry& registry) {
              .params = {{"ax", ax}, {"ay", ay}},
              .description = "Trowbridge-Reitz microfacet normals; pdf D(wm) cos(theta_m) per solid angle",
              .domain = Domain::hemisphere(),
-             .views = {normal_marginal(ax, ay)}},
+             .views = {normal_marginal(ax, ay)},
+             .lanes = &builtin_lanes::trowbridge_reitz_normals(tr.alpha_x(), tr.alpha_y())},
             tr.normals()));
     }
     for (auto [ax, ay] : kAlphas) {

@@ -147,13 +147,18 @@ WARPCHECK_LANE void run_planar_group(const void* warp, const LaneGroup& g) {
     counter.finish();
 }
 
-// The group functions of the built-in lane forms, on each path.
-#define WARPCHECK_LANE_FORMS(X) \
+// The group functions of the built-in lane forms, on each path: those without
+// parameters, and those with (the kernel object holds them).
+#define WARPCHECK_PLAIN_LANE_FORMS(X) \
     X(uniform_disk_polar, UniformDiskPolarLanes) \
     X(uniform_disk_concentric, UniformDiskConcentricLanes) \
     X(cosine_hemisphere, CosineHemisphereLanes) \
     X(uniform_hemisphere, UniformHemisphereLanes) \
     X(uniform_sphere, UniformSphereLanes)
+#define WARPCHECK_LANE_FORMS(X) \
+    WARPCHECK_PLAIN_LANE_FORMS(X) \
+    X(uniform_cone, UniformConeLanes) \
+    X(trowbridge_reitz_normals, TrowbridgeReitzNormalsLanes)
 
 // The group functions of warps without a lane form (run_planar_group), on each path.
 void planar_avx512(const void* warp, const LaneGroup& g);

@@ -5,7 +5,10 @@
 #include "validate/lanes/lane_sampling.h"
 
 #include <algorithm>
+#include <cstring>
+#include <deque>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 
 #include "chi2/chi2_test.h"
@@ -44,8 +47,41 @@ namespace builtin_lanes {
         static const LaneSampler sampler{&kernel, &lane_kernels::name##_avx512, &lane_kernels::name##_portable}; \
         return sampler;                                                                            \
     }
-WARPCHECK_LANE_FORMS(WARPCHECK_DEFINE_SAMPLER)
+WARPCHECK_PLAIN_LANE_FORMS(WARPCHECK_DEFINE_SAMPLER)
 #undef WARPCHECK_DEFINE_SAMPLER
+
+namespace {
+
+/// The sampler of a lane form with parameters, one per distinct kernel (its
+/// parameters), kept for the life of the process: cases point to it.
+template <typename Kernel>
+const LaneSampler& parameterised(const Kernel& kernel, LaneSampler::GroupFn avx512, LaneSampler::GroupFn portable) {
+    struct Entry {
+        Kernel kernel;
+        LaneSampler sampler;
+    };
+    static std::mutex mutex;
+    static std::deque<Entry> entries;  // a deque: elements never move
+    const std::lock_guard lock(mutex);
+    for (const Entry& e : entries)
+        if (std::memcmp(&e.kernel, &kernel, sizeof kernel) == 0) return e.sampler;
+    Entry& e = entries.emplace_back(Entry{kernel, {}});
+    e.sampler = {&e.kernel, avx512, portable};
+    return e.sampler;
+}
+
+}  // namespace
+
+const LaneSampler& uniform_cone(float cos_theta_max) {
+    return parameterised(lanes::UniformConeLanes{cos_theta_max}, &lane_kernels::uniform_cone_avx512,
+                         &lane_kernels::uniform_cone_portable);
+}
+
+const LaneSampler& trowbridge_reitz_normals(float alpha_x, float alpha_y) {
+    return parameterised(lanes::TrowbridgeReitzNormalsLanes{alpha_x, alpha_y},
+                         &lane_kernels::trowbridge_reitz_normals_avx512,
+                         &lane_kernels::trowbridge_reitz_normals_portable);
+}
 }  // namespace builtin_lanes
 
 bool avx512_available() {

@@ -53,13 +53,16 @@ struct LaneSampler {
     GroupFn portable = nullptr;
 };
 
-/// The lane forms of the built-in warps of sampling/lane_warps.h.
+/// The lane forms of the built-in warps of sampling/lane_warps.h. Those with
+/// parameters are made once per parameter value and live as long as the process.
 namespace builtin_lanes {
 const LaneSampler& uniform_disk_polar();
 const LaneSampler& uniform_disk_concentric();
 const LaneSampler& cosine_hemisphere();
 const LaneSampler& uniform_hemisphere();
 const LaneSampler& uniform_sphere();
+const LaneSampler& uniform_cone(float cos_theta_max);
+const LaneSampler& trowbridge_reitz_normals(float alpha_x, float alpha_y);
 }  // namespace builtin_lanes
 
 /// The lane sampler of a Uniform2D warp without a lane form: the lanes draw
