@@ -61,6 +61,13 @@ WARPCHECK_LANE F32 sqrt(F32 x) {
     return r;
 }
 
+/// IEEE square root per lane, in double.
+WARPCHECK_LANE F64 sqrt(F64 x) {
+    F64 r;
+    for (int i = 0; i < kWidth; ++i) r[i] = __builtin_sqrt(x[i]);
+    return r;
+}
+
 /// std::max(x, 0.0f) as the standard defines it ((x < 0) ? 0 : x, so NaN and -0 pass through).
 WARPCHECK_LANE F32 max_zero(F32 x) { return select(x < 0.0f, F32{} + 0.0f, x); }
 
@@ -82,6 +89,17 @@ struct DoubleOps {
 struct SinCos {
     F32 sin, cos;
 };
+
+struct SinCosDouble {
+    F64 sin, cos;
+};
+
+/// warpcheck::sin_cos_double on lanes; every lane must hold |x| <= 10.
+WARPCHECK_LANE SinCosDouble sin_cos_double(F64 x) {
+    SinCosDouble r;
+    detail::sin_cos_core<DoubleOps>(x, r.sin, r.cos);
+    return r;
+}
 
 /// warpcheck::sin_cos on lanes. Every lane must hold |phi| <= 10 (the scalar
 /// form defers to libm beyond; the lane form is only used where the warp's

@@ -115,4 +115,21 @@ inline SinCos sin_cos(float phi) {
     return {static_cast<float>(s), static_cast<float>(c)};
 }
 
+/// sin and cos in double, for warps that compute in double.
+struct SinCosDouble {
+    double sin, cos;
+};
+
+/// sin and cos of |x| <= 10 in double, to within 2^-51 relative (about one ulp
+/// of double): the kernel of sin_cos without its rounding to float. libm's double sin and cos
+/// have no vectorised twin (and their last bit may depend on the processor:
+/// glibc picks an FMA build where it can); this has one in sampling/lanes.h
+/// with the same bits. Outside the range it defers to libm.
+inline SinCosDouble sin_cos_double(double x) {
+    if (!(std::abs(x) <= 10.0)) return {std::sin(x), std::cos(x)};
+    SinCosDouble r{};
+    detail::sin_cos_core<detail::ScalarDoubleOps>(x, r.sin, r.cos);
+    return r;
+}
+
 }  // namespace warpcheck

@@ -29,6 +29,9 @@ namespace warpcheck {
 
 class TrowbridgeReitzNormals;
 class TrowbridgeReitzVisibleNormals;
+namespace lanes {
+struct TrowbridgeReitzVisibleNormalsLanes;  // its vectorised twin (sampling/lane_warps.h)
+}
 
 /// The Trowbridge-Reitz distribution of microfacet normals with roughness
 /// alpha_x, alpha_y (alpha is tan of the slope's standard scale; alpha_x = alpha_y
@@ -245,7 +248,8 @@ public:
         }
         const double one_minus_r = 1.0 - std::abs(r);
         const double one_minus_r2 = one_minus_r * (2.0 - one_minus_r);  // 1 - r^2 = (1 - r)(1 + r), exact from u
-        const double dx = r * std::cos(phi + rotation_), dy = r * std::sin(phi + rotation_);
+        const SinCosDouble sc = sin_cos_double(phi + rotation_);  // |phi + rotation_| < 8.3
+        const double dx = r * sc.cos, dy = r * sc.sin;
         double hx, hy, hz;
         if (normal_incidence_) {
             // k = 2 and 1 + z = 2 (1 - r^2): h = c + wi = 2 sqrt(1 - r^2) (d, sqrt(1 - r^2)),
@@ -305,6 +309,7 @@ public:
     }
 
 private:
+    friend struct lanes::TrowbridgeReitzVisibleNormalsLanes;
     static Point2f rotate(Point2f p, float c, float s) { return {c * p.x - s * p.y, s * p.x + c * p.y}; }
 
     TrowbridgeReitz tr_;

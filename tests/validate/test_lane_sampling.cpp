@@ -32,7 +32,9 @@ const char* const kLaneCases[] = {"uniform_disk_polar",
                                   "uniform_cone[cos_theta_max=-0.5]",
                                   "uniform_cone[cos_theta_max=0.99]",
                                   "trowbridge_reitz_normals[ax=0.05,ay=0.05]",
-                                  "trowbridge_reitz_normals[ax=0.3,ay=0.05]"};
+                                  "trowbridge_reitz_normals[ax=0.3,ay=0.05]",
+                                  "trowbridge_reitz_visible[ax=0.05,ay=0.05,theta_o=0]",
+                                  "trowbridge_reitz_visible[ax=0.3,ay=0.05,theta_o=85]"};
 
 std::vector<LanePath> paths() {
     std::vector<LanePath> p = {LanePath::Portable};

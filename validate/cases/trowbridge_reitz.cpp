@@ -69,7 +69,8 @@ void register_trowbridge_reitz_cases(Registry& registry) {
                  .params = {{"ax", ax}, {"ay", ay}, {"theta_o", theta_o}},
                  .description = "Trowbridge-Reitz visible normals for wo at theta_o in the xz-plane (spherical caps); "
                                 "pdf G1(wo) max(0, wo.wm) D(wm) / cos(theta_o) per solid angle",
-                 .domain = Domain::hemisphere()},
+                 .domain = Domain::hemisphere(),
+                 .lanes = &builtin_lanes::trowbridge_reitz_visible(vis)},
                 vis));
         }
     }

@@ -158,7 +158,8 @@ WARPCHECK_LANE void run_planar_group(const void* warp, const LaneGroup& g) {
 #define WARPCHECK_LANE_FORMS(X) \
     WARPCHECK_PLAIN_LANE_FORMS(X) \
     X(uniform_cone, UniformConeLanes) \
-    X(trowbridge_reitz_normals, TrowbridgeReitzNormalsLanes)
+    X(trowbridge_reitz_normals, TrowbridgeReitzNormalsLanes) \
+    X(trowbridge_reitz_visible, TrowbridgeReitzVisibleNormalsLanes)
 
 // The group functions of warps without a lane form (run_planar_group), on each path.
 void planar_avx512(const void* warp, const LaneGroup& g);

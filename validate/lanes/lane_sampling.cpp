@@ -5,7 +5,6 @@
 #include "validate/lanes/lane_sampling.h"
 
 #include <algorithm>
-#include <cstring>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -64,7 +63,7 @@ const LaneSampler& parameterised(const Kernel& kernel, LaneSampler::GroupFn avx5
     static std::deque<Entry> entries;  // a deque: elements never move
     const std::lock_guard lock(mutex);
     for (const Entry& e : entries)
-        if (std::memcmp(&e.kernel, &kernel, sizeof kernel) == 0) return e.sampler;
+        if (e.kernel == kernel) return e.sampler;
     Entry& e = entries.emplace_back(Entry{kernel, {}});
     e.sampler = {&e.kernel, avx512, portable};
     return e.sampler;
@@ -81,6 +80,11 @@ const LaneSampler& trowbridge_reitz_normals(float alpha_x, float alpha_y) {
     return parameterised(lanes::TrowbridgeReitzNormalsLanes{alpha_x, alpha_y},
                          &lane_kernels::trowbridge_reitz_normals_avx512,
                          &lane_kernels::trowbridge_reitz_normals_portable);
+}
+
+const LaneSampler& trowbridge_reitz_visible(const TrowbridgeReitzVisibleNormals& warp) {
+    return parameterised(lanes::TrowbridgeReitzVisibleNormalsLanes(warp), &lane_kernels::trowbridge_reitz_visible_avx512,
+                         &lane_kernels::trowbridge_reitz_visible_portable);
 }
 }  // namespace builtin_lanes
 

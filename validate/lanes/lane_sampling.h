@@ -24,6 +24,7 @@
 #include "chi2/binning.h"
 #include "chi2/parallel.h"
 #include "sampling/lanes.h"
+#include "sampling/trowbridge_reitz.h"
 #include "sampling/pcg32.h"
 #include "validate/api/warp_case.h"
 
@@ -63,6 +64,7 @@ const LaneSampler& uniform_hemisphere();
 const LaneSampler& uniform_sphere();
 const LaneSampler& uniform_cone(float cos_theta_max);
 const LaneSampler& trowbridge_reitz_normals(float alpha_x, float alpha_y);
+const LaneSampler& trowbridge_reitz_visible(const TrowbridgeReitzVisibleNormals& warp);
 }  // namespace builtin_lanes
 
 /// The lane sampler of a Uniform2D warp without a lane form: the lanes draw
