@@ -77,6 +77,15 @@ WARPCHECK_LANE F32 safe_sqrt(F32 x) { return sqrt(max_zero(x)); }
 /// sin_from_cos of sampling/math.h.
 WARPCHECK_LANE F32 sin_from_cos(F32 z) { return safe_sqrt((1.0f - z) * (1.0f + z)); }
 
+// The same functions of one float, so that a warp written as a template over
+// its float type (validate/api/float_template_warp.h) calls lanes::sqrt and
+// friends for either.
+WARPCHECK_LANE float abs(float x) { return std::abs(x); }
+WARPCHECK_LANE float sqrt(float x) { return std::sqrt(x); }
+WARPCHECK_LANE float max_zero(float x) { return x < 0.0f ? 0.0f : x; }
+WARPCHECK_LANE float safe_sqrt(float x) { return warpcheck::safe_sqrt(x); }
+WARPCHECK_LANE float sin_from_cos(float z) { return warpcheck::sin_from_cos(z); }
+
 /// The operations of detail::sin_cos_core on lanes of doubles.
 struct DoubleOps {
     using Real = F64;
@@ -109,6 +118,9 @@ WARPCHECK_LANE SinCos sin_cos(F32 phi) {
     detail::sin_cos_core<DoubleOps>(to_f64(phi), s, c);
     return {to_f32(s), to_f32(c)};
 }
+
+/// warpcheck::sin_cos, for a template over the float type.
+WARPCHECK_LANE warpcheck::SinCos sin_cos(float phi) { return warpcheck::sin_cos(phi); }
 
 /// Eight (kWidth) PCG32 generators stepped together, lane l a copy of one Pcg32.
 struct Pcg32Lanes {

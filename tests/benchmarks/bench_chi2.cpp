@@ -11,6 +11,9 @@
 //                           procedure (pbrt_style_chi2.h) on one
 //   BM_DrawWarpBinPerCore   draw + warp + bin on one thread vs a plain scalar
 //                           fused loop (PCG32, the warp, atan2, a grid index)
+//   BM_PlainWarpVsLanePath, BM_TemplatedWarpVsLanePath
+//                           a renderer's plain warp, and one written as a
+//                           template over its float type, vs the built-in lane form
 // Run: build/test/tests/benchmarks/bench_chi2 --benchmark_filter='Vs|PerCore'
 //
 // Measured 2026-11-23 (Release, g++ 12, 2-core AMD EPYC with AVX-512, shared
@@ -57,6 +60,7 @@
 #include "validate/checks/checks.h"
 #include "validate/lanes/lane_sampling.h"
 #include "validate/api/thread_pool.h"
+#include "validate/api/float_template_warp.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -252,6 +256,64 @@ void BM_PlainWarpVsLanePath(benchmark::State& state) {
     state.SetLabel(planar ? "plain struct, planar lane path" : "plain struct, scalar chunks");
 }
 BENCHMARK(BM_PlainWarpVsLanePath)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
+
+template <typename F>
+struct Vec2 {
+    F x, y;
+};
+template <typename F>
+struct Vec3 {
+    F x, y, z;
+};
+
+/// A renderer's cosine hemisphere written once as a template over its float
+/// type (validate/api/float_template_warp.h): the concentric map lifted, with
+/// the functions of warpcheck::lanes, which take a float or eight.
+struct TemplatedCosineHemisphere {
+    template <typename F>
+    Vec3<F> sample(Vec2<F> u) const {
+        const F a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
+        const F size = lanes::abs(a) + lanes::abs(b);
+        const F r = lanes::abs(a) > lanes::abs(b) ? a : b;
+        const F ratio = (lanes::abs(a) > lanes::abs(b) ? b : a) / (size == 0.0f ? F{} + 1.0f : r);
+        const F t = kPiOver4 * ratio;
+        const auto sc = lanes::sin_cos(lanes::abs(a) > lanes::abs(b) ? t : kPiOver2 - t);
+        const F x = size == 0.0f ? F{} : r * sc.cos, y = size == 0.0f ? F{} : r * sc.sin;
+        return {x, y, lanes::safe_sqrt(1.0f - x * x - y * y)};
+    }
+    float pdf(Vector3f v) const { return CosineHemisphere{}.pdf(v); }
+    Point2f invert(Vector3f v) const { return CosineHemisphere{}.invert(v); }
+};
+
+// The same for a renderer's warp written as a template over its float type:
+// its lane instantiation between the lanes' draws and binning (the planar lane
+// path), against the built-in lane form. Counter times_lane_path = subject /
+// reference (issue 27's target: at most 1.3).
+void BM_TemplatedWarpVsLanePath(benchmark::State& state) {
+    Fixture f(1);
+    const CheckContext ctx(f.options, f.pool, stream_for(f.warp->name(), f.options.seed));
+    WarpCaseInfo info = f.warp->info();
+    info.lanes = nullptr;
+    const auto templated = make_warp_case(info, TemplatedCosineHemisphere{});
+    const chi2::Binning binning(f.warp->domain());
+    const auto chunk_rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
+    bench::run_paired(
+        state,
+        [&] {
+            chi2::Histogram h =
+                lane_histogram(binning, kSamples, 4096, chunk_rng, planar_lane_sampler(*templated), {}, f.parallel());
+            benchmark::DoNotOptimize(h.counts.data());
+        },
+        [&] {
+            chi2::Histogram h = lane_histogram(binning, kSamples, 4096, chunk_rng, *f.warp->info().lanes, {}, f.parallel());
+            benchmark::DoNotOptimize(h.counts.data());
+        });
+    state.counters["times_lane_path"] = 1.0 / state.counters["speedup"];
+    state.counters["subject_Msamples_per_s"] = 1e-3 * kSamples / state.counters["subject_min_ms"];
+    state.counters["reference_Msamples_per_s"] = 1e-3 * kSamples / state.counters["reference_min_ms"];
+    state.SetLabel("template over the float type, planar lane path");
+}
+BENCHMARK(BM_TemplatedWarpVsLanePath)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
 
 }  // namespace
 }  // namespace warpcheck

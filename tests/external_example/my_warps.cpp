@@ -346,6 +346,46 @@ void register_sphere_views(warpcheck::Registry& registry) {
     }
 }
 
+// A warp written once as a template over its float type, as Mitsuba's are:
+// make_warp_case instantiates it on float for every check, and on eight floats
+// at once for the chi-square check's vectorised path (validate/api/float_template_warp.h),
+// where it gives the same bits. warpcheck::lanes has the math for either type.
+template <typename Float>
+struct Vec2 {
+    Float x, y;
+};
+template <typename Float>
+struct Vec3 {
+    Float x, y, z;
+};
+
+// Uniform directions in the cone z >= cos_theta_max. The wrong twin draws its
+// cos theta from a cone 2% wider than the one its pdf describes.
+struct TemplatedCone {
+    float cos_theta_max, drawn_cos_theta_max;
+    template <typename Float>
+    Vec3<Float> sample(Vec2<Float> u) const {
+        const Float one_minus_cos = u.x * (1 - drawn_cos_theta_max);
+        const Float sin_theta = warpcheck::lanes::safe_sqrt(one_minus_cos * (2 - one_minus_cos));
+        const auto phi = warpcheck::lanes::sin_cos(2 * kPif * u.y);
+        return {sin_theta * phi.cos, sin_theta * phi.sin, 1 - one_minus_cos};
+    }
+    float pdf(warpcheck::Vector3f w) const {
+        return w.z >= cos_theta_max - 0x1p-22f ? 1 / (2 * kPif * (1 - cos_theta_max)) : 0;
+    }
+};
+
+void register_templated(warpcheck::Registry& registry) {
+    for (bool wrong : {false, true}) {
+        const float c = 0.3f;
+        registry.add_case(warpcheck::make_warp_case(
+            {.family = wrong ? "templated_cone_too_wide" : "templated_cone",
+             .description = "uniform in a cone, written as a template over the float type",
+             .domain = warpcheck::Domain::spherical_cap(c)},
+            TemplatedCone{c, wrong ? 1 - 1.02f * (1 - c) : c}));
+    }
+}
+
 // A float sampler of raw bits, on the exhaustive check's fast path: all 2^32
 // inputs are swept and every float counted. The correct one keeps the top 24
 // bits (each float of the 2^-24 grid exactly 256 times, in order); the wrong
@@ -420,10 +460,12 @@ void warpcheck_register(warpcheck::Registry& registry) {
     register_sphere_views(registry);
     register_renderer_kinds(registry);
     register_float_sampler(registry);
+    register_templated(registry);
     // The wrong twins: known flaws, run by name (or with --include-flawed).
     registry.mark_known_flaw("normal_pdf_forgets_sigma[mu=2,sigma=0.5]", "the density lacks its 1/sigma");
     registry.mark_known_flaw("mirrored_exponential_inverse_flipped[b=1,rate=4]", "invert returns 1 - u");
     registry.mark_known_flaw("cosine_hemisphere_no_inverse_half_pdf", "the density integrates to 1/2");
     registry.mark_known_flaw("uniform_sphere_azimuth_bent", "phi bent by 1e-3 of a turn");
     registry.mark_known_flaw("renderer_unit_float_swapped", "neighbouring floats swapped: not monotone as claimed");
+    registry.mark_known_flaw("templated_cone_too_wide", "draws from a cone 2% wider than its pdf's");
 }

@@ -20,6 +20,7 @@
 
 #include "validate/api/case_grid.h"
 #include "validate/api/exhaustive_sweep.h"
+#include "validate/api/float_template_warp.h"
 #include "validate/api/registry.h"
 #include "validate/api/warp_case.h"
 
