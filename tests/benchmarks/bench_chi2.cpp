@@ -11,9 +11,9 @@
 //                           procedure (pbrt_style_chi2.h) on one
 //   BM_DrawWarpBinPerCore   draw + warp + bin on one thread vs a plain scalar
 //                           fused loop (PCG32, the warp, atan2, a grid index)
-//   BM_PlainWarpVsLanePath, BM_TemplatedWarpVsLanePath
-//                           a renderer's plain warp, and one written as a
-//                           template over its float type, vs the built-in lane form
+//   BM_PlainWarpVsLanePath  a renderer's plain warp (arg 0, 1), and one written
+//                           as a template over its float type (arg 2), vs the
+//                           built-in lane form
 // Run: build/test/tests/benchmarks/bench_chi2 --benchmark_filter='Vs|PerCore'
 //
 // Measured 2026-11-23 (Release, g++ 12, 2-core AMD EPYC with AVX-512, shared
@@ -221,42 +221,6 @@ void BM_DrawWarpBinPerCore(benchmark::State& state) {
 }
 BENCHMARK(BM_DrawWarpBinPerCore)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
 
-// A renderer's own 2D warp against the built-in lane path, on one thread:
-// sampling + binning of 10^7 samples of the cosine hemisphere, the subject a
-// plain struct with sample/pdf registered by make_warp_case (as through the
-// installed package), no lane form; the reference the built-in case's lane
-// form. Counter times_lane_path = subject / reference (best of the rounds;
-// issue 27's target: at most 2.5). Arg 0: the planar lane path the chi-square
-// check takes for it; arg 1: the scalar chunk path it took before.
-void BM_PlainWarpVsLanePath(benchmark::State& state) {
-    Fixture f(1);
-    const CheckContext ctx(f.options, f.pool, stream_for(f.warp->name(), f.options.seed));
-    WarpCaseInfo info = f.warp->info();
-    info.lanes = nullptr;
-    const auto plain = make_warp_case(info, CosineHemisphere{});
-    const chi2::Binning binning(f.warp->domain());
-    const auto chunk_rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
-    const chi2::SampleChunk generate = chi2_sample_chunks(*plain, ctx);
-    const bool planar = state.range(0) == 0;
-    bench::run_paired(
-        state,
-        [&] {
-            chi2::Histogram h =
-                planar ? lane_histogram(binning, kSamples, 4096, chunk_rng, planar_lane_sampler(*plain), {}, f.parallel())
-                       : chi2::sample_histogram(binning, kSamples, 4096, generate, {}, f.parallel());
-            benchmark::DoNotOptimize(h.counts.data());
-        },
-        [&] {
-            chi2::Histogram h = lane_histogram(binning, kSamples, 4096, chunk_rng, *f.warp->info().lanes, {}, f.parallel());
-            benchmark::DoNotOptimize(h.counts.data());
-        });
-    state.counters["times_lane_path"] = 1.0 / state.counters["speedup"];
-    state.counters["subject_Msamples_per_s"] = 1e-3 * kSamples / state.counters["subject_min_ms"];
-    state.counters["reference_Msamples_per_s"] = 1e-3 * kSamples / state.counters["reference_min_ms"];
-    state.SetLabel(planar ? "plain struct, planar lane path" : "plain struct, scalar chunks");
-}
-BENCHMARK(BM_PlainWarpVsLanePath)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
-
 template <typename F>
 struct Vec2 {
     F x, y;
@@ -285,23 +249,33 @@ struct TemplatedCosineHemisphere {
     Point2f invert(Vector3f v) const { return CosineHemisphere{}.invert(v); }
 };
 
-// The same for a renderer's warp written as a template over its float type:
-// its lane instantiation between the lanes' draws and binning (the planar lane
-// path), against the built-in lane form. Counter times_lane_path = subject /
-// reference (issue 27's target: at most 1.3).
-void BM_TemplatedWarpVsLanePath(benchmark::State& state) {
+// A renderer's own 2D warp against the built-in lane path, on one thread:
+// sampling + binning of 10^7 samples of the cosine hemisphere, the subject
+// registered by make_warp_case (as through the installed package), no lane
+// form; the reference the built-in case's lane form. Counter times_lane_path =
+// subject / reference (best of the rounds; issue 27's targets: at most 2.5 for
+// a plain warp, 1.3 for a template). Arg 0: a plain struct with sample/pdf on
+// the planar lane path the chi-square check takes for it; arg 1: the same on
+// the scalar chunk path it took before; arg 2: the warp written as a template
+// over its float type, its lane instantiation on the planar lane path.
+void BM_PlainWarpVsLanePath(benchmark::State& state) {
     Fixture f(1);
     const CheckContext ctx(f.options, f.pool, stream_for(f.warp->name(), f.options.seed));
     WarpCaseInfo info = f.warp->info();
     info.lanes = nullptr;
-    const auto templated = make_warp_case(info, TemplatedCosineHemisphere{});
+    const int kind = static_cast<int>(state.range(0));
+    const auto subject = kind == 2 ? make_warp_case(info, TemplatedCosineHemisphere{})
+                                   : make_warp_case(info, CosineHemisphere{});
     const chi2::Binning binning(f.warp->domain());
     const auto chunk_rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
+    const chi2::SampleChunk generate = chi2_sample_chunks(*subject, ctx);
     bench::run_paired(
         state,
         [&] {
             chi2::Histogram h =
-                lane_histogram(binning, kSamples, 4096, chunk_rng, planar_lane_sampler(*templated), {}, f.parallel());
+                kind != 1 ? lane_histogram(binning, kSamples, 4096, chunk_rng, planar_lane_sampler(*subject), {},
+                                           f.parallel())
+                          : chi2::sample_histogram(binning, kSamples, 4096, generate, {}, f.parallel());
             benchmark::DoNotOptimize(h.counts.data());
         },
         [&] {
@@ -311,9 +285,13 @@ void BM_TemplatedWarpVsLanePath(benchmark::State& state) {
     state.counters["times_lane_path"] = 1.0 / state.counters["speedup"];
     state.counters["subject_Msamples_per_s"] = 1e-3 * kSamples / state.counters["subject_min_ms"];
     state.counters["reference_Msamples_per_s"] = 1e-3 * kSamples / state.counters["reference_min_ms"];
-    state.SetLabel("template over the float type, planar lane path");
+    state.SetLabel(kind == 0   ? "plain struct, planar lane path"
+                   : kind == 1 ? "plain struct, scalar chunks"
+                               : "template over the float type, planar lane path");
 }
-BENCHMARK(BM_TemplatedWarpVsLanePath)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
+BENCHMARK(BM_PlainWarpVsLanePath)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
+
+
 
 }  // namespace
 }  // namespace warpcheck
