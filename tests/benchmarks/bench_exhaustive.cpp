@@ -80,7 +80,7 @@
 
 #include "sampling/unit_float.h"
 #include "validate/api/exhaustive_sweep.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 
 namespace {
 

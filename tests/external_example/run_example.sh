@@ -17,7 +17,9 @@ cmake --install "$build_dir" --prefix "$work/prefix" > "$work/install.log"
 # of the private rooms' (the command line, the worker supervisor, the checks).
 installed=$(find "$work/prefix/include/warpcheck" -name '*.h' | wc -l)
 [ "$installed" -le 30 ] || { echo "$installed installed headers, more than 30"; exit 1; }
-for private in validate/cli/cli.h validate/run/worker_supervisor.h validate/checks/checks.h reports/json_report.h; do
+for private in validate/cli/cli.h validate/run/worker_supervisor.h validate/run/runner.h validate/run/job.h \
+  validate/run/thread_pool.h validate/checks/checks.h validate/checks/check.h validate/gtest/job_tests.h \
+  reports/json_report.h reports/result.h; do
   [ ! -e "$work/prefix/include/warpcheck/$private" ] || { echo "private header $private installed"; exit 1; }
 done
 echo "$installed installed headers"

@@ -17,9 +17,9 @@
 #include "sampling/sphere.h"
 #include "sampling/trowbridge_reitz.h"
 #include "support/builtin_case.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/checks/checks.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -38,7 +38,7 @@ CheckResult run_chi2(const WarpCase& warp, unsigned threads = 2, uint64_t sample
     options.samples = samples;
     options.threads = threads;
     ThreadPool pool(threads);
-    const CheckContext ctx(options, pool, stream_for(warp.name() + "/chi2", options.seed));
+    const CheckContext ctx(options, pool.executor(), stream_for(warp.name() + "/chi2", options.seed));
     return make_chi2_check()->run(warp, ctx);
 }
 

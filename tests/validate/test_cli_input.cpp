@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/cli/cli_input.h"
 #include "validate/api/warp_case.h"
 

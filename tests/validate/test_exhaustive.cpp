@@ -15,7 +15,7 @@
 #include "validate/checks/checks.h"
 #include "validate/api/exhaustive_sweep.h"
 #include "validate/api/registry.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 
 namespace warpcheck {
 namespace {

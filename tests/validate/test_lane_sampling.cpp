@@ -14,11 +14,11 @@
 #include "sampling/hemisphere.h"
 #include "sampling/sphere.h"
 #include "support/builtin_case.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/checks/checks.h"
 #include "validate/lanes/lane_sampling.h"
 #include "validate/api/registry.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -54,7 +54,7 @@ TEST(LaneSampling, EveryLaneCaseBuildsTheScalarHistogramOnEveryPath) {
     for (const char* name : kLaneCases) {
         const WarpCase& warp = testing::builtin_case(name);
         ASSERT_NE(warp.info().lanes, nullptr) << name;
-        const CheckContext ctx(options, pool, stream_for(warp.name(), 7));
+        const CheckContext ctx(options, pool.executor(), stream_for(warp.name(), 7));
         const chi2::Binning binning(warp.domain());
         // No zero cells, and every third cell flagged as zero (its samples move
         // to a neighbour within the tolerance or are counted by Binning::bin).
@@ -113,7 +113,7 @@ TEST(LaneSampling, WarpsWithoutLaneFormBuildTheScalarHistogramOnEveryPath) {
     cases.push_back(&spans);
     ASSERT_GE(cases.size(), 15u);  // the five lane forms, cones, cosine powers, Trowbridge-Reitz, ...
     for (const WarpCase* warp : cases) {
-        const CheckContext ctx(options, pool, stream_for(warp->name(), 5));
+        const CheckContext ctx(options, pool.executor(), stream_for(warp->name(), 5));
         const chi2::Binning binning(warp->domain());
         const chi2::Histogram expected = scalar_histogram(*warp, binning, kSamples, {}, ctx);
         for (const LanePath path : paths()) {
@@ -132,7 +132,7 @@ TEST(LaneSampling, PlanarComparisonCanFail) {
     const chi2::Binning binning(warp.domain());
     RunOptions options;
     ThreadPool pool(1);
-    const CheckContext ctx(options, pool, stream_for(warp.name(), 1));
+    const CheckContext ctx(options, pool.executor(), stream_for(warp.name(), 1));
     const auto rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
     const chi2::Histogram got =
         lane_histogram(binning, 100'000, 4096, rng, planar_lane_sampler(other), {}, ctx.executor());
@@ -146,7 +146,7 @@ TEST(LaneSampling, SameHistogramForAnyThreadCount) {
     std::vector<chi2::Histogram> results;
     for (const unsigned threads : {1u, 2u, 3u}) {
         ThreadPool pool(threads);
-        const CheckContext ctx(options, pool, stream_for(warp.name(), 3));
+        const CheckContext ctx(options, pool.executor(), stream_for(warp.name(), 3));
         const auto rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
         results.push_back(lane_histogram(binning, 200'000, 4096, rng, *warp.info().lanes, {}, ctx.executor()));
     }
@@ -160,7 +160,7 @@ TEST(LaneSampling, ComparisonCanFail) {
     const chi2::Binning binning(warp.domain());
     RunOptions options;
     ThreadPool pool(1);
-    const CheckContext ctx(options, pool, stream_for(warp.name(), 1));
+    const CheckContext ctx(options, pool.executor(), stream_for(warp.name(), 1));
     const auto rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
     const chi2::Histogram other =
         lane_histogram(binning, 100'000, 4096, rng, builtin_lanes::cosine_hemisphere(), {}, ctx.executor());
@@ -191,7 +191,7 @@ TEST(LaneSampling, Chi2CheckGivesTheSameResultWithoutTheLaneForm) {
     options.samples = 500'000;
     ThreadPool pool(2);
     const auto check = make_chi2_check();
-    const CheckContext ctx(options, pool, stream_for(with_lanes.name(), options.seed));
+    const CheckContext ctx(options, pool.executor(), stream_for(with_lanes.name(), options.seed));
     const CheckResult a = check->run(with_lanes, ctx), b = check->run(*without, ctx);
     EXPECT_EQ(a.verdict, b.verdict);
     EXPECT_EQ(a.p_value, b.p_value);

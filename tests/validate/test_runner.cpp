@@ -13,6 +13,7 @@
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
 #include "validate/api/registry.h"
+#include "validate/run/thread_pool.h"
 
 namespace warpcheck {
 namespace {

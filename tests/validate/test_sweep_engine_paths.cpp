@@ -17,7 +17,7 @@
 
 #include "sampling/hash.h"
 #include "validate/api/exhaustive_sweep.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 
 namespace warpcheck {
 namespace {

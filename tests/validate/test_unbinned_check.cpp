@@ -18,10 +18,10 @@
 #include "chi2/multiple_testing.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sphere.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/checks/checks.h"
 #include "validate/run/runner.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -35,7 +35,7 @@ CheckResult run_check(const Check& check, const WarpCase& warp, uint64_t seed, u
     options.seed = seed;
     options.threads = threads;
     ThreadPool pool(threads);
-    const CheckContext ctx(options, pool, stream_for(warp.name() + "/" + check.name(), options.seed));
+    const CheckContext ctx(options, pool.executor(), stream_for(warp.name() + "/" + check.name(), options.seed));
     return check.run(warp, ctx);
 }
 

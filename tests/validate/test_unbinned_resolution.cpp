@@ -21,9 +21,9 @@
 
 #include "chi2/multiple_testing.h"
 #include "sampling/piecewise_constant.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/checks/checks.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -40,7 +40,7 @@ CheckResult run_unbinned(const WarpCase& warp, uint64_t seed, uint64_t samples =
     options.samples = samples;
     ThreadPool pool(2);
     const auto check = make_unbinned_check();
-    const CheckContext ctx(options, pool, stream_for(warp.name() + "/unbinned", options.seed));
+    const CheckContext ctx(options, pool.executor(), stream_for(warp.name() + "/unbinned", options.seed));
     return check->run(warp, ctx);
 }
 

@@ -13,7 +13,6 @@
 
 #include "chi2/float_sweep.h"
 #include "chi2/run_borders.h"
-#include "validate/api/check.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -75,19 +74,6 @@ private:
     std::string grid_;
     bool monotone_;
 };
-
-/// The time budget of a check that makes `calls` sampler calls: the run's
-/// budget if the user set it, otherwise at least calls * 100 ns. 100 ns is a
-/// stated worst per-call cost: the slowest measured full sweep, the generic
-/// batch path over 2^32 inputs of a non-monotone sampler with its exact
-/// recount, took 121 s on two cores (28 ns per call); 100 ns leaves a factor
-/// 3.5 for slower or busier machines (2^32 calls: 430 s).
-inline double sweep_time_budget(const RunOptions& options, uint64_t calls) {
-    constexpr double kWorstSecondsPerCall = 100e-9;
-    if (options.time_budget_set) return options.check_time_budget;
-    const double needed = static_cast<double>(calls) * kWorstSecondsPerCall;
-    return options.check_time_budget > needed ? options.check_time_budget : needed;
-}
 
 namespace detail {
 

@@ -23,8 +23,8 @@
 #include "validate/api/registry.h"
 #include "validate/api/warp_case.h"
 
-/// Defined by the program that links warpcheck::main: adds its warp cases (and
-/// any checks of its own) to the registry.
+/// Defined by the program that links warpcheck::main: adds its warp cases to
+/// the registry.
 void warpcheck_register(warpcheck::Registry& registry);
 
 namespace warpcheck {

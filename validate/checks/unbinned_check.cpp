@@ -698,7 +698,9 @@ public:
         return "KS, Kuiper and Anderson-Darling tests of each marginal against its CDF from the pdf, allowing for "
                "float resolution and the CDF's error (Sidak over the tests)";
     }
-    bool applies_to(const WarpCase& warp) const override { return warp.has_pdf() && !warp.is_discrete(); }
+    Applicability applicability(const WarpCase& warp) const override {
+        return Applicability::when(warp.has_pdf() && !warp.is_discrete());
+    }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const Computed c = compute(warp, ctx);

@@ -17,6 +17,8 @@
 #include "reports/terminal_table.h"
 #include "sampling/hash.h"
 #include "validate/cli/cli_input.h"
+#include "validate/gtest/job_tests.h"
+#include "validate/run/runner.h"
 #include "warpcheck/version.h"
 
 namespace warpcheck::gtest {

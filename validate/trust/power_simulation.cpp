@@ -9,7 +9,7 @@
 #include "chi2/multiple_testing.h"
 #include "validate/checks/power_level.h"
 #include "validate/run/runner.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 
 namespace warpcheck {
 
@@ -48,7 +48,7 @@ private:
 };
 
 CheckResult run_once(const WarpCase& warp, const Check& check, const RunOptions& options, ThreadPool& pool) {
-    const CheckContext ctx(options, pool, job_stream(warp, check, options.seed));
+    const CheckContext ctx(options, pool.executor(), job_stream(warp, check, options.seed));
     return check.run(warp, ctx);
 }
 

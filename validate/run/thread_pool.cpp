@@ -1,4 +1,4 @@
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 
 #include <exception>
 

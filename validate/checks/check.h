@@ -11,11 +11,12 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
+#include "chi2/parallel.h"
 #include "sampling/hash.h"
 #include "sampling/pcg32.h"
 #include "reports/result.h"
-#include "validate/api/thread_pool.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -54,6 +55,20 @@ struct RunOptions {
     std::string program = "validate";
 };
 
+/// The time budget of a check that makes `calls` sampler calls: the run's
+/// budget if the user set it, otherwise at least calls * 100 ns. 100 ns is a
+/// stated worst per-call cost: the slowest measured full sweep, the generic
+/// batch path over 2^32 inputs of a non-monotone sampler with its exact
+/// recount, took 121 s on two cores (28 ns per call); 100 ns leaves a factor
+/// 3.5 for slower or busier machines (2^32 calls: 430 s).
+inline double sweep_time_budget(const RunOptions& options, uint64_t calls) {
+    constexpr double kWorstSecondsPerCall = 100e-9;
+    if (options.time_budget_set) return options.check_time_budget;
+    const double needed = static_cast<double>(calls) * kWorstSecondsPerCall;
+    return options.check_time_budget > needed ? options.check_time_budget : needed;
+}
+
+
 /// Thrown inside a check that the runner has cancelled.
 struct CheckCancelled : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -62,9 +77,11 @@ struct CheckCancelled : std::runtime_error {
 /// What a check gets to run with.
 class CheckContext {
 public:
-    CheckContext(const RunOptions& options, ThreadPool& pool, StreamId stream,
+    /// `parallel` runs the check's loops: the runner's thread pool
+    /// (validate/run/thread_pool.h, ThreadPool::executor).
+    CheckContext(const RunOptions& options, chi2::ParallelFor parallel, StreamId stream,
                  const std::atomic<bool>* cancelled = nullptr)
-        : options_(options), pool_(pool), stream_(stream), cancelled_(cancelled) {}
+        : options_(options), parallel_(std::move(parallel)), stream_(stream), cancelled_(cancelled) {}
 
     const RunOptions& options() const { return options_; }
     StreamId stream() const { return stream_; }
@@ -81,13 +98,11 @@ public:
         return Pcg32(stream_.sequence, hash_combine(stream_.seed, chunk + 1));
     }
 
-    /// body(i) for i in [0, n) across the pool; see thread_pool.h for the rule
-    /// that keeps the result independent of the thread count.
-    void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body) const {
-        pool_.parallel_for(n, body);
-    }
+    /// body(i) for i in [0, n) across the pool; see validate/run/thread_pool.h
+    /// for the rule that keeps the result independent of the thread count.
+    void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body) const { parallel_(n, body); }
     /// The same loop as a chi2::ParallelFor, to hand to chi2 and the sweeps.
-    chi2::ParallelFor executor() const { return pool_.executor(); }
+    chi2::ParallelFor executor() const { return parallel_; }
 
     /// Whether the runner has given up on this check (its time budget ran out).
     bool cancelled() const { return cancelled_ && cancelled_->load(std::memory_order_relaxed); }
@@ -99,7 +114,7 @@ public:
 
 private:
     const RunOptions& options_;
-    ThreadPool& pool_;
+    chi2::ParallelFor parallel_;
     StreamId stream_;
     const std::atomic<bool>* cancelled_;
 };
@@ -122,6 +137,29 @@ inline WarpOutput to_warp_output(const chi2::DomainPoint& p) {
     return {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
 }
 
+/// A check's one decision on a case: it runs; or it is not about such cases
+/// (an exhaustive sweep of a 2D warp: no row is shown); or the case lacks the
+/// part the check tests (a warp without an inverse has no round trip: the run
+/// shows an n/a row saying why, instead of leaving the check out silently).
+class Applicability {
+public:
+    static Applicability runs() { return Applicability(true, {}); }
+    static Applicability not_about_such_cases() { return Applicability(false, {}); }
+    /// Not applicable because the case lacks a part: `why`, in a few words.
+    static Applicability lacks(std::string why) { return Applicability(false, std::move(why)); }
+    /// runs() where `about`, otherwise not_about_such_cases().
+    static Applicability when(bool about) { return about ? runs() : not_about_such_cases(); }
+
+    bool applies() const { return applies_; }
+    /// Why the case gets an n/a row; empty where the check applies or is not about such cases.
+    const std::string& not_applicable_because() const { return why_; }
+
+private:
+    Applicability(bool applies, std::string why) : applies_(applies), why_(std::move(why)) {}
+    bool applies_;
+    std::string why_;
+};
+
 class Check {
 public:
     virtual ~Check() = default;
@@ -129,15 +167,12 @@ public:
     virtual std::string name() const = 0;
     /// One line for --list.
     virtual std::string description() const = 0;
-    virtual bool applies_to(const WarpCase& warp) const = 0;
-    /// Where applies_to is false because the case lacks a part this check tests
-    /// (a warp without an inverse has no round trip), why, in a few words: the
-    /// run then shows an n/a row with it instead of leaving the check out
-    /// silently. Empty (the default): the check is simply not about such cases
-    /// (an exhaustive sweep of a 2D warp) and no row is shown.
-    virtual std::string not_applicable_because(const WarpCase& warp) const {
-        (void)warp;
-        return {};
+    /// Whether the check runs on the case, and where it does not, whether the
+    /// case lacks what the check tests (Applicability): stated once, here.
+    virtual Applicability applicability(const WarpCase& warp) const = 0;
+    bool applies_to(const WarpCase& warp) const { return applicability(warp).applies(); }
+    std::string not_applicable_because(const WarpCase& warp) const {
+        return applicability(warp).not_applicable_because();
     }
     /// Whether the check runs by default; heavy sweeps run only with --exhaustive.
     virtual bool runs_by_default(const RunOptions& options) const {
