@@ -30,11 +30,12 @@ TEST(RoundtripCheck, CorrectWarpPasses) {
 // The inverse forgets that r = sqrt(u.x): it returns r instead of r^2.
 TEST(RoundtripCheck, InverseWithoutSquareFails) {
     auto warp = make_warp_case(
-        disk_info("polar_broken"), [](Point2f u) { return UniformDiskPolar{}.sample(u); },
-        [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
-        [](Point2f p) {
-            return Point2f{std::sqrt(p.x * p.x + p.y * p.y), azimuth_to_unit(p.x, p.y)};
-        });
+        disk_info("polar_broken"),
+            warp_of([](Point2f u) { return UniformDiskPolar{}.sample(u); })
+                .with_pdf([](Point2f x) { return UniformDiskPolar{}.pdf(x); })
+                .with_invert([](Point2f p) {
+                    return Point2f{std::sqrt(p.x * p.x + p.y * p.y), azimuth_to_unit(p.x, p.y)};
+                }));
     const CheckResult r = run_check(*make_roundtrip_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_GT(*r.figure("failures"), 1000.0);
@@ -47,26 +48,28 @@ TEST(RoundtripCheck, InverseWithoutSquareFails) {
 // An inverse that is off by half of a 1/64 cell in u.x.
 TEST(RoundtripCheck, InverseOffByHalfACellFails) {
     auto warp = make_warp_case(
-        disk_info("polar_shifted"), [](Point2f u) { return UniformDiskPolar{}.sample(u); },
-        [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
-        [](Point2f p) {
-            Point2f u = UniformDiskPolar{}.invert(p);
-            u.x = std::min(u.x + 1.0f / 128.0f, kOneMinusEpsilon);
-            return u;
-        });
+        disk_info("polar_shifted"),
+            warp_of([](Point2f u) { return UniformDiskPolar{}.sample(u); })
+                .with_pdf([](Point2f x) { return UniformDiskPolar{}.pdf(x); })
+                .with_invert([](Point2f p) {
+                    Point2f u = UniformDiskPolar{}.invert(p);
+                    u.x = std::min(u.x + 1.0f / 128.0f, kOneMinusEpsilon);
+                    return u;
+                }));
     EXPECT_EQ(run_check(*make_roundtrip_check(), *warp).verdict, Verdict::Fail);
 }
 
 // NaN only at one edge of the input square must still fail: NaN never compares as small.
 TEST(RoundtripCheck, NaNAtOneEdgeFails) {
     auto warp = make_warp_case(
-        disk_info("polar_nan_edge"), [](Point2f u) { return UniformDiskPolar{}.sample(u); },
-        [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
-        [](Point2f p) {
-            Point2f u = UniformDiskPolar{}.invert(p);
-            if (u.x == 0.0f) u.y = kNaN;
-            return u;
-        });
+        disk_info("polar_nan_edge"),
+            warp_of([](Point2f u) { return UniformDiskPolar{}.sample(u); })
+                .with_pdf([](Point2f x) { return UniformDiskPolar{}.pdf(x); })
+                .with_invert([](Point2f p) {
+                    Point2f u = UniformDiskPolar{}.invert(p);
+                    if (u.x == 0.0f) u.y = kNaN;
+                    return u;
+                }));
     const CheckResult r = run_check(*make_roundtrip_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_GE(*r.figure("failures"), 4.0);  // the four edge inputs with u.x = 0
@@ -77,11 +80,14 @@ TEST(RoundtripCheck, RawBitInversesMustBeExact) {
     info.exact_inverse = true;
     auto sample = [](uint32_t b) { return static_cast<float>(b >> 8) * 0x1p-24f; };
     auto pdf = [](float) { return 1.0f; };
-    auto good = make_warp_case(info, sample, pdf, [](float x) { return static_cast<uint32_t>(x * 0x1p24f) << 8; });
+    auto good = make_warp_case(info,
+        warp_of(sample).with_pdf(pdf).with_invert([](float x) { return static_cast<uint32_t>(x * 0x1p24f) << 8; }));
     EXPECT_EQ(run_check(*make_roundtrip_check(), *good).verdict, Verdict::Pass);
     info.family = "bits24_last";  // returns the last preimage, not the first
-    auto late = make_warp_case(info, sample, pdf,
-                               [](float x) { return (static_cast<uint32_t>(x * 0x1p24f) << 8) | 0xffu; });
+    auto late = make_warp_case(info,
+        warp_of(sample)
+            .with_pdf(pdf)
+            .with_invert([](float x) { return (static_cast<uint32_t>(x * 0x1p24f) << 8) | 0xffu; }));
     EXPECT_EQ(run_check(*make_roundtrip_check(), *late).verdict, Verdict::Fail);
 }
 
@@ -96,22 +102,28 @@ TEST(ConsistencyCheck, EachViolationHasItsOwnMessage) {
     const auto domain = chi2::Domain::hemisphere();
     auto nan_sample = make_warp_case(
         {"nan_sample", {}, "", InputKind::Uniform2D, domain},
-        [](Point2f u) {
-            Vector3f v = UniformHemisphere{}.sample(u);
-            if (u.x > 0.999f) v.x = kNaN;
-            return v;
-        },
-        [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
-        [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+        warp_of([](Point2f u) {
+                    Vector3f v = UniformHemisphere{}.sample(u);
+                    if (u.x > 0.999f) v.x = kNaN;
+                    return v;
+                })
+            .with_pdf([](Vector3f x) { return UniformHemisphere{}.pdf(x); })
+            .with_invert([](Vector3f x) { return UniformHemisphere{}.invert(x); }));
     auto outside = make_warp_case(
-        {"outside", {}, "", InputKind::Uniform2D, domain}, [](Point2f u) { return UniformSphere{}.sample(u); },
-        [](Vector3f) { return 0.5f; }, [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+        {"outside", {}, "", InputKind::Uniform2D, domain},
+            warp_of([](Point2f u) { return UniformSphere{}.sample(u); })
+                .with_pdf([](Vector3f) { return 0.5f; })
+                .with_invert([](Vector3f x) { return UniformHemisphere{}.invert(x); }));
     auto zero_pdf = make_warp_case(
-        {"zero_pdf", {}, "", InputKind::Uniform2D, domain}, [](Point2f u) { return UniformHemisphere{}.sample(u); },
-        [](Vector3f v) { return v.z > 0.5f ? 0.0f : 0.3f; }, [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+        {"zero_pdf", {}, "", InputKind::Uniform2D, domain},
+            warp_of([](Point2f u) { return UniformHemisphere{}.sample(u); })
+                .with_pdf([](Vector3f v) { return v.z > 0.5f ? 0.0f : 0.3f; })
+                .with_invert([](Vector3f x) { return UniformHemisphere{}.invert(x); }));
     auto nan_pdf = make_warp_case(
-        {"nan_pdf", {}, "", InputKind::Uniform2D, domain}, [](Point2f u) { return UniformHemisphere{}.sample(u); },
-        [](Vector3f v) { return v.z > 0.5f ? kNaN : 0.3f; }, [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+        {"nan_pdf", {}, "", InputKind::Uniform2D, domain},
+            warp_of([](Point2f u) { return UniformHemisphere{}.sample(u); })
+                .with_pdf([](Vector3f v) { return v.z > 0.5f ? kNaN : 0.3f; })
+                .with_invert([](Vector3f x) { return UniformHemisphere{}.invert(x); }));
     const auto check = make_consistency_check();
     const CheckResult a = run_check(*check, *nan_sample), b = run_check(*check, *outside),
                       c = run_check(*check, *zero_pdf), d = run_check(*check, *nan_pdf);

@@ -75,13 +75,13 @@ std::unique_ptr<WarpCase> energy_gain(double eps) {
     const Lambertian l(1.0f);
     return make_bsdf_case(
         {.family = "power_energy_gain"}, {.wo = bsdf_direction(85), .lobes = l.flags()},
-        [l, gain](Vector3f wo, float uc, Point2f u) {
-            BsdfSample s = l.sample(wo, uc, u);
-            s.f *= gain;
-            return s;
-        },
-        [l, gain](Vector3f wo, Vector3f wi) { return gain * l.f(wo, wi); },
-        [l](Vector3f wo, Vector3f wi) { return l.pdf(wo, wi); });
+        bsdf_of([l, gain](Vector3f wo, float uc, Point2f u) {
+                    BsdfSample s = l.sample(wo, uc, u);
+                    s.f *= gain;
+                    return s;
+                })
+            .with_f([l, gain](Vector3f wo, Vector3f wi) { return gain * l.f(wo, wi); })
+            .with_pdf([l](Vector3f wo, Vector3f wi) { return l.pdf(wo, wi); }));
 }
 
 // Weight error: a rough conductor (alpha 0.3, theta_o 60) whose sampled f is
@@ -91,12 +91,13 @@ std::unique_ptr<WarpCase> weight_error(double eps) {
     const auto scale = static_cast<float>(1.0 + eps);
     return make_bsdf_case(
         {.family = "power_weight_error"}, {.wo = bsdf_direction(60), .lobes = c.flags()},
-        [c, scale](Vector3f wo, float uc, Point2f u) {
-            BsdfSample s = c.sample(wo, uc, u);
-            s.f *= scale;
-            return s;
-        },
-        [c](Vector3f wo, Vector3f wi) { return c.f(wo, wi); }, [c](Vector3f wo, Vector3f wi) { return c.pdf(wo, wi); });
+        bsdf_of([c, scale](Vector3f wo, float uc, Point2f u) {
+                    BsdfSample s = c.sample(wo, uc, u);
+                    s.f *= scale;
+                    return s;
+                })
+            .with_f([c](Vector3f wo, Vector3f wi) { return c.f(wo, wi); })
+            .with_pdf([c](Vector3f wo, Vector3f wi) { return c.pdf(wo, wi); }));
 }
 
 // Lobe-probability error: a smooth dielectric (theta_o 60, F = 0.089) that
@@ -106,8 +107,9 @@ std::unique_ptr<WarpCase> lobe_error(double eps) {
     const auto scale = static_cast<float>(1.0 + eps);
     return make_bsdf_case(
         {.family = "power_lobe_error"}, {.wo = bsdf_direction(60), .lobes = d.flags(), .eta = 1.5f},
-        [d, scale](Vector3f wo, float uc, Point2f u) { return d.sample(wo, uc / scale, u); },
-        [d](Vector3f wo, Vector3f wi) { return d.f(wo, wi); }, [d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); });
+        bsdf_of([d, scale](Vector3f wo, float uc, Point2f u) { return d.sample(wo, uc / scale, u); })
+            .with_f([d](Vector3f wo, Vector3f wi) { return d.f(wo, wi); })
+            .with_pdf([d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); }));
 }
 
 TEST(BsdfPower, DISABLED_SmallestEffectsDetectedAtDefaultSamples) {

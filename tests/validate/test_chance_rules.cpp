@@ -40,8 +40,8 @@ float hashed_unit(uint64_t i, uint64_t key, float scale) {
 /// A sampler over the grid of the first 2^bits inputs, offered to the sweep.
 std::unique_ptr<WarpCase> grid_case(const std::string& name, int bits, bool monotone,
                                     std::function<float(uint64_t)> f) {
-    auto inner = make_warp_case({.family = name, .input = InputKind::Bits32, .domain = chi2::Domain::interval(0, 1)},
-                                [f](uint32_t u) { return f(u); }, [](float) { return 1.0f; });
+    auto inner = make_warp_case({.family = name, .domain = chi2::Domain::interval(0, 1)},
+                                warp_of([f](uint32_t u) { return f(u); }).with_pdf([](float) { return 1.0f; }));
     FloatBlockFn block = [f](uint64_t first, std::size_t n, float* out) {
         for (std::size_t k = 0; k < n; ++k) out[k] = f(first + k);
     };
@@ -138,7 +138,8 @@ TEST(ExhaustiveReach, DISABLED_FullSweepsOfFortyHashKeys) {
     for (uint64_t key : short_keys) {
         const auto warp = make_u32_float_case(
             {.family = "hash_full_" + std::to_string(key), .domain = chi2::Domain::interval(0, 1)},
-            Monotone::NotClaimed, [key](uint32_t u) { return hashed_unit(u, key, 1.0f); }, [](float) { return 1.0f; });
+            Monotone::NotClaimed,
+                warp_of([key](uint32_t u) { return hashed_unit(u, key, 1.0f); }).with_pdf([](float) { return 1.0f; }));
         const CheckResult r = run_jobs({Job{warp.get(), check.get()}}, options).results.at(0);
         std::printf("key %2llu through the exhaustive check: %s, mass outside the reach %.3g = %.2f inputs' worth "
                     "(allowed %.2f), %.0f s\n",

@@ -42,11 +42,10 @@ CheckResult run_chi2(const WarpCase& warp, unsigned threads = 2, uint64_t sample
     return make_chi2_check()->run(warp, ctx);
 }
 
-WarpCaseInfo info(std::string family, chi2::Domain domain, InputKind input = InputKind::Uniform2D) {
+WarpCaseInfo info(std::string family, chi2::Domain domain) {
     WarpCaseInfo i;
     i.family = std::move(family);
     i.domain = domain;
-    i.input = input;
     return i;
 }
 
@@ -74,8 +73,9 @@ TEST(Chi2Check, PeakedTrowbridgeReitzPasses) {
     const TrowbridgeReitz tr(0.05f);
     auto warp = make_warp_case(
         info("trowbridge_reitz_normals", chi2::Domain::hemisphere()),
-        [tr](Point2f u) { return tr.normals().sample(u); }, [tr](Vector3f m) { return tr.D(m) * std::max(0.0f, m.z); },
-        [](Vector3f) { return Point2f{}; });
+        warp_of([tr](Point2f u) { return tr.normals().sample(u); })
+            .with_pdf([tr](Vector3f m) { return tr.D(m) * std::max(0.0f, m.z); })
+            .with_invert([](Vector3f) { return Point2f{}; }));
     const CheckResult r = run_chi2(*warp);
     expect_statistical_pass(r);
     EXPECT_GT(*r.figure("pooled_cells"), 500.0);
@@ -86,7 +86,7 @@ TEST(Chi2Check, PeakedTrowbridgeReitzPasses) {
 TEST(Chi2Check, ExponentialOnTheHalfLinePassesWhateverItsRate) {
     for (float rate : {1.0f, 250.0f, 0.002f}) {
         const Exponential e(rate);
-        auto warp = make_warp_case(info("exponential", chi2::Domain::half_line(0.0), InputKind::Uniform1D), e);
+        auto warp = make_warp_case(info("exponential", chi2::Domain::half_line(0.0)), e);
         const CheckResult r = run_chi2(*warp);
         expect_statistical_pass(r);
         // The cells follow the distribution's scale (1 / pdf(0) = 1 / rate).
@@ -102,9 +102,9 @@ TEST(Chi2Check, DensityOffByTwoPercentOverPartOfTheDomainFails) {
     // normalised): the samples of the correct warp disagree with it.
     auto warp = make_warp_case(
         info("cosine_hemisphere_tilted_pdf", chi2::Domain::hemisphere()),
-        [](Point2f u) { return CosineHemisphere{}.sample(u); },
-        [](Vector3f v) { return (v.x > 0 ? 1.02f : 0.98f) * CosineHemisphere{}.pdf(v); },
-        [](Vector3f v) { return CosineHemisphere{}.invert(v); });
+        warp_of([](Point2f u) { return CosineHemisphere{}.sample(u); })
+            .with_pdf([](Vector3f v) { return (v.x > 0 ? 1.02f : 0.98f) * CosineHemisphere{}.pdf(v); })
+            .with_invert([](Vector3f v) { return CosineHemisphere{}.invert(v); }));
     const CheckResult r = run_chi2(*warp);
     EXPECT_EQ(r.verdict, Verdict::Pass) << "no non-statistical failure: " << r.message;
     ASSERT_TRUE(r.p_value.has_value());
@@ -117,11 +117,12 @@ TEST(Chi2Check, MirroredSamplesFail) {
     const auto linear = [](bool mirrored) {
         return make_warp_case(
             info(mirrored ? "linear_mirrored" : "linear", chi2::Domain::unit_square()),
-            [mirrored](Point2f u) {
-                const float x = std::sqrt(u.x);
-                return Point2f{mirrored ? 1.0f - x : x, u.y};
-            },
-            [](Point2f p) { return 2.0f * p.x; }, [](Point2f p) { return Point2f{p.x * p.x, p.y}; });
+            warp_of([mirrored](Point2f u) {
+                        const float x = std::sqrt(u.x);
+                        return Point2f{mirrored ? 1.0f - x : x, u.y};
+                    })
+                .with_pdf([](Point2f p) { return 2.0f * p.x; })
+                .with_invert([](Point2f p) { return Point2f{p.x * p.x, p.y}; }));
     };
     expect_statistical_pass(run_chi2(*linear(false)));
     const CheckResult r = run_chi2(*linear(true));
@@ -133,8 +134,10 @@ TEST(Chi2Check, MirroredSamplesFail) {
 
 TEST(Chi2Check, DensityIntegratingToLessThanOneFailsOnItsOwn) {
     auto warp = make_warp_case(
-        info("uniform_sphere_low_pdf", chi2::Domain::sphere()), [](Point2f u) { return UniformSphere{}.sample(u); },
-        [](Vector3f) { return 0.99f / (4 * kPi); }, [](Vector3f v) { return UniformSphere{}.invert(v); });
+        info("uniform_sphere_low_pdf", chi2::Domain::sphere()),
+            warp_of([](Point2f u) { return UniformSphere{}.sample(u); })
+                .with_pdf([](Vector3f) { return 0.99f / (4 * kPi); })
+                .with_invert([](Vector3f v) { return UniformSphere{}.invert(v); }));
     const CheckResult r = run_chi2(*warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_NE(r.message.find("integrates to 0.99"), std::string::npos) << r.message;
@@ -143,13 +146,14 @@ TEST(Chi2Check, DensityIntegratingToLessThanOneFailsOnItsOwn) {
 TEST(Chi2Check, NaNAndOutsideSamplesFailOnTheirOwn) {
     auto warp = make_warp_case(
         info("broken_sphere", chi2::Domain::sphere()),
-        [](Point2f u) {
-            Vector3f v = UniformSphere{}.sample(u);
-            if (u.x < 1e-4f) v.x = std::nanf("");
-            if (u.x > 0.9999f) v = 2.0f * v;
-            return v;
-        },
-        [](Vector3f v) { return UniformSphere{}.pdf(v); }, [](Vector3f v) { return UniformSphere{}.invert(v); });
+        warp_of([](Point2f u) {
+                    Vector3f v = UniformSphere{}.sample(u);
+                    if (u.x < 1e-4f) v.x = std::nanf("");
+                    if (u.x > 0.9999f) v = 2.0f * v;
+                    return v;
+                })
+            .with_pdf([](Vector3f v) { return UniformSphere{}.pdf(v); })
+            .with_invert([](Vector3f v) { return UniformSphere{}.invert(v); }));
     const CheckResult r = run_chi2(*warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_GT(*r.figure("nan"), 0.0);

@@ -85,11 +85,11 @@ TEST(Chi2Float, WrongConstantsStillFail) {
     expect_fail(*henyey_greenstein("hg_off", 0.8f, {0, 0, 1}, 1.0001f), "integrates to");
     const auto sphere = make_warp_case(
         {.family = "sphere_off", .domain = chi2::Domain::sphere()},
-        [](Point2f u) {
+        warp_of([](Point2f u) {
             const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPi * u.y;
             return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
-        },
-        [](Vector3f) { return kInv4Pi * (1.0f + 5e-5f); });
+        })
+            .with_pdf([](Vector3f) { return kInv4Pi * (1.0f + 5e-5f); }));
     expect_fail(*sphere, "integrates to");
 }
 
@@ -163,7 +163,8 @@ TEST(Chi2Float, SliverLightIsFoundAroundItsSamples) {
 // A warp that returns NaN everywhere is a FAIL that says so, not an ERROR.
 TEST(Chi2Float, NaNEverywhereFails) {
     const auto nan = make_warp_case({.family = "nan_everywhere", .domain = chi2::Domain::hemisphere()},
-                                    [](Point2f) { return Vector3f{NAN, NAN, NAN}; }, [](Vector3f) { return NAN; });
+                                    warp_of([](Point2f) { return Vector3f{NAN, NAN, NAN}; })
+                                        .with_pdf([](Vector3f) { return NAN; }));
     expect_fail(*nan, "every sample has NaN coordinates");
 }
 

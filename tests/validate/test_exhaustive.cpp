@@ -339,11 +339,11 @@ TEST(BinadeCheck, SeesThe257Over255AlternationOfThe32BitMultiply) {
     WarpCaseInfo info;
     info.family = "mul32_as_64";
     info.description = "the clamped 2^-32 multiply fed 64 bits";
-    info.input = InputKind::Bits64;
     info.domain = chi2::Domain::interval(0.0, 1.0);
     auto warp = make_warp_case(
-        info, [](uint64_t bits) { return UnitFloatMulClamped{}.sample(static_cast<uint32_t>(bits >> 32)); },
-        [](float) { return 1.0f; }, [](float x) { return uint64_t{UnitFloatMul{}.invert(x)} << 32; });
+        info, warp_of([](uint64_t bits) { return UnitFloatMulClamped{}.sample(static_cast<uint32_t>(bits >> 32)); })
+                  .with_pdf([](float) { return 1.0f; })
+                  .with_invert([](float x) { return uint64_t{UnitFloatMul{}.invert(x)} << 32; }));
     const CheckResult r = testing::run_check(*make_binade_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail) << r.summary;
     EXPECT_LT(*r.figure("parity_p_value"), 1e-12);
@@ -364,7 +364,7 @@ TEST(ExhaustiveRoundtripCheck, RunsOnlyWhenAskedAndReportsTheWobbleOfALerp) {
     // reported, not failed (test_exhaustive_verdicts.cpp has the failing twin).
     // (Built here: being no flaw, lerp_blend[a=1,b=3] left the flawed catalogue in issue 22.)
     const auto lerp = make_warp_case(
-        {.family = "lerp_blend", .input = InputKind::Uniform1D, .domain = chi2::Domain::interval(1, 3)},
+        {.family = "lerp_blend", .domain = chi2::Domain::interval(1, 3)},
         LerpInterval(1.0f, 3.0f, LerpInterval::Form::Blend));
     const CheckResult r = testing::run_check(*make_exhaustive_roundtrip_check(), *lerp);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;

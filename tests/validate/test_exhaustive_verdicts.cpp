@@ -32,7 +32,6 @@ WarpCaseInfo info_1d(const char* family, chi2::Domain domain) {
     WarpCaseInfo info;
     info.family = family;
     info.description = family;
-    info.input = InputKind::Uniform1D;
     info.domain = domain;
     return info;
 }
@@ -51,8 +50,8 @@ float tent_invert(float x) { return x < 0.0f ? 0.5f * (x + 1.0f) * (x + 1.0f) : 
 TEST(ExhaustiveRoundtripVerdicts, ZeroDensityExactlyAtTheTentsEndIsReportedNotFailed) {
     SKIP_FULL_FLOAT_SWEEP();
     const auto tent = make_warp_case(
-        info_1d("tent", chi2::Domain::interval(-1.0, 1.0)), tent_sample,
-        [](float x) { return 1.0f - std::abs(x); }, tent_invert);
+        info_1d("tent", chi2::Domain::interval(-1.0, 1.0)),
+            warp_of(tent_sample).with_pdf([](float x) { return 1.0f - std::abs(x); }).with_invert(tent_invert));
     const CheckResult r = roundtrip(*tent);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     // The old rule counted each of these as "pdf not positive".
@@ -64,8 +63,10 @@ TEST(ExhaustiveRoundtripVerdicts, ZeroDensityInsideTheDomainStillFails) {
     SKIP_FULL_FLOAT_SWEEP();
     // The wrong twin: its density also vanishes near (not on) the end point.
     const auto tent = make_warp_case(
-        info_1d("tent_cut", chi2::Domain::interval(-1.0, 1.0)), tent_sample,
-        [](float x) { return std::abs(x) > 0.999f ? 0.0f : 1.0f - std::abs(x); }, tent_invert);
+        info_1d("tent_cut", chi2::Domain::interval(-1.0, 1.0)),
+            warp_of(tent_sample)
+                .with_pdf([](float x) { return std::abs(x) > 0.999f ? 0.0f : 1.0f - std::abs(x); })
+                .with_invert(tent_invert));
     const CheckResult r = roundtrip(*tent);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_GT(*r.figure("bad_pdf"), 0.0);
@@ -77,13 +78,13 @@ TEST(ExhaustiveRoundtripVerdicts, LinearWarpWithZeroDensityAtItsStartPasses) {
     const auto sample = [](float u) { return std::sqrt(u); };
     const auto pdf = [](float x) { return 2.0f * x; };
     const auto invert = [](float x) { return x * x; };
-    const CheckResult ok = roundtrip(*make_warp_case(info_1d("linear0", chi2::Domain::interval(0.0, 1.0)), sample,
-                                                     pdf, invert));
+    const CheckResult ok = roundtrip(*make_warp_case(info_1d("linear0", chi2::Domain::interval(0.0, 1.0)),
+        warp_of(sample).with_pdf(pdf).with_invert(invert)));
     EXPECT_EQ(ok.verdict, Verdict::Pass) << ok.message;
     EXPECT_EQ(*ok.figure("boundary_zero_pdf"), 1.0);
     // The wrong twin: the same density declared on [-1, 1], where x = 0 is inside.
     const CheckResult bad = roundtrip(*make_warp_case(info_1d("linear0_inside", chi2::Domain::interval(-1.0, 1.0)),
-                                                      sample, pdf, invert));
+                                                      warp_of(sample).with_pdf(pdf).with_invert(invert)));
     EXPECT_EQ(bad.verdict, Verdict::Fail);
     EXPECT_EQ(*bad.figure("bad_pdf"), 1.0);
     EXPECT_EQ(*bad.figure("boundary_zero_pdf"), 0.0);
@@ -105,8 +106,8 @@ TEST(ExhaustiveRoundtripVerdicts, AStepBackOf6e4Fails) {
     SKIP_FULL_FLOAT_SWEEP();
     // The wrong twin: a lerp on [1, 3] that drops by 6e-4 once, at t = 0.5.
     const auto sample = [](float t) { return 1.0f + t * 2.0f - (t >= 0.5f ? 6e-4f : 0.0f); };
-    const auto warp = make_warp_case(info_1d("lerp_step", chi2::Domain::interval(1.0, 3.0)), sample,
-                                     [](float) { return 0.5f; }, [](float x) { return (x - 1.0f) * 0.5f; });
+    const auto warp = make_warp_case(info_1d("lerp_step", chi2::Domain::interval(1.0, 3.0)),
+        warp_of(sample).with_pdf([](float) { return 0.5f; }).with_invert([](float x) { return (x - 1.0f) * 0.5f; }));
     const CheckResult r = roundtrip(*warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_GT(*r.figure("max_step_back_ulps"), 1000.0);
@@ -121,7 +122,8 @@ template <typename F>
 class SweepableU32 final : public WarpCase, public SweepableCase {
 public:
     explicit SweepableU32(F f)
-        : WarpCase({.family = "u32_test", .input = InputKind::Bits32, .domain = chi2::Domain::interval(0.0, 1.0)}),
+        : WarpCase({.family = "u32_test", .domain = chi2::Domain::interval(0.0, 1.0)},
+                   {.input = InputKind::Bits32, .output_dimension = 1, .has_inverse = true}),
           f_(f) {}
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override {
         for (std::size_t k = 0; k < in.size(); ++k) out[k] = {f_(static_cast<uint32_t>(in[k].bits)), 0.0f, 0.0f};

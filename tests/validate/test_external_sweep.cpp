@@ -28,8 +28,10 @@ WarpCaseInfo unit_interval_info(const char* family) {
 
 TEST(ExternalSweep, U32SamplerIsSweptOverAllInputsOnTheFastPath) {
     const auto warp = make_u32_float_case(
-        unit_interval_info("renderer_unit_float"), Monotone::Claimed, [](uint32_t u) { return renderer_unit_float(u); },
-        renderer_unit_float_pdf, [](float x) { return static_cast<uint32_t>(x * 0x1p24f) << 8; });
+        unit_interval_info("renderer_unit_float"), Monotone::Claimed,
+            warp_of([](uint32_t u) { return renderer_unit_float(u); })
+                .with_pdf(renderer_unit_float_pdf)
+                .with_invert([](float x) { return static_cast<uint32_t>(x * 0x1p24f) << 8; }));
     const auto* sweepable = dynamic_cast<const SweepableCase*>(warp.get());
     ASSERT_NE(sweepable, nullptr);
     EXPECT_EQ(warp->input_kind(), InputKind::Bits32);
@@ -50,7 +52,8 @@ TEST(ExternalSweep, U64SubrangeMonotoneClaimDecidesTheVerdict) {
     const auto check = make_exhaustive_check();
     for (const Monotone claim : {Monotone::NotClaimed, Monotone::Claimed}) {
         const auto warp = make_u64_float_case(unit_interval_info("renderer_scrambled"), {.shift = 40}, claim,
-                                              renderer_scrambled_unit_float, renderer_unit_float_pdf);
+                                              warp_of(renderer_scrambled_unit_float)
+                                                  .with_pdf(renderer_unit_float_pdf));
         const auto* sweepable = dynamic_cast<const SweepableCase*>(warp.get());
         ASSERT_NE(sweepable, nullptr);
         EXPECT_EQ(sweepable->sweep_inputs(), uint64_t{1} << 24);
@@ -64,10 +67,11 @@ TEST(ExternalSweep, U64SubrangeMonotoneClaimDecidesTheVerdict) {
 TEST(ExternalSweep, RejectsNonIntervalDomainsAndBadSubranges) {
     WarpCaseInfo square = unit_interval_info("bad");
     square.domain = chi2::Domain::unit_square();
-    EXPECT_THROW(make_u32_float_case(square, Monotone::Claimed, renderer_unit_float, renderer_unit_float_pdf),
+    EXPECT_THROW(make_u32_float_case(square, Monotone::Claimed,
+        warp_of(renderer_unit_float).with_pdf(renderer_unit_float_pdf)),
                  std::invalid_argument);
     EXPECT_THROW(make_u64_float_case(unit_interval_info("bad"), {.shift = 31}, Monotone::Claimed,
-                                     renderer_scrambled_unit_float, renderer_unit_float_pdf),
+                                     warp_of(renderer_scrambled_unit_float).with_pdf(renderer_unit_float_pdf)),
                  std::invalid_argument);
 }
 

@@ -21,23 +21,23 @@ using ::testing::HasSubstr;
 void register_swapped_sampler(Registry& registry) {
     registry.add_case(make_u64_float_case(
         {.family = "swapped_grid", .domain = chi2::Domain::interval(0, 1)}, {.shift = 48}, Monotone::Claimed,
-        [](uint64_t u) { return static_cast<float>((u >> 48) ^ 1u) * 0x1p-16f; },
-        [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; }));
+        warp_of([](uint64_t u) { return static_cast<float>((u >> 48) ^ 1u) * 0x1p-16f; })
+            .with_pdf([](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; })));
 }
 
 // The same sampler without the swap: monotone, as claimed.
 void register_grid_sampler(Registry& registry) {
     registry.add_case(make_u64_float_case(
         {.family = "grid", .domain = chi2::Domain::interval(0, 1)}, {.shift = 48}, Monotone::Claimed,
-        [](uint64_t u) { return static_cast<float>(u >> 48) * 0x1p-16f; },
-        [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; }));
+        warp_of([](uint64_t u) { return static_cast<float>(u >> 48) * 0x1p-16f; })
+            .with_pdf([](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; })));
 }
 
 // A sampler that ends its process: only an isolated run survives it.
 void register_exiting_sampler(Registry& registry) {
-    registry.add_case(make_warp_case({.family = "exits", .input = InputKind::Uniform1D,
-                                      .domain = chi2::Domain::interval(0, 1)},
-                                     [](float) -> float { std::_Exit(7); }, [](float) { return 1.0f; }));
+    registry.add_case(make_warp_case({.family = "exits", .domain = chi2::Domain::interval(0, 1)},
+                                     warp_of([](float) -> float { std::_Exit(7); })
+                                         .with_pdf([](float) { return 1.0f; })));
 }
 
 std::string run_fpr(void (*register_cases)(Registry&), int& status, const std::vector<std::string>& extra = {}) {

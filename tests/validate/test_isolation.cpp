@@ -95,12 +95,12 @@ TEST(ResultCodec, EveryFieldRoundTripsBitForBit) {
 // A warp whose sample() does `misbehave` on the first call and is fine after.
 std::unique_ptr<WarpCase> hostile(const char* name, void (*misbehave)()) {
     return make_warp_case({name, {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                          [misbehave](Point2f u) {
-                              misbehave();
-                              return UniformHemisphere{}.sample(u);
-                          },
-                          [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
-                          [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+                          warp_of([misbehave](Point2f u) {
+                                      misbehave();
+                                      return UniformHemisphere{}.sample(u);
+                                  })
+                              .with_pdf([](Vector3f x) { return UniformHemisphere{}.pdf(x); })
+                              .with_invert([](Vector3f x) { return UniformHemisphere{}.invert(x); }));
 }
 
 RunResult run_isolated(const std::vector<std::unique_ptr<WarpCase>>& cases, double budget = 20, unsigned threads = 2,

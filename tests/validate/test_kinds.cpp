@@ -44,12 +44,12 @@ PdfSample<Vector3f> cosine_sample(Point2f u, float pdf_scale) {
 float cosine_pdf(Vector3f w) { return w.z > 0 ? w.z / kPi : 0; }
 
 WarpCaseInfo hemisphere_info(const char* family) {
-    return {.family = family, .input = InputKind::Uniform2D, .domain = chi2::Domain::hemisphere()};
+    return {.family = family, .domain = chi2::Domain::hemisphere()};
 }
 
 TEST(SamplePdf, ReturnedPdfEqualToPdfPasses) {
-    auto warp = make_warp_case(hemisphere_info("cosine_pdf"), [](Point2f u) { return cosine_sample(u, 1.0f); },
-                               cosine_pdf);
+    auto warp = make_warp_case(hemisphere_info("cosine_pdf"),
+        warp_of([](Point2f u) { return cosine_sample(u, 1.0f); }).with_pdf(cosine_pdf));
     EXPECT_EQ(warp->sample_returns(), SampleReturns::PointAndPdf);
     const CheckResult r = run_check(*make_sample_pdf_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
@@ -59,8 +59,8 @@ TEST(SamplePdf, ReturnedPdfEqualToPdfPasses) {
 
 // Off by 1% only: the samples are right, the returned pdf is not.
 TEST(SamplePdf, ReturnedPdfOffByOnePercentFails) {
-    auto warp = make_warp_case(hemisphere_info("cosine_pdf_scaled"), [](Point2f u) { return cosine_sample(u, 1.01f); },
-                               cosine_pdf);
+    auto warp = make_warp_case(hemisphere_info("cosine_pdf_scaled"),
+        warp_of([](Point2f u) { return cosine_sample(u, 1.01f); }).with_pdf(cosine_pdf));
     const CheckResult r = run_check(*make_sample_pdf_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_NEAR(*r.figure("max_relative_difference"), 0.01 / 1.01, 1e-4);
@@ -72,11 +72,13 @@ TEST(SamplePdf, ReturnedPdfOffByOnePercentFails) {
 }
 
 TEST(SamplePdf, NaNReturnedPdfFails) {
-    auto warp = make_warp_case(hemisphere_info("cosine_pdf_nan"), [](Point2f u) {
-        auto s = cosine_sample(u, 1.0f);
-        if (u.x > 0.999f) s.pdf = std::nanf("");
-        return s;
-    }, cosine_pdf);
+    auto warp = make_warp_case(hemisphere_info("cosine_pdf_nan"),
+        warp_of([](Point2f u) {
+            auto s = cosine_sample(u, 1.0f);
+            if (u.x > 0.999f) s.pdf = std::nanf("");
+            return s;
+        })
+            .with_pdf(cosine_pdf));
     EXPECT_EQ(run_check(*make_sample_pdf_check(), *warp).verdict, Verdict::Fail);
 }
 
@@ -93,11 +95,11 @@ PdfSample<float> table_sample(float u, bool forget_cells) {
 }
 
 WarpCaseInfo table_info(const char* family) {
-    return {.family = family, .input = InputKind::Uniform1D, .domain = chi2::Domain::interval(0, 2)};
+    return {.family = family, .domain = chi2::Domain::interval(0, 2)};
 }
 
 TEST(SamplePdf, WithoutPdfFunctionTheReturnedPdfIsUsed) {
-    auto warp = make_warp_case(table_info("table"), [](float u) { return table_sample(u, false); });
+    auto warp = make_warp_case(table_info("table"), warp_of([](float u) { return table_sample(u, false); }));
     EXPECT_FALSE(warp->has_pdf());
     EXPECT_EQ(run_check(*make_consistency_check(), *warp).verdict, Verdict::Pass);
     const CheckResult r = run_check(*make_inverse_pdf_mean_check(), *warp);
@@ -112,7 +114,7 @@ TEST(SamplePdf, WithoutPdfFunctionTheReturnedPdfIsUsed) {
 }
 
 TEST(SamplePdf, WithoutPdfFunctionAWrongReturnedPdfFailsTheMeanOfItsInverse) {
-    auto warp = make_warp_case(table_info("table_unscaled"), [](float u) { return table_sample(u, true); });
+    auto warp = make_warp_case(table_info("table_unscaled"), warp_of([](float u) { return table_sample(u, true); }));
     const CheckResult r = run_check(*make_inverse_pdf_mean_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_NEAR(*r.figure("mean"), 4.0, 0.02);
@@ -143,8 +145,10 @@ struct Mixture {
 };
 
 std::unique_ptr<WarpCase> mixture_case(const char* family, Mixture m) {
-    return make_weighted_case(hemisphere_info(family), [m](Point2f u) { return m.sample(u); },
-                              [m](Vector3f w) { return m.eval(w); }, [m](Vector3f w) { return m.pdf(w); });
+    return make_warp_case(hemisphere_info(family),
+        warp_of([m](Point2f u) { return m.sample(u); })
+            .with_pdf([m](Vector3f w) { return m.pdf(w); })
+            .with_eval([m](Vector3f w) { return m.eval(w); }));
 }
 
 TEST(Weighted, CorrectMixturePassesEveryCheck) {
@@ -175,11 +179,14 @@ TEST(Weighted, SelectionProbabilityMismatchFailsTheMeanWeight) {
 // The weight forgets the cosine: per-sample mismatch.
 TEST(Weighted, WeightWithoutCosineFails) {
     const Mixture m;
-    auto warp = make_weighted_case(hemisphere_info("mixture_no_cos"), [m](Point2f u) {
-        auto s = m.sample(u);
-        s.weight /= s.x.z;
-        return s;
-    }, [m](Vector3f w) { return m.eval(w); }, [m](Vector3f w) { return m.pdf(w); });
+    auto warp = make_warp_case(hemisphere_info("mixture_no_cos"),
+        warp_of([m](Point2f u) {
+            auto s = m.sample(u);
+            s.weight /= s.x.z;
+            return s;
+        })
+            .with_pdf([m](Vector3f w) { return m.pdf(w); })
+            .with_eval([m](Vector3f w) { return m.eval(w); }));
     const CheckResult r = run_check(*make_weight_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     ASSERT_FALSE(r.tables.empty());
@@ -226,12 +233,12 @@ struct AliasTable {
 };
 
 WarpCaseInfo discrete_info(const char* family, std::size_t n) {
-    return {.family = family, .input = InputKind::Uniform1D, .categories = n};
+    return {.family = family, .categories = n};
 }
 
 std::unique_ptr<WarpCase> alias_case(const char* family, const AliasTable& t) {
-    return make_warp_case(discrete_info(family, t.q.size()), [t](float u) { return t.sample(u); },
-                          [t](uint32_t i) { return t.pmf[i]; });
+    return make_warp_case(discrete_info(family, t.q.size()),
+        warp_of([t](float u) { return t.sample(u); }).with_pdf([t](uint32_t i) { return t.pmf[i]; }));
 }
 
 TEST(Discrete, AliasTablePassesEveryCheck) {
@@ -257,17 +264,19 @@ TEST(Discrete, RemappedUNotRescaledFails) {
 
 TEST(Discrete, ZeroWeightCategoryChosenFails) {
     const AliasTable t({1, 0, 3});
-    auto warp = make_warp_case(discrete_info("alias_zero", 3), [t](float u) {
-        return u > 0.99f ? DiscreteSample{1, 0.5f} : t.sample(u);
-    }, [t](uint32_t i) { return t.pmf[i]; });
+    auto warp = make_warp_case(discrete_info("alias_zero", 3),
+        warp_of([t](float u) {
+            return u > 0.99f ? DiscreteSample{1, 0.5f} : t.sample(u);
+        })
+            .with_pdf([t](uint32_t i) { return t.pmf[i]; }));
     const CheckResult r = run_check(*make_discrete_chi2_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_NE(r.message.find("chose a category of pmf 0"), std::string::npos) << r.message;
 }
 
 TEST(Discrete, IndexOutsideTheCategoriesFails) {
-    auto warp = make_warp_case(discrete_info("index_out", 4), [](float u) { return static_cast<int>(u * 5); },
-                               [](int) { return 0.25f; });
+    auto warp = make_warp_case(discrete_info("index_out", 4),
+        warp_of([](float u) { return static_cast<int>(u * 5); }).with_pdf([](int) { return 0.25f; }));
     const CheckResult r = run_check(*make_discrete_chi2_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_NE(r.message.find("not a category"), std::string::npos) << r.message;
@@ -276,16 +285,16 @@ TEST(Discrete, IndexOutsideTheCategoriesFails) {
 TEST(Discrete, CountsThatDoNotFitThePmfFail) {
     // Uniform picks, while the pmf says 0.3, 0.2, 0.3, 0.2.
     auto warp = make_warp_case(discrete_info("pick_uniform", 4),
-                               [](float u) { return std::min(static_cast<int>(u * 4), 3); },
-                               [](int i) { return i % 2 == 0 ? 0.3f : 0.2f; });
+                               warp_of([](float u) { return std::min(static_cast<int>(u * 4), 3); })
+                                   .with_pdf([](int i) { return i % 2 == 0 ? 0.3f : 0.2f; }));
     EXPECT_EQ(run_check(*make_discrete_chi2_check(), *warp).verdict, Verdict::Fail);
     EXPECT_EQ(run_check(*make_pmf_check(), *warp).verdict, Verdict::Pass);
 }
 
 TEST(Discrete, PmfThatDoesNotSumToOneFails) {
     auto warp = make_warp_case(discrete_info("pmf_unnormalised", 4),
-                               [](float u) { return std::min(static_cast<int>(u * 4), 3); },
-                               [](int) { return 0.2501f; });
+                               warp_of([](float u) { return std::min(static_cast<int>(u * 4), 3); })
+                                   .with_pdf([](int) { return 0.2501f; }));
     const CheckResult r = run_check(*make_pmf_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_NE(r.message.find("sums to"), std::string::npos) << r.message;
@@ -298,7 +307,7 @@ TEST(Kinds, FiguresDoNotDependOnTheThreadCount) {
     AliasTable t({1, 0, 3, 2, 0.5f, 7, 0.01f});
     auto alias = alias_case("alias_threads", t);
     auto mixture = mixture_case("mixture_threads", {});
-    auto table = make_warp_case(table_info("table_threads"), [](float u) { return table_sample(u, false); });
+    auto table = make_warp_case(table_info("table_threads"), warp_of([](float u) { return table_sample(u, false); }));
     const std::pair<const WarpCase*, std::unique_ptr<Check>> jobs[] = {
         {alias.get(), make_discrete_chi2_check()}, {alias.get(), make_remapped_u_check()},
         {mixture.get(), make_weight_mean_check()}, {mixture.get(), make_weight_check()},
@@ -321,9 +330,10 @@ TEST(CaseGrid, OneCasePerPointWithStableNames) {
                       Mixture m;
                       m.ks = static_cast<float>(p["ks"]);
                       m.n = static_cast<float>(p["n"]);
-                      return make_weighted_case(std::move(info), [m](Point2f u) { return m.sample(u); },
-                                                [m](Vector3f w) { return m.eval(w); },
-                                                [m](Vector3f w) { return m.pdf(w); });
+                      return make_warp_case(std::move(info),
+                          warp_of([m](Point2f u) { return m.sample(u); })
+                              .with_pdf([m](Vector3f w) { return m.pdf(w); })
+                              .with_eval([m](Vector3f w) { return m.eval(w); }));
                   });
     ASSERT_EQ(registry.cases().size(), 6u);
     EXPECT_EQ(registry.cases()[0]->name(), "lobe[kd=0.5,ks=0.1,n=2]");
@@ -334,14 +344,16 @@ TEST(CaseGrid, OneCasePerPointWithStableNames) {
 TEST(CaseGrid, BadGridsAreRefusedNamingTheFamily) {
     Registry registry;
     const GridCaseMaker make = [](WarpCaseInfo info, const GridPoint&) {
-        return make_warp_case(std::move(info), [](Point2f u) { return u; }, [](Point2f) { return 1.0f; });
+        return make_warp_case(std::move(info),
+            warp_of([](Point2f u) { return u; }).with_pdf([](Point2f) { return 1.0f; }));
     };
     const WarpCaseInfo base{.family = "square"};
     EXPECT_THROW(add_case_grid(registry, base, {{"a", {}}}, make), std::invalid_argument);
     EXPECT_THROW(add_case_grid(registry, base, {{"a", {1, NAN}}}, make), std::invalid_argument);
     EXPECT_THROW(add_case_grid(registry, base, {{"a", {1}}, {"a", {2}}}, make), std::invalid_argument);
     const GridCaseMaker renames = [](WarpCaseInfo, const GridPoint&) {
-        return make_warp_case({.family = "other"}, [](Point2f u) { return u; }, [](Point2f) { return 1.0f; });
+        return make_warp_case({.family = "other"},
+            warp_of([](Point2f u) { return u; }).with_pdf([](Point2f) { return 1.0f; }));
     };
     try {
         add_case_grid(registry, base, {{"a", {1}}}, renames);
@@ -364,53 +376,139 @@ std::string refusal(F make) {
     return "";
 }
 
+/// Whether `make` is refused as a declaration of case `name` with `problem` among its problems.
+template <typename F>
+::testing::AssertionResult refused(F make, const std::string& name, const std::string& problem) {
+    const std::string message = refusal(make);
+    if (message.find("warp case " + name + " is declared inconsistently:") != std::string::npos &&
+        message.find("\n  - " + problem) != std::string::npos)
+        return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << "refusal of " << name << ": '" << message << "'";
+}
+
 TEST(Declaration, InconsistentCasesAreRefusedNamingTheCase) {
     const Mixture m;
     const AliasTable t({1, 2});
     auto pmf = [t](uint32_t i) { return t.pmf[i]; };
-    // A discrete case with a continuous domain.
-    EXPECT_NE(refusal([&] {
-                  make_warp_case({.family = "d1", .input = InputKind::Uniform1D, .domain = chi2::Domain::interval(0, 2),
-                                  .categories = 2},
-                                 [t](float u) { return t.sample(u); }, pmf);
-              }).find("warp case d1: a discrete case has no continuous domain"),
-              std::string::npos);
-    // A discrete case without its number of categories.
-    EXPECT_NE(refusal([&] {
-                  make_warp_case({.family = "d2", .input = InputKind::Uniform1D}, [t](float u) { return t.sample(u); },
-                                 pmf);
-              }).find("warp case d2: its sample returns an index, so it needs .categories"),
-              std::string::npos);
+    auto choose = [t](float u) { return t.sample(u); };
+    // A discrete case with a continuous domain, and one without its number of categories.
+    EXPECT_TRUE(refused(
+        [&] {
+            make_warp_case({.family = "d1", .domain = chi2::Domain::interval(0, 2), .categories = 2},
+                           warp_of(choose).with_pdf(pmf));
+        },
+        "d1", "a discrete case has no continuous domain"));
+    EXPECT_TRUE(refused([&] { make_warp_case({.family = "d2"}, warp_of(choose).with_pdf(pmf)); }, "d2",
+                        "its sample returns an index, so it needs .categories"));
     // Categories on a continuous case.
-    EXPECT_NE(refusal([&] {
-                  make_warp_case({.family = "c1", .categories = 3}, [](Point2f u) { return u; },
-                                 [](Point2f) { return 1.0f; });
-              }).find("warp case c1: it declares .categories"),
-              std::string::npos);
-    // A weight without eval (no make_weighted_case).
-    EXPECT_NE(refusal([&] {
-                  make_warp_case(hemisphere_info("w1"), [m](Point2f u) { return m.sample(u); },
-                                 [m](Vector3f w) { return m.pdf(w); });
-              }).find("warp case w1: its sample returns a weight but there is no eval"),
-              std::string::npos);
-    // Points of the wrong dimension, and an input kind its sample does not take.
-    EXPECT_NE(refusal([&] {
-                  make_warp_case(table_info("p1"), [](float u) { return Point2f{u, u}; }, [](Point2f) { return 1.0f; });
-              }).find("warp case p1: its points have 2 coordinates, but the interval"),
-              std::string::npos);
-    EXPECT_NE(refusal([&] {
-                  make_warp_case(table_info("p3"), [](Point2f u) { return u.x; }, [](float) { return 0.5f; });
-              }).find("warp case p3: its sample takes Uniform2D (a Point2f) but .input is Uniform1D"),
-              std::string::npos);
-    EXPECT_NE(refusal([&] {
-                  make_warp_case({.family = "p2", .input = InputKind::Uniform1D}, [](float u) { return u; },
-                                 [](float) { return 1.0f; });
-              }).find("warp case p2: its points have 1 coordinates, but the box"),
-              std::string::npos);
+    EXPECT_TRUE(refused(
+        [&] {
+            make_warp_case({.family = "c1", .categories = 3},
+                           warp_of([](Point2f u) { return u; }).with_pdf([](Point2f) { return 1.0f; }));
+        },
+        "c1", "it declares .categories"));
+    // A weight without eval, and an eval without a weight.
+    EXPECT_TRUE(refused(
+        [&] {
+            make_warp_case(hemisphere_info("w1"),
+                warp_of([m](Point2f u) { return m.sample(u); }).with_pdf([m](Vector3f w) { return m.pdf(w); }));
+        },
+        "w1", "its sample returns a weight but there is no eval"));
+    EXPECT_TRUE(refused(
+        [&] {
+            make_warp_case(hemisphere_info("w2"),
+                warp_of([](Point2f u) { return cosine_sample(u, 1.0f).x; }).with_pdf(cosine_pdf).with_eval(cosine_pdf));
+        },
+        "w2", "it has an eval but its sample returns no weight"));
+    // Points of the wrong dimension.
+    EXPECT_TRUE(refused(
+        [&] {
+            make_warp_case(table_info("p1"),
+                warp_of([](float u) { return Point2f{u, u}; }).with_pdf([](Point2f) { return 1.0f; }));
+        },
+        "p1", "its points have 2 coordinates, but the interval"));
+    EXPECT_TRUE(refused(
+        [&] {
+            make_warp_case({.family = "p2"},
+                           warp_of([](float u) { return u; }).with_pdf([](float) { return 1.0f; }));
+        },
+        "p2", "its points have 1 coordinates, but the box"));
+    // An input kind stated that its sample does not take.
+    EXPECT_TRUE(refused(
+        [&] {
+            make_warp_case({.family = "p3", .input = InputKind::Uniform1D, .domain = chi2::Domain::interval(0, 2)},
+                           warp_of([](Point2f u) { return u.x; }).with_pdf([](float) { return 0.5f; }));
+        },
+        "p3", "its sample takes Uniform2D (a Point2f) but .input is Uniform1D"));
     // No pdf at all.
-    EXPECT_NE(refusal([&] { make_warp_case(table_info("n1"), [](float u) { return u; }); })
-                  .find("warp case n1: it has no pdf"),
-              std::string::npos);
+    EXPECT_TRUE(refused([&] { make_warp_case(table_info("n1"), warp_of([](float u) { return u; })); }, "n1",
+                        "it has no pdf"));
+}
+
+// Every problem of a declaration is listed, under one heading that names the case.
+TEST(Declaration, EveryProblemIsListed) {
+    MonotoneMarginal view;
+    view.label = "x";
+    view.lo = 0.0;
+    view.hi = 5.0;
+    const std::string message = refusal([&] {
+        make_warp_case({.family = "many", .domain = chi2::Domain::interval(0, 2), .roundtrip_tolerance = 2.0,
+                        .views = {view}},
+                       warp_of([](float u) { return u; }).with_pdf([](float) { return 0.5f; }));
+    });
+    EXPECT_EQ(message,
+              "warp case many is declared inconsistently:\n"
+              "  - roundtrip_tolerance 2 is not in (0, 1)\n"
+              "  - view 'x': [0, 5] lies outside the domain interval [0.000000, 2.000000]");
+}
+
+// The input is read off sample's argument; an .input that agrees with it is accepted.
+TEST(Declaration, TheInputIsReadOffSample) {
+    const auto uniform = [](float) { return 1.0f; };
+    EXPECT_EQ(make_warp_case(table_info("f"), warp_of([](float u) { return 2 * u; }).with_pdf(uniform))
+                  ->input_kind(),
+              InputKind::Uniform1D);
+    EXPECT_EQ(make_warp_case({.family = "p"},
+        warp_of([](Point2f u) { return u; }).with_pdf([](Point2f) { return 1.0f; }))
+                  ->input_kind(),
+              InputKind::Uniform2D);
+    EXPECT_EQ(make_warp_case(table_info("b32"), warp_of([](uint32_t b) { return float(b >> 31); }).with_pdf(uniform))
+                  ->input_kind(),
+              InputKind::Bits32);
+    EXPECT_EQ(make_warp_case(table_info("b64"), warp_of([](uint64_t b) { return float(b >> 63); }).with_pdf(uniform))
+                  ->input_kind(),
+              InputKind::Bits64);
+    const auto stated = make_warp_case(
+        {.family = "stated", .input = InputKind::Uniform1D, .domain = chi2::Domain::interval(0, 2)},
+        warp_of([](float u) { return 2 * u; }).with_pdf(uniform));
+    EXPECT_EQ(stated->input_kind(), InputKind::Uniform1D);
+}
+
+// Eval and pdf are named: each part of a Warp, and each member of a warp
+// object, is called as what its name says, whatever the order of the members.
+struct NamedParts {
+    WeightedSample<float> sample(float u) const { return {u, 3.0f / 2.0f}; }
+    float eval(float) const { return 3.0f; }
+    float pdf(float) const { return 2.0f; }
+};
+
+TEST(Declaration, EvalAndPdfAreCalledByTheirNames) {
+    const WarpCaseInfo info{.family = "named", .domain = chi2::Domain::interval(0, 1)};
+    const auto by_object = make_warp_case(info, NamedParts{});
+    const auto by_callables = make_warp_case(info,
+        warp_of([](float u) { return NamedParts{}.sample(u); })
+            .with_pdf([](float) { return 2.0f; })
+            .with_eval([](float) { return 3.0f; }));
+    for (const WarpCase* warp : {by_object.get(), by_callables.get()}) {
+        const std::vector<WarpOutput> x = {{0.5f, 0.0f, 0.0f}};
+        std::vector<double> pdf(1), eval(1);
+        warp->pdf(x, pdf);
+        warp->eval(x, eval);
+        EXPECT_EQ(pdf[0], 2.0);
+        EXPECT_EQ(eval[0], 3.0);
+        EXPECT_EQ(warp->sample_returns(), SampleReturns::PointAndWeight);
+        EXPECT_FALSE(warp->has_inverse());
+    }
 }
 
 // Every check whose results carry a p-value is judged at the run's corrected
@@ -422,9 +520,9 @@ TEST(Kinds, EveryCheckThatReturnsAPValueCountsInTheFamily) {
     Registry registry;
     register_builtin_checks(registry);
     std::vector<std::unique_ptr<WarpCase>> cases;
-    cases.push_back(make_warp_case(hemisphere_info("returned_pdf"), [](Point2f u) { return cosine_sample(u, 1.0f); },
-                                   cosine_pdf));
-    cases.push_back(make_warp_case(table_info("table"), [](float u) { return table_sample(u, false); }));
+    cases.push_back(make_warp_case(hemisphere_info("returned_pdf"),
+        warp_of([](Point2f u) { return cosine_sample(u, 1.0f); }).with_pdf(cosine_pdf)));
+    cases.push_back(make_warp_case(table_info("table"), warp_of([](float u) { return table_sample(u, false); })));
     cases.push_back(mixture_case("mixture", Mixture{}));
     cases.push_back(alias_case("alias", AliasTable({1, 0, 3, 2, 0.5f, 7, 0.01f})));
     int with_p_value = 0;

@@ -45,175 +45,184 @@ std::vector<KnownBad> known_bad_warps() {
     std::vector<KnownBad> v;
     v.push_back({"cosine_hemisphere_pdf_3pct_high", "normalisation off by +3%", [](const std::string& n) {
                      return make_warp_case(
-                         info(n, Domain::hemisphere()), [](Point2f u) { return CosineHemisphere{}.sample(u); },
-                         [](Vector3f w) { return 1.03f * CosineHemisphere{}.pdf(w); },
-                         [](Vector3f x) { return CosineHemisphere{}.invert(x); });
+                         info(n, Domain::hemisphere()),
+                             warp_of([](Point2f u) { return CosineHemisphere{}.sample(u); })
+                                 .with_pdf([](Vector3f w) { return 1.03f * CosineHemisphere{}.pdf(w); })
+                                 .with_invert([](Vector3f x) { return CosineHemisphere{}.invert(x); }));
                  }});
     v.push_back({"uniform_hemisphere_pdf_3pct_low", "normalisation off by -3%", [](const std::string& n) {
                      return make_warp_case(
-                         info(n, Domain::hemisphere()), [](Point2f u) { return UniformHemisphere{}.sample(u); },
-                         [](Vector3f w) { return 0.97f * UniformHemisphere{}.pdf(w); },
-                         [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+                         info(n, Domain::hemisphere()),
+                             warp_of([](Point2f u) { return UniformHemisphere{}.sample(u); })
+                                 .with_pdf([](Vector3f w) { return 0.97f * UniformHemisphere{}.pdf(w); })
+                                 .with_invert([](Vector3f x) { return UniformHemisphere{}.invert(x); }));
                  }});
     v.push_back({"cosine_hemisphere_pdf_cos_squared", "density cos^2/pi instead of cos/pi", [](const std::string& n) {
                      return make_warp_case(
-                         info(n, Domain::hemisphere()), [](Point2f u) { return CosineHemisphere{}.sample(u); },
-                         [](Vector3f w) { return w.z >= 0 ? w.z * w.z * kInvPi : 0.0f; },
-                         [](Vector3f x) { return CosineHemisphere{}.invert(x); });
+                         info(n, Domain::hemisphere()),
+                             warp_of([](Point2f u) { return CosineHemisphere{}.sample(u); })
+                                 .with_pdf([](Vector3f w) { return w.z >= 0 ? w.z * w.z * kInvPi : 0.0f; })
+                                 .with_invert([](Vector3f x) { return CosineHemisphere{}.invert(x); }));
                  }});
     v.push_back(
         {"cosine_hemisphere_2pct_half", "density 2% high on one half, 2% low on the other", [](const std::string& n) {
              return make_warp_case(
-                 info(n, Domain::hemisphere()), [](Point2f u) { return CosineHemisphere{}.sample(u); },
-                 [](Vector3f w) { return (w.y >= 0 ? 1.02f : 0.98f) * CosineHemisphere{}.pdf(w); },
-                 [](Vector3f x) { return CosineHemisphere{}.invert(x); });
+                 info(n, Domain::hemisphere()),
+                     warp_of([](Point2f u) { return CosineHemisphere{}.sample(u); })
+                         .with_pdf([](Vector3f w) { return (w.y >= 0 ? 1.02f : 0.98f) * CosineHemisphere{}.pdf(w); })
+                         .with_invert([](Vector3f x) { return CosineHemisphere{}.invert(x); }));
          }});
     v.push_back({"disk_polar_inverse_missing_sqrt", "inverse returns r instead of r^2", [](const std::string& n) {
                      return make_warp_case(
-                         info(n, Domain::unit_disk()), [](Point2f u) { return UniformDiskPolar{}.sample(u); },
-                         [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
-                         [](Point2f p) {
-                             return Point2f{std::hypot(p.x, p.y), azimuth_to_unit(p.x, p.y)};
-                         });
+                         info(n, Domain::unit_disk()),
+                             warp_of([](Point2f u) { return UniformDiskPolar{}.sample(u); })
+                                 .with_pdf([](Point2f x) { return UniformDiskPolar{}.pdf(x); })
+                                 .with_invert([](Point2f p) {
+                                     return Point2f{std::hypot(p.x, p.y), azimuth_to_unit(p.x, p.y)};
+                                 }));
                  }});
     v.push_back({"disk_polar_sample_missing_sqrt", "sampler uses r = u instead of sqrt(u)", [](const std::string& n) {
                      return make_warp_case(
                          info(n, Domain::unit_disk()),
-                         [](Point2f u) {
-                             return UniformDiskPolar{}.sample({u.x * u.x, u.y});
-                         },
-                         [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
-                         [](Point2f x) { return UniformDiskPolar{}.invert(x); });
+                         warp_of([](Point2f u) {
+                                     return UniformDiskPolar{}.sample({u.x * u.x, u.y});
+                                 })
+                             .with_pdf([](Point2f x) { return UniformDiskPolar{}.pdf(x); })
+                             .with_invert([](Point2f x) { return UniformDiskPolar{}.invert(x); }));
                  }});
     v.push_back({"disk_concentric_wrong_wedge", "concentric map with a/b in place of b/a in one wedge",
                  [](const std::string& n) {
                      return make_warp_case(
                          info(n, Domain::unit_disk()),
-                         [](Point2f u) {
-                             const float a = 2 * u.x - 1, b = 2 * u.y - 1;
-                             if (std::abs(a) > std::abs(b)) {
-                                 const float phi = kPiOver4 * (a / b);
-                                 return Point2f{a * std::cos(phi), a * std::sin(phi)};
-                             }
-                             return UniformDiskConcentric{}.sample(u);
-                         },
-                         [](Point2f x) { return UniformDiskConcentric{}.pdf(x); },
-                         [](Point2f x) { return UniformDiskConcentric{}.invert(x); });
+                         warp_of([](Point2f u) {
+                                     const float a = 2 * u.x - 1, b = 2 * u.y - 1;
+                                     if (std::abs(a) > std::abs(b)) {
+                                         const float phi = kPiOver4 * (a / b);
+                                         return Point2f{a * std::cos(phi), a * std::sin(phi)};
+                                     }
+                                     return UniformDiskConcentric{}.sample(u);
+                                 })
+                             .with_pdf([](Point2f x) { return UniformDiskConcentric{}.pdf(x); })
+                             .with_invert([](Point2f x) { return UniformDiskConcentric{}.invert(x); }));
                  }});
     v.push_back({"disk_pdf_negative", "density negative on half of the disk", [](const std::string& n) {
                      return make_warp_case(
-                         info(n, Domain::unit_disk()), [](Point2f u) { return UniformDiskConcentric{}.sample(u); },
-                         [](Point2f p) { return p.x < 0 ? -kInvPi : kInvPi; },
-                         [](Point2f x) { return UniformDiskConcentric{}.invert(x); });
+                         info(n, Domain::unit_disk()),
+                             warp_of([](Point2f u) { return UniformDiskConcentric{}.sample(u); })
+                                 .with_pdf([](Point2f p) { return p.x < 0 ? -kInvPi : kInvPi; })
+                                 .with_invert([](Point2f x) { return UniformDiskConcentric{}.invert(x); }));
                  }});
     v.push_back({"disk_inverse_nan_at_edge", "inverse is NaN at one edge of the square", [](const std::string& n) {
                      return make_warp_case(
-                         info(n, Domain::unit_disk()), [](Point2f u) { return UniformDiskPolar{}.sample(u); },
-                         [](Point2f x) { return UniformDiskPolar{}.pdf(x); },
-                         [](Point2f p) {
-                             Point2f u = UniformDiskPolar{}.invert(p);
-                             if (u.x == 0) u.x = kNaN;
-                             return u;
-                         });
+                         info(n, Domain::unit_disk()),
+                             warp_of([](Point2f u) { return UniformDiskPolar{}.sample(u); })
+                                 .with_pdf([](Point2f x) { return UniformDiskPolar{}.pdf(x); })
+                                 .with_invert([](Point2f p) {
+                                     Point2f u = UniformDiskPolar{}.invert(p);
+                                     if (u.x == 0) u.x = kNaN;
+                                     return u;
+                                 }));
                  }});
     v.push_back({"cosine_power_swapped_angles", "sampler swaps u.x and u.y (theta from u.y, phi from u.x)",
                  [](const std::string& n) {
                      const CosinePowerHemisphere lobe(4.0f);
                      return make_warp_case(info(n, Domain::hemisphere()),
-                                           [lobe](Point2f u) { return lobe.sample({u.y, u.x}); },
-                                           [lobe](Vector3f w) { return lobe.pdf(w); },
-                                           [lobe](Vector3f w) { return lobe.invert(w); });
+                                           warp_of([lobe](Point2f u) { return lobe.sample({u.y, u.x}); })
+                                               .with_pdf([lobe](Vector3f w) { return lobe.pdf(w); })
+                                               .with_invert([lobe](Vector3f w) { return lobe.invert(w); }));
                  }});
     v.push_back({"uniform_cone_inverse_half_cell", "inverse off by half a 1/64 cell in u.x", [](const std::string& n) {
                      const UniformCone cone(0.3f);
                      return make_warp_case(info(n, Domain::spherical_cap(cone.cos_theta_max())),
-                                           [cone](Point2f u) { return cone.sample(u); },
-                                           [cone](Vector3f w) { return cone.pdf(w); },
-                                           [cone](Vector3f w) {
-                                               Point2f u = cone.invert(w);
-                                               u.x = std::min(u.x + 1.0f / 128, kOneMinusEpsilon);
-                                               return u;
-                                           });
+                                           warp_of([cone](Point2f u) { return cone.sample(u); })
+                                               .with_pdf([cone](Vector3f w) { return cone.pdf(w); })
+                                               .with_invert([cone](Vector3f w) {
+                                                                Point2f u = cone.invert(w);
+                                                                u.x = std::min(u.x + 1.0f / 128, kOneMinusEpsilon);
+                                                                return u;
+                                                            }));
                  }});
     v.push_back({"uniform_cone_pdf_wrong_normalisation", "pdf 1/(2 pi (1 + cos_theta_max)) instead of (1 - ...)",
                  [](const std::string& n) {
                      const UniformCone cone(0.3f);
                      return make_warp_case(info(n, Domain::spherical_cap(cone.cos_theta_max())),
-                                           [cone](Point2f u) { return cone.sample(u); },
-                                           [](Vector3f w) { return w.z >= 0.3f ? 1.0f / (kTwoPi * 1.3f) : 0.0f; },
-                                           [cone](Vector3f w) { return cone.invert(w); });
+                                           warp_of([cone](Point2f u) { return cone.sample(u); })
+                                               .with_pdf([](Vector3f w) { return w.z >= 0.3f ? 1.0f / (kTwoPi * 1.3f) : 0.0f; })
+                                               .with_invert([cone](Vector3f w) { return cone.invert(w); }));
                  }});
     v.push_back({"uniform_sphere_nonuniform_z", "z = 1 - 2 u^2 with its own inverse, uniform density claimed",
                  [](const std::string& n) {
                      return make_warp_case(
                          info(n, Domain::sphere()),
-                         [](Point2f u) {
-                             return UniformSphere{}.sample({u.x * u.x, u.y});
-                         },
-                         [](Vector3f x) { return UniformSphere{}.pdf(x); },
-                         [](Vector3f w) {
-                             const Point2f u = UniformSphere{}.invert(w);
-                             return Point2f{std::sqrt(u.x), u.y};
-                         });
+                         warp_of([](Point2f u) {
+                                     return UniformSphere{}.sample({u.x * u.x, u.y});
+                                 })
+                             .with_pdf([](Vector3f x) { return UniformSphere{}.pdf(x); })
+                             .with_invert([](Vector3f w) {
+                                              const Point2f u = UniformSphere{}.invert(w);
+                                              return Point2f{std::sqrt(u.x), u.y};
+                                          }));
                  }});
     v.push_back({"uniform_sphere_half_turn", "phi = pi u.y: only half of the sphere", [](const std::string& n) {
                      return make_warp_case(
                          info(n, Domain::sphere()),
-                         [](Point2f u) {
-                             return UniformSphere{}.sample({u.x, 0.5f * u.y});
-                         },
-                         [](Vector3f x) { return UniformSphere{}.pdf(x); },
-                         [](Vector3f x) { return UniformSphere{}.invert(x); });
+                         warp_of([](Point2f u) {
+                                     return UniformSphere{}.sample({u.x, 0.5f * u.y});
+                                 })
+                             .with_pdf([](Vector3f x) { return UniformSphere{}.pdf(x); })
+                             .with_invert([](Vector3f x) { return UniformSphere{}.invert(x); }));
                  }});
     v.push_back({"uniform_sphere_nan_for_small_u", "sampler returns NaN for u.x < 1e-3", [](const std::string& n) {
                      return make_warp_case(
                          info(n, Domain::sphere()),
-                         [](Point2f u) {
-                             Vector3f w = UniformSphere{}.sample(u);
-                             if (u.x < 1e-3f) w.z = kNaN;
-                             return w;
-                         },
-                         [](Vector3f x) { return UniformSphere{}.pdf(x); },
-                         [](Vector3f x) { return UniformSphere{}.invert(x); });
+                         warp_of([](Point2f u) {
+                                     Vector3f w = UniformSphere{}.sample(u);
+                                     if (u.x < 1e-3f) w.z = kNaN;
+                                     return w;
+                                 })
+                             .with_pdf([](Vector3f x) { return UniformSphere{}.pdf(x); })
+                             .with_invert([](Vector3f x) { return UniformSphere{}.invert(x); }));
                  }});
     v.push_back({"uniform_hemisphere_not_normalised", "direction built with r = 1 - z instead of sqrt(1 - z^2)",
                  [](const std::string& n) {
                      return make_warp_case(
                          info(n, Domain::hemisphere()),
-                         [](Point2f u) {
-                             const float z = u.x, r = 1 - z, phi = kTwoPi * u.y;
-                             return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
-                         },
-                         [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
-                         [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+                         warp_of([](Point2f u) {
+                                     const float z = u.x, r = 1 - z, phi = kTwoPi * u.y;
+                                     return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
+                                 })
+                             .with_pdf([](Vector3f x) { return UniformHemisphere{}.pdf(x); })
+                             .with_invert([](Vector3f x) { return UniformHemisphere{}.invert(x); }));
                  }});
     v.push_back(
         {"uniform_hemisphere_pdf_nan_near_pole", "pdf is NaN within 1e-3 of the pole", [](const std::string& n) {
              return make_warp_case(
-                 info(n, Domain::hemisphere()), [](Point2f u) { return UniformHemisphere{}.sample(u); },
-                 [](Vector3f w) { return w.z > 0.999f ? kNaN : kInvTwoPi; },
-                 [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+                 info(n, Domain::hemisphere()),
+                     warp_of([](Point2f u) { return UniformHemisphere{}.sample(u); })
+                         .with_pdf([](Vector3f w) { return w.z > 0.999f ? kNaN : kInvTwoPi; })
+                         .with_invert([](Vector3f x) { return UniformHemisphere{}.invert(x); }));
          }});
     v.push_back({"linear_mirrored_sampler", "density right, sampler mirrored (x -> 1 - x)", [](const std::string& n) {
                      return make_warp_case(
                          info(n, Domain::interval(0, 1), InputKind::Uniform1D),
-                         [](float u) { return 1.0f - Linear(1.0f, 3.0f).sample(u); },
-                         [](float x) { return Linear(1.0f, 3.0f).pdf(x); },
-                         [](float x) { return Linear(1.0f, 3.0f).invert(x); });
+                         warp_of([](float u) { return 1.0f - Linear(1.0f, 3.0f).sample(u); })
+                             .with_pdf([](float x) { return Linear(1.0f, 3.0f).pdf(x); })
+                             .with_invert([](float x) { return Linear(1.0f, 3.0f).invert(x); }));
                  }});
     v.push_back({"linear_pdf_unnormalised", "pdf lerp(x, a, b) without the 2 / (a + b)", [](const std::string& n) {
                      return make_warp_case(
                          info(n, Domain::interval(0, 1), InputKind::Uniform1D),
-                         [](float u) { return Linear(1.0f, 3.0f).sample(u); },
-                         [](float x) { return (1 - x) * 1.0f + x * 3.0f; },
-                         [](float x) { return Linear(1.0f, 3.0f).invert(x); });
+                         warp_of([](float u) { return Linear(1.0f, 3.0f).sample(u); })
+                             .with_pdf([](float x) { return (1 - x) * 1.0f + x * 3.0f; })
+                             .with_invert([](float x) { return Linear(1.0f, 3.0f).invert(x); }));
                  }});
     v.push_back({"bilinear_pdf_weights_swapped", "pdf swaps the (1,0) and (0,1) corner weights",
                  [](const std::string& n) {
                      const Bilinear patch(1, 4, 0.5f, 2), swapped(1, 0.5f, 4, 2);
-                     return make_warp_case(info(n, Domain::unit_square()), [=](Point2f u) { return patch.sample(u); },
-                                           [=](Point2f p) { return swapped.pdf(p); },
-                                           [=](Point2f p) { return patch.invert(p); });
+                     return make_warp_case(info(n, Domain::unit_square()),
+                         warp_of([=](Point2f u) { return patch.sample(u); })
+                             .with_pdf([=](Point2f p) { return swapped.pdf(p); })
+                             .with_invert([=](Point2f p) { return patch.invert(p); }));
                  }});
     v.push_back({"trowbridge_reitz_alpha_not_squared", "D with alpha in place of alpha^2",
                  [](const std::string&) { return testing::tr_normals(0.3f, true); }});
@@ -225,27 +234,27 @@ std::vector<KnownBad> known_bad_warps() {
         {"unit_float_returns_one", "u * 2^-32 in float: 1.0 for the 128 largest inputs", [](const std::string& n) {
              return make_warp_case(
                  info(n, Domain::interval(0, 1), InputKind::Bits32),
-                 [](uint32_t u) { return UnitFloatMul{}.sample(u); },
-                 [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
-                 [](float x) { return UnitFloatMul{}.invert(x); });
+                 warp_of([](uint32_t u) { return UnitFloatMul{}.sample(u); })
+                     .with_pdf([](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; })
+                     .with_invert([](float x) { return UnitFloatMul{}.invert(x); }));
          }});
     v.push_back({"unit_float_rounding_biased",
                  "64 random bits, only 32 used, times 2^-32 with the clamp: 257/255 parity", [](const std::string& n) {
                      return make_warp_case(
                          info(n, Domain::interval(0, 1), InputKind::Bits64),
-                         [](uint64_t u) { return UnitFloatMulClamped{}.sample(static_cast<uint32_t>(u >> 32)); },
-                         [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
-                         [](float x) { return uint64_t{UnitFloatMulClamped{}.invert(x)} << 32; });
+                         warp_of([](uint64_t u) { return UnitFloatMulClamped{}.sample(static_cast<uint32_t>(u >> 32)); })
+                             .with_pdf([](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; })
+                             .with_invert([](float x) { return uint64_t{UnitFloatMulClamped{}.invert(x)} << 32; }));
                  }});
     v.push_back({"uniform_sphere_throws", "sampler throws for some inputs", [](const std::string& n) {
                      return make_warp_case(
                          info(n, Domain::sphere()),
-                         [](Point2f u) {
-                             if (u.x > 0.9999f) throw std::domain_error("invalid input");
-                             return UniformSphere{}.sample(u);
-                         },
-                         [](Vector3f x) { return UniformSphere{}.pdf(x); },
-                         [](Vector3f x) { return UniformSphere{}.invert(x); });
+                         warp_of([](Point2f u) {
+                                     if (u.x > 0.9999f) throw std::domain_error("invalid input");
+                                     return UniformSphere{}.sample(u);
+                                 })
+                             .with_pdf([](Vector3f x) { return UniformSphere{}.pdf(x); })
+                             .with_invert([](Vector3f x) { return UniformSphere{}.invert(x); }));
                  }});
     // The wrong twins of tests/support/verdict_twins.h: warps that earlier
     // verdict rules let through (inverses outside [0,1), scale errors below

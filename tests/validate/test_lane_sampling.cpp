@@ -7,6 +7,7 @@
 // is the same with and without the lane form.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -77,7 +78,9 @@ TEST(LaneSampling, EveryLaneCaseBuildsTheScalarHistogramOnEveryPath) {
 // A case that keeps WarpCase's default sample_planar (through sample()).
 class ConeThroughSpans final : public WarpCase {
 public:
-    ConeThroughSpans() : WarpCase({.family = "cone_through_spans", .domain = chi2::Domain::sphere()}) {}
+    ConeThroughSpans()
+        : WarpCase({.family = "cone_through_spans", .domain = chi2::Domain::sphere()},
+                   {.input = InputKind::Uniform2D, .output_dimension = 3}) {}
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override {
         for (std::size_t k = 0; k < in.size(); ++k) {
             const Vector3f v = cone_.sample({in[k].u[0], in[k].u[1]});
@@ -87,7 +90,9 @@ public:
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
         for (std::size_t k = 0; k < x.size(); ++k) out[k] = cone_.pdf({x[k][0], x[k][1], x[k][2]});
     }
-    void invert(std::span<const WarpOutput>, std::span<WarpInput>) const override {}
+    void invert(std::span<const WarpOutput>, std::span<WarpInput>) const override {
+        throw std::logic_error("no inverse");
+    }
 
 private:
     UniformCone cone_{0.3f};

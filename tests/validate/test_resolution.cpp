@@ -68,8 +68,9 @@ struct PbrtAliasTable {
 };
 
 std::unique_ptr<WarpCase> alias_case(const std::string& family, const PbrtAliasTable& t) {
-    return make_warp_case({.family = family, .input = InputKind::Uniform1D, .categories = t.bins.size()},
-                          [t](float u) { return t.sample(u); }, [t](uint32_t i) { return t.bins[i].p; });
+    return make_warp_case({.family = family, .categories = t.bins.size()},
+                          warp_of([t](float u) { return t.sample(u); })
+                              .with_pdf([t](uint32_t i) { return t.bins[i].p; }));
 }
 
 std::vector<float> random_weights(std::size_t n) {
@@ -137,14 +138,14 @@ TEST(BinadeResolution, ExactSamplersPassWithTheirDigitsTested) {
 TEST(BinadeResolution, ABiasedMiddleDigitFailsOnlyByResolution) {
     const UnitFloatReynolds reynolds;
     auto warp = make_warp_case(
-        {.family = "reynolds_digit_18", .input = InputKind::Bits64, .domain = chi2::Domain::interval(0, 1)},
-        [reynolds](uint64_t bits) {
-            float x = reynolds.sample(bits);
-            const bool digit_18 = std::fmod(std::floor(std::ldexp(static_cast<double>(x), 18)), 2.0) == 1.0;
-            if (((bits >> 23) & 0xffu) == 0 && digit_18) x -= 0x1p-18f;
-            return x;
-        },
-        [](float) { return 1.0f; });
+        {.family = "reynolds_digit_18", .domain = chi2::Domain::interval(0, 1)},
+        warp_of([reynolds](uint64_t bits) {
+                    float x = reynolds.sample(bits);
+                    const bool digit_18 = std::fmod(std::floor(std::ldexp(static_cast<double>(x), 18)), 2.0) == 1.0;
+                    if (((bits >> 23) & 0xffu) == 0 && digit_18) x -= 0x1p-18f;
+                    return x;
+                })
+            .with_pdf([](float) { return 1.0f; }));
     for (uint64_t seed = 1; seed <= 2; ++seed) {
         const CheckResult r = run_check(*make_binade_check(), *warp, 1'000'000, 2, seed);
         EXPECT_EQ(r.verdict, Verdict::Fail) << r.summary;
@@ -168,15 +169,16 @@ TEST(BinadeResolution, OneBinadeRowShowsNoNaN) {
 // An interval of one float: nothing to test is n/a, not a NaN that fails.
 TEST(BinadeResolution, NothingToTestIsNotApplicable) {
     auto one = make_warp_case(
-        {.family = "one_float", .input = InputKind::Bits64, .domain = chi2::Domain::interval(1.0, 1.0 + 0x1p-23)},
-        [](uint64_t) { return 1.0f; }, [](float) { return 8388608.0f; });
+        {.family = "one_float", .domain = chi2::Domain::interval(1.0, 1.0 + 0x1p-23)},
+        warp_of([](uint64_t) { return 1.0f; }).with_pdf([](float) { return 8388608.0f; }));
     const CheckResult r = run_check(*make_binade_check(), *one);
     EXPECT_EQ(r.verdict, Verdict::NotApplicable) << r.summary;
     EXPECT_FALSE(r.p_value.has_value());
     // Its wrong twin leaves the interval.
     auto out = make_warp_case(
-        {.family = "one_float_out", .input = InputKind::Bits64, .domain = chi2::Domain::interval(1.0, 1.0 + 0x1p-23)},
-        [](uint64_t bits) { return bits % 2 ? 1.0f : 1.0f + 0x1p-23f; }, [](float) { return 8388608.0f; });
+        {.family = "one_float_out", .domain = chi2::Domain::interval(1.0, 1.0 + 0x1p-23)},
+        warp_of([](uint64_t bits) { return bits % 2 ? 1.0f : 1.0f + 0x1p-23f; })
+            .with_pdf([](float) { return 8388608.0f; }));
     EXPECT_EQ(run_check(*make_binade_check(), *out).verdict, Verdict::Fail);
 }
 

@@ -56,8 +56,9 @@ std::size_t excused_rows(const CheckResult& r, const std::string& cls) {
 
 TEST(FloatCell, LinearMapPullsTheSpacingBackByItsSlope) {
     auto warp = make_warp_case({"scale", {}, "", InputKind::Uniform2D, chi2::Domain::box(0, 3, 0, 5)},
-                               [](Point2f u) { return Point2f{3.0f * u.x, 5.0f * u.y}; },
-                               [](Point2f) { return 1.0f / 15.0f; }, [](Point2f p) { return Point2f{p.x / 3, p.y / 5}; });
+                               warp_of([](Point2f u) { return Point2f{3.0f * u.x, 5.0f * u.y}; })
+                                   .with_pdf([](Point2f) { return 1.0f / 15.0f; })
+                                   .with_invert([](Point2f p) { return Point2f{p.x / 3, p.y / 5}; }));
     const WarpInput u{{0.3f, 0.6f}, 0};
     const WarpOutput x{0.9f, 3.0f, 0.0f};
     const FloatCell cell = measure_float_cell(*warp, u, x, 2, 2);

@@ -52,12 +52,12 @@ TEST(Sidak, NaNAndLowPValuesFail) {
 TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
     auto thrower = make_warp_case(
         {"thrower", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-        [](Point2f u) {
-            if (u.x > 0.99f) throw std::runtime_error("boom");
-            return UniformHemisphere{}.sample(u);
-        },
-        [](Vector3f x) { return UniformHemisphere{}.pdf(x); },
-        [](Vector3f x) { return UniformHemisphere{}.invert(x); });
+        warp_of([](Point2f u) {
+                    if (u.x > 0.99f) throw std::runtime_error("boom");
+                    return UniformHemisphere{}.sample(u);
+                })
+            .with_pdf([](Vector3f x) { return UniformHemisphere{}.pdf(x); })
+            .with_invert([](Vector3f x) { return UniformHemisphere{}.invert(x); }));
     auto fine = make_warp_case({"fine", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, UniformHemisphere{});
     const auto check = make_roundtrip_check();
     RunOptions options;

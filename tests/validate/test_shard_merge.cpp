@@ -172,7 +172,7 @@ int run_with_not_applicable(std::vector<std::string> args) {
             float pdf(Point2f p) const { return testing::twins::disk_pdf(p); }
         };
         r.add_case(make_warp_case({.family = "disk_without_inverse", .description = "no inverse",
-                                   .input = InputKind::Uniform2D, .domain = chi2::Domain::unit_disk()},
+                                   .domain = chi2::Domain::unit_disk()},
                                   DiskWithoutInverse{}));
         return r;
     }();

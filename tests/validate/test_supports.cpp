@@ -24,9 +24,10 @@ using testing::run_default_suite;
 constexpr uint64_t kSeeds[] = {1, 2, 3, 4};
 
 std::unique_ptr<WarpCase> triangle_case(const std::string& family, const FloatTriangle& t, chi2::Domain domain) {
-    return make_warp_case({.family = family, .input = InputKind::Uniform2D, .domain = domain},
-                          [t](Point2f u) { return t.sample(u); }, [t](Point2f p) { return t.pdf(p); },
-                          [t](Point2f p) { return t.invert(p); });
+    return make_warp_case({.family = family, .domain = domain},
+                          warp_of([t](Point2f u) { return t.sample(u); })
+                              .with_pdf([t](Point2f p) { return t.pdf(p); })
+                              .with_invert([t](Point2f p) { return t.invert(p); }));
 }
 
 chi2::Domain triangle_domain(const FloatTriangle& t) {
@@ -105,15 +106,15 @@ TEST(ConsistencySupport, StrictFailsTheRoundedSamples) {
 TEST(ConsistencySupport, RimZerosOfRandomInputsAreBounded) {
     for (bool clamps : {false, true}) {
         auto warp = make_warp_case({.family = clamps ? "cosine_rim_clamped" : "cosine_rim", .domain = chi2::Domain::hemisphere()},
-                                   [clamps](Point2f u) {
-                                       Vector3f w = CosineHemisphere{}.sample(u);
-                                       if (clamps && u.y < 1e-4f) {
-                                           const float r = std::sqrt(w.x * w.x + w.y * w.y);
-                                           if (r > 0) w = Vector3f{w.x / r, w.y / r, 0.0f};
-                                       }
-                                       return w;
-                                   },
-                                   [](Vector3f w) { return CosineHemisphere{}.pdf(w); });
+                                   warp_of([clamps](Point2f u) {
+                                               Vector3f w = CosineHemisphere{}.sample(u);
+                                               if (clamps && u.y < 1e-4f) {
+                                                   const float r = std::sqrt(w.x * w.x + w.y * w.y);
+                                                   if (r > 0) w = Vector3f{w.x / r, w.y / r, 0.0f};
+                                               }
+                                               return w;
+                                           })
+                                       .with_pdf([](Vector3f w) { return CosineHemisphere{}.pdf(w); }));
         for (uint64_t seed : kSeeds) {
             const CheckResult r = run_check(*make_consistency_check(), *warp, 1'000'000, 2, seed);
             if (!clamps) {
@@ -134,13 +135,13 @@ TEST(ConsistencySupport, RimZerosOfRandomInputsAreBounded) {
 TEST(ConsistencySupport, MassOutsideTheTriangleFails) {
     const FloatTriangle t;
     auto warp = make_warp_case({.family = "triangle_leaks", .domain = chi2::Domain::unit_square()},
-                               [t](Point2f u) {
-                                   const Point2f p = t.sample(u);
-                                   if (u.x < 0.99f) return p;
-                                   const Point2f m{0.5f * (t.b.x + t.c.x), 0.5f * (t.b.y + t.c.y)};
-                                   return Point2f{2 * m.x - p.x, 2 * m.y - p.y};
-                               },
-                               [t](Point2f p) { return t.pdf(p); });
+                               warp_of([t](Point2f u) {
+                                           const Point2f p = t.sample(u);
+                                           if (u.x < 0.99f) return p;
+                                           const Point2f m{0.5f * (t.b.x + t.c.x), 0.5f * (t.b.y + t.c.y)};
+                                           return Point2f{2 * m.x - p.x, 2 * m.y - p.y};
+                                       })
+                                   .with_pdf([t](Point2f p) { return t.pdf(p); }));
     const CheckResult r = run_check(*make_consistency_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_GT(*r.figure("zero_pdf"), 1000.0);
@@ -154,8 +155,9 @@ TEST(ConsistencySupport, MassOutsideTheTriangleFails) {
 TEST(ConsistencySupport, StripedTableRoundsOntoEmptyRowsWithinTheBound) {
     const PbrtTable2D table(testing::striped_table(8, 1024), 8, 1024);
     for (uint64_t seed : kSeeds) {
-        auto warp = make_warp_case({.family = "striped_1024"}, [&table](Point2f u) { return table.sample(u).x; },
-                                   [&table](Point2f p) { return table.pdf(p); });
+        auto warp = make_warp_case({.family = "striped_1024"},
+            warp_of([&table](Point2f u) { return table.sample(u).x; })
+                .with_pdf([&table](Point2f p) { return table.pdf(p); }));
         const CheckResult r = run_check(*make_consistency_check(), *warp, 1'000'000, 2, seed);
         EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
         EXPECT_GT(*r.figure("zero_pdf_rounded_random"), 0.0) << "seed " << seed;
@@ -170,8 +172,8 @@ TEST(ConsistencySupport, MassClampedOntoTheEdgesFails) {
     table.edge_clamp = true;
     for (uint64_t seed : kSeeds) {
         auto warp = make_warp_case({.family = "striped_1024_clamped"},
-                                   [&table](Point2f u) { return table.sample(u).x; },
-                                   [&table](Point2f p) { return table.pdf(p); });
+                                   warp_of([&table](Point2f u) { return table.sample(u).x; })
+                                       .with_pdf([&table](Point2f p) { return table.pdf(p); }));
         const CheckResult r = run_check(*make_consistency_check(), *warp, 1'000'000, 2, seed);
         EXPECT_EQ(r.verdict, Verdict::Fail);
         EXPECT_GT(*r.figure("zero_pdf_rounded_random"), *r.figure("zero_pdf_rounded_bound"));
@@ -184,8 +186,9 @@ TEST(ConsistencySupport, MassClampedOntoTheEdgesFails) {
 TEST(EnvironmentMap, TableWithEmptyRowsPassesEveryDefaultCheckOnSeveralSeeds) {
     const auto table = std::make_shared<const PbrtTable2D>(testing::striped_table(8, 16), 8, 16);
     for (uint64_t seed : kSeeds) {
-        auto warp = make_warp_case({.family = "env_map_empty_rows"}, [table](Point2f u) { return table->sample(u).x; },
-                                   [table](Point2f p) { return table->pdf(p); });
+        auto warp = make_warp_case({.family = "env_map_empty_rows"},
+            warp_of([table](Point2f u) { return table->sample(u).x; })
+                .with_pdf([table](Point2f p) { return table->pdf(p); }));
         const RunResult run = run_default_suite(std::move(warp), seed, 300'000);
         EXPECT_EQ(failed_checks(run), "") << "seed " << seed;
         EXPECT_GE(run.results.size(), 3u);
@@ -200,7 +203,7 @@ TEST(EnvironmentMap, ReturnedPdfWithEmptyRowsPassesAgainstItsSupport) {
     for (double support : {table->support_area(), 0.0}) {
         for (uint64_t seed : kSeeds) {
             auto warp = make_warp_case({.family = "env_map_returned_pdf", .support_measure = support},
-                                       [table](Point2f u) { return table->sample(u); });
+                                       warp_of([table](Point2f u) { return table->sample(u); }));
             const RunResult run = run_default_suite(std::move(warp), seed, 300'000);
             EXPECT_EQ(failed_checks(run), "") << "seed " << seed << " support " << support;
             bool tested = false;
@@ -222,14 +225,14 @@ TEST(EnvironmentMap, ReturnedPdfWithEmptyRowsPassesAgainstItsSupport) {
 std::unique_ptr<WarpCase> bucket_table(const std::string& family, double support, float pdf_scale) {
     const auto table = std::make_shared<const PbrtTable1D>(std::vector<float>{1, 2, 0, 4, 1, 3, 2, 0.5f});
     return make_warp_case(
-        {.family = family, .input = InputKind::Uniform1D, .domain = chi2::Domain::interval(0, 4),
+        {.family = family, .domain = chi2::Domain::interval(0, 4),
          .support_measure = support},
-        [table, pdf_scale](float u) {
-            float pdf = 0;
-            std::size_t bucket = 0;
-            const float x = 4 * table->sample(u, pdf, bucket);
-            return PdfSample<float>{x, pdf_scale * pdf / 4};
-        });
+        warp_of([table, pdf_scale](float u) {
+                    float pdf = 0;
+                    std::size_t bucket = 0;
+                    const float x = 4 * table->sample(u, pdf, bucket);
+                    return PdfSample<float>{x, pdf_scale * pdf / 4};
+                }));
 }
 
 TEST(InversePdfMean, EmptyBucketPassesAgainstTheDeclaredSupport) {

@@ -22,7 +22,6 @@ WarpCaseInfo info_1d(const std::string& family, chi2::Domain domain) {
     WarpCaseInfo info;
     info.family = family;
     info.description = "test warp";
-    info.input = InputKind::Uniform1D;
     info.domain = domain;
     return info;
 }
@@ -38,11 +37,12 @@ std::unique_ptr<WarpCase> exponential_case(float a, float scale = 1.0f, float pd
     const Exponential e(a);
     return make_warp_case(
         info,
-        [e, scale, clamp](float u) {
-            const float x = scale * e.sample(u);
-            return clamp > 0.0f ? std::min(x, clamp) : x;
-        },
-        [e, pdf_scale](float x) { return pdf_scale * e.pdf(x); }, [e](float x) { return e.invert(x); });
+        warp_of([e, scale, clamp](float u) {
+                    const float x = scale * e.sample(u);
+                    return clamp > 0.0f ? std::min(x, clamp) : x;
+                })
+            .with_pdf([e, pdf_scale](float x) { return pdf_scale * e.pdf(x); })
+            .with_invert([e](float x) { return e.invert(x); }));
 }
 
 /// The isotropic Trowbridge-Reitz normals with their cos(theta_m) marginal
@@ -136,8 +136,9 @@ TEST(TabulatedCheck, NaNSamplesFail) {
     WarpCaseInfo info = info_1d("nan", chi2::Domain::interval(0.0, 1.0));
     const TrimmedExponential t(1.0f, 1.0f);
     auto warp = make_warp_case(
-        info, [t](float u) { return u > 0.7f ? std::numeric_limits<float>::quiet_NaN() : t.sample(u); },
-        [t](float x) { return t.pdf(x); }, [t](float x) { return t.invert(x); });
+        info, warp_of([t](float u) { return u > 0.7f ? std::numeric_limits<float>::quiet_NaN() : t.sample(u); })
+                  .with_pdf([t](float x) { return t.pdf(x); })
+                  .with_invert([t](float x) { return t.invert(x); }));
     const CheckResult r = run_check(*make_tabulated_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
 }

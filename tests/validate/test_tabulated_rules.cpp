@@ -36,7 +36,6 @@ WarpCaseInfo interval_info(const std::string& family, double a = 0.0, double b =
     WarpCaseInfo info;
     info.family = family;
     info.description = "tabulated rule test";
-    info.input = InputKind::Uniform1D;
     info.domain = chi2::Domain::interval(a, b);
     info.inversion = inversion;
     return info;
@@ -50,11 +49,11 @@ WarpCaseInfo interval_info(const std::string& family, double a = 0.0, double b =
 std::unique_ptr<WarpCase> mixture(float weight = 0.3f, Inversion inversion = Inversion::Measure) {
     return make_warp_case(
         interval_info("mixture_chosen_by_u", 0.0, 1.0, inversion),
-        [weight](float u) {
-            if (u < weight) return std::sqrt(u / weight);
-            return 1.0f - std::sqrt(1.0f - (u - weight) / (1.0f - weight));
-        },
-        [](float x) { return x >= 0.0f && x <= 1.0f ? 0.6f * x + 1.4f * (1.0f - x) : 0.0f; });
+        warp_of([weight](float u) {
+                    if (u < weight) return std::sqrt(u / weight);
+                    return 1.0f - std::sqrt(1.0f - (u - weight) / (1.0f - weight));
+                })
+            .with_pdf([](float x) { return x >= 0.0f && x <= 1.0f ? 0.6f * x + 1.4f * (1.0f - x) : 0.0f; }));
 }
 
 /// A 1D piecewise-constant density {0.1, 0.3, 0.2, 0.4} on four buckets of
@@ -66,19 +65,19 @@ std::unique_ptr<WarpCase> alias_table_1d() {
     static constexpr std::array<float, 4> kPdf = {0.4f, 1.2f, 0.8f, 1.6f};
     return make_warp_case(
         interval_info("alias_table_1d"),
-        [](float u) {
-            const int column = std::min(static_cast<int>(u * 4.0f), 3);
-            const float r = u * 4.0f - static_cast<float>(column);
-            const float p = kProb[static_cast<std::size_t>(column)];
-            const bool own = r < p;
-            const int bucket = own ? column : kAlias[static_cast<std::size_t>(column)];
-            const float v = own ? r / p : (r - p) / (1.0f - p);
-            return std::min((static_cast<float>(bucket) + v) * 0.25f, kOneMinusEpsilon);
-        },
-        [](float x) {
-            if (!(x >= 0.0f && x <= 1.0f)) return 0.0f;
-            return kPdf[static_cast<std::size_t>(std::min(static_cast<int>(x * 4.0f), 3))];
-        });
+        warp_of([](float u) {
+                    const int column = std::min(static_cast<int>(u * 4.0f), 3);
+                    const float r = u * 4.0f - static_cast<float>(column);
+                    const float p = kProb[static_cast<std::size_t>(column)];
+                    const bool own = r < p;
+                    const int bucket = own ? column : kAlias[static_cast<std::size_t>(column)];
+                    const float v = own ? r / p : (r - p) / (1.0f - p);
+                    return std::min((static_cast<float>(bucket) + v) * 0.25f, kOneMinusEpsilon);
+                })
+            .with_pdf([](float x) {
+                          if (!(x >= 0.0f && x <= 1.0f)) return 0.0f;
+                          return kPdf[static_cast<std::size_t>(std::min(static_cast<int>(x * 4.0f), 3))];
+                      }));
 }
 
 TEST(TabulatedMonotonicity, SamplersThatAreNotMonotoneInUAreNotApplicableWithWhere) {
@@ -107,9 +106,11 @@ TEST(TabulatedMonotonicity, AMonotoneSamplerIsMeasuredSoAndStillJudged) {
     const auto check = make_tabulated_check();
     const auto pdf = [](float x) { return x >= 0.0f && x <= 1.0f ? 2.0f * (1.0f - x) : 0.0f; };
     const auto good =
-        make_warp_case(interval_info("decreasing_ramp"), [](float u) { return 1.0f - std::sqrt(u); }, pdf);
+        make_warp_case(interval_info("decreasing_ramp"),
+            warp_of([](float u) { return 1.0f - std::sqrt(u); }).with_pdf(pdf));
     const auto bad =
-        make_warp_case(interval_info("decreasing_ramp_off"), [](float u) { return 1.0f - std::pow(u, 0.502f); }, pdf);
+        make_warp_case(interval_info("decreasing_ramp_off"),
+            warp_of([](float u) { return 1.0f - std::pow(u, 0.502f); }).with_pdf(pdf));
     for (uint64_t seed : kSeeds) {
         const CheckResult r = run_check(*check, *good, 200'000, 2, seed);
         EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
@@ -130,10 +131,12 @@ TEST(TabulatedMonotonicity, FloatNoiseOnAFlatStretchIsExcusedAndCountedAFoldIsNo
     const double width = static_cast<double>(b) - 1.0;
     const auto lerp = [b](float u) { return (1.0f - u) * 1.0f + u * b; };
     const auto pdf = [b, width](float x) { return x >= 1.0f && x <= b ? 1.0 / width : 0.0; };
-    const auto noisy = make_warp_case(interval_info("flat_lerp", 1.0, b), lerp, pdf);
-    const auto folded = make_warp_case(interval_info("flat_lerp_folded", 1.0, b), [lerp](float u) {
-        return lerp(u >= 0.5f && u < 0.52f ? 1.02f - u : u);
-    }, pdf);
+    const auto noisy = make_warp_case(interval_info("flat_lerp", 1.0, b), warp_of(lerp).with_pdf(pdf));
+    const auto folded = make_warp_case(interval_info("flat_lerp_folded", 1.0, b),
+        warp_of([lerp](float u) {
+            return lerp(u >= 0.5f && u < 0.52f ? 1.02f - u : u);
+        })
+            .with_pdf(pdf));
     const auto check = make_tabulated_check();
     for (uint64_t seed : kSeeds) {
         const CheckResult r = run_check(*check, *noisy, 200'000, 2, seed);
@@ -165,12 +168,13 @@ TEST(TabulatedMonotonicity, Cxx17CasesCanDeclareIt) {
     Registry registry;
     cxx17::CaseInfo info;
     info.family = "cxx17_not_inversion";
-    info.input = cxx17::Input::Uniform1D;
     info.domain = cxx17::Domain::interval(0.0, 1.0);
     info.inversion = cxx17::Inversion::NotInversion;
-    cxx17::add_case(
-        registry, info, [](const cxx17::WarpInput& u) { return cxx17::Point{u.u[0], 0.0f, 0.0f}; },
-        [](const cxx17::Point&) { return 1.0; });
+    struct Uniform {
+        float sample(float u) const { return u; }
+        double pdf(float) const { return 1.0; }
+    };
+    cxx17::add_case(registry, info, Uniform{});
     EXPECT_EQ(registry.cases().at(0)->info().inversion, Inversion::NotInversion);
 }
 
@@ -208,14 +212,14 @@ std::unique_ptr<WarpCase> clamped_phong(const std::string& family, float z_max, 
     view.pdf = [n](double z) { return (n + 1.0) * std::pow(z, n); };
     return make_warp_case(
         {.family = family, .domain = chi2::Domain::hemisphere(), .views = {view}},
-        [z_max, exponent](Point2f u) {
+        warp_of([z_max, exponent](Point2f u) {
             const float z = std::fmin(std::pow(u.x, exponent), z_max);
             const float r = std::sqrt(std::fmax(0.0f, 1.0f - z * z)), phi = kTwoPi * u.y;
             return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
-        },
-        [n](Vector3f w) {
-            return w.z >= 0.0f ? static_cast<float>((n + 1.0) / (2.0 * std::numbers::pi) * std::pow(w.z, n)) : 0.0f;
-        });
+        })
+            .with_pdf([n](Vector3f w) {
+                return w.z >= 0.0f ? static_cast<float>((n + 1.0) / (2.0 * std::numbers::pi) * std::pow(w.z, n)) : 0.0f;
+            }));
 }
 
 TEST(TabulatedReferenceTable, AtTheEndsOfUTheCdfUncertaintyReachesTheEndsOfTheRange) {
@@ -261,10 +265,12 @@ TEST(TabulatedReach, SamplesWhereBothDensitiesAreZeroAreStillJudgedOnX) {
         const float x = 0.8f * u;
         return x > 0.4f ? x + 0.2f : x;
     };
-    const auto good = make_warp_case(interval_info("gap"), gap_sample, gap_pdf);
-    const auto bad = make_warp_case(interval_info("gap_filled"), [gap_sample](float u) {
-        return u >= 0.49f && u < 0.51f ? 0.5f : gap_sample(u);
-    }, gap_pdf);
+    const auto good = make_warp_case(interval_info("gap"), warp_of(gap_sample).with_pdf(gap_pdf));
+    const auto bad = make_warp_case(interval_info("gap_filled"),
+        warp_of([gap_sample](float u) {
+            return u >= 0.49f && u < 0.51f ? 0.5f : gap_sample(u);
+        })
+            .with_pdf(gap_pdf));
     const auto check = make_tabulated_check();
     for (uint64_t seed : kSeeds) {
         EXPECT_EQ(run_check(*check, *good, 200'000, 2, seed).verdict, Verdict::Pass);
@@ -302,8 +308,8 @@ std::unique_ptr<WarpCase> end_lobe(const std::string& family, float x_max) {
     const double norm = -std::expm1(-static_cast<double>(c) * (1.0 - static_cast<double>(a)));
     return make_warp_case(
         interval_info(family, a, 1.0),
-        [=](float u) { return std::clamp(1.0f + std::log(u + (1.0f - u) * tail) / c, a, x_max); },
-        [=](float x) { return x >= a && x <= 1.0f ? c * std::exp(c * (static_cast<double>(x) - 1.0)) / norm : 0.0; });
+        warp_of([=](float u) { return std::clamp(1.0f + std::log(u + (1.0f - u) * tail) / c, a, x_max); })
+            .with_pdf([=](float x) { return x >= a && x <= 1.0f ? c * std::exp(c * (static_cast<double>(x) - 1.0)) / norm : 0.0; }));
 }
 
 TEST(TabulatedReach, ADensityConcentratedAtItsEndReachesItsLastFloat) {
@@ -349,8 +355,8 @@ std::unique_ptr<WarpCase> float_logistic(const std::string& family, float cut = 
     const float top = static_cast<float>(FloatLogistic::hi()) - cut;
     return make_warp_case(
         info,
-        [cut, top](float u) { return cut > 0.0f ? std::fmin(FloatLogistic::sample(u), top) : FloatLogistic::sample(u); },
-        [](float x) { return FloatLogistic::pdf(x); });
+        warp_of([cut, top](float u) { return cut > 0.0f ? std::fmin(FloatLogistic::sample(u), top) : FloatLogistic::sample(u); })
+            .with_pdf([](float x) { return FloatLogistic::pdf(x); }));
 }
 
 TEST(TabulatedTails, TheInputNextToTheTruncationGetsTheBodysAllowance) {
@@ -391,8 +397,8 @@ TEST(TabulatedTails, AFloatLogisticPassesOnEverySeedAndOneMissingItsTailFails) {
 
 TEST(TabulatedNaN, AWarpThatReturnsNaNEverywhereFailsAndSaysSo) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
-    const auto warp = make_warp_case(interval_info("nan_everywhere"), [nan](float) { return nan; },
-                                     [nan](float) { return nan; });
+    const auto warp = make_warp_case(interval_info("nan_everywhere"),
+        warp_of([nan](float) { return nan; }).with_pdf([nan](float) { return nan; }));
     const CheckResult r = run_check(*make_tabulated_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail) << r.message;
     EXPECT_THAT(r.message, HasSubstr("the density is NaN at all"));
@@ -409,7 +415,8 @@ TEST(TabulatedNaN, NaNSamplesOfADeclaredViewFailWithTheirCount) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const auto warp =
         make_warp_case({.family = "nan_hemisphere", .domain = chi2::Domain::hemisphere(), .views = {view}},
-                       [nan](Point2f) { return Vector3f{nan, nan, nan}; }, [nan](Vector3f) { return nan; });
+                       warp_of([nan](Point2f) { return Vector3f{nan, nan, nan}; })
+                           .with_pdf([nan](Vector3f) { return nan; }));
     const CheckResult r = run_check(*make_tabulated_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
     EXPECT_THAT(r.message, HasSubstr("every sample is NaN"));
@@ -417,9 +424,11 @@ TEST(TabulatedNaN, NaNSamplesOfADeclaredViewFailWithTheirCount) {
 }
 
 TEST(TabulatedNaN, ADensityThatIsNaNSomewhereFailsNotErrors) {
-    const auto warp = make_warp_case(interval_info("nan_pdf_above_0.7"), [](float u) { return u; }, [](float x) {
-        return x > 0.7f ? std::numeric_limits<float>::quiet_NaN() : 1.0f;
-    });
+    const auto warp = make_warp_case(interval_info("nan_pdf_above_0.7"),
+        warp_of([](float u) { return u; })
+            .with_pdf([](float x) {
+                return x > 0.7f ? std::numeric_limits<float>::quiet_NaN() : 1.0f;
+            }));
     const CheckResult r = run_check(*make_tabulated_check(), *warp);
     EXPECT_EQ(r.verdict, Verdict::Fail) << r.message;
     EXPECT_THAT(r.message, HasSubstr("the density is NaN at"));

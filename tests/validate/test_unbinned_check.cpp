@@ -56,11 +56,12 @@ std::unique_ptr<WarpCase> cosine_claiming_power(double eps) {
     info.params = {{"eps", eps}};
     info.domain = chi2::Domain::hemisphere();
     return make_warp_case(
-        info, [](Point2f u) { return CosineHemisphere{}.sample(u); },
-        [eps](Vector3f v) {
-            return v.z >= 0.0f ? (2.0 + eps) / (2.0 * std::numbers::pi) * std::pow(double(v.z), 1.0 + eps) : 0.0;
-        },
-        [](Vector3f v) { return CosineHemisphere{}.invert(v); });
+        info,
+            warp_of([](Point2f u) { return CosineHemisphere{}.sample(u); })
+                .with_pdf([eps](Vector3f v) {
+                    return v.z >= 0.0f ? (2.0 + eps) / (2.0 * std::numbers::pi) * std::pow(double(v.z), 1.0 + eps) : 0.0;
+                })
+                .with_invert([](Vector3f v) { return CosineHemisphere{}.invert(v); }));
 }
 
 /// Detections over kSeeds seeds by the default suite's statistical checks.
@@ -89,7 +90,6 @@ std::unique_ptr<WarpCase> uniform_with_bump(double q) {
     WarpCaseInfo info;
     info.family = "uniform_with_bump";
     info.params = {{"q", q}};
-    info.input = InputKind::Uniform1D;
     info.domain = chi2::Domain::interval(0.0, 1.0);
     constexpr double a = 0.5, w = 0.005;
     auto cdf = [q](double x) { return (1.0 - q) * x + q * std::clamp((x - a) / w, 0.0, 1.0); };
@@ -100,7 +100,9 @@ std::unique_ptr<WarpCase> uniform_with_bump(double q) {
         return static_cast<float>((u - q) / (1.0 - q));
     };
     return make_warp_case(
-        info, sample, [](float) { return 1.0f; }, [cdf](float x) { return static_cast<float>(cdf(x)); });
+        info, warp_of(sample)
+                  .with_pdf([](float) { return 1.0f; })
+                  .with_invert([cdf](float x) { return static_cast<float>(cdf(x)); }));
 }
 
 TEST(LocalResidual, CatchesAOneCellExcessThatPearsonMisses) {
@@ -124,7 +126,8 @@ TEST(UnbinnedCheck, SameFiguresForAnyThreadCount) {
     // An ordinary case and one tested against float bands (a tiny cone).
     const auto cone = make_warp_case(
         {"tiny_cone", {}, "", InputKind::Uniform2D, chi2::Domain::spherical_cap(0.99999)},
-        [](Point2f u) { return UniformCone(0.99999f).sample(u); }, [](Vector3f v) { return UniformCone(0.99999f).pdf(v); });
+        warp_of([](Point2f u) { return UniformCone(0.99999f).sample(u); })
+            .with_pdf([](Vector3f v) { return UniformCone(0.99999f).pdf(v); }));
     const auto cosine = cosine_claiming_power(0.0);
     const auto check = make_unbinned_check();
     for (const WarpCase* warp : {cosine.get(), cone.get()}) {
@@ -148,8 +151,8 @@ std::unique_ptr<WarpCase> nan_warp(const std::string& name, bool nan_pdf) {
     info.domain = chi2::Domain::hemisphere();
     const float nan = std::nanf("");
     return make_warp_case(
-        info, [nan](Point2f) { return Vector3f{nan, nan, nan}; },
-        [nan_pdf](Vector3f) { return nan_pdf ? std::nan("") : 1.0 / (2.0 * std::numbers::pi); });
+        info, warp_of([nan](Point2f) { return Vector3f{nan, nan, nan}; })
+                  .with_pdf([nan_pdf](Vector3f) { return nan_pdf ? std::nan("") : 1.0 / (2.0 * std::numbers::pi); }));
 }
 
 TEST(UnbinnedVerdicts, EverySampleNaNIsAFailureThatSaysSo) {
@@ -174,11 +177,11 @@ TEST(UnbinnedVerdicts, EverySampleNaNIsAFailureThatSaysSo) {
     // Some NaN samples among good ones are left out, counted, and carried into the band.
     const auto warp = make_warp_case(
         {"some_nan", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-        [](Point2f u) {
-            const float nan = std::nanf("");
-            return u.x < 0.01f ? Vector3f{nan, nan, nan} : UniformHemisphere{}.sample(u);
-        },
-        [](Vector3f v) { return UniformHemisphere{}.pdf(v); });
+        warp_of([](Point2f u) {
+                    const float nan = std::nanf("");
+                    return u.x < 0.01f ? Vector3f{nan, nan, nan} : UniformHemisphere{}.sample(u);
+                })
+            .with_pdf([](Vector3f v) { return UniformHemisphere{}.pdf(v); }));
     const CheckResult r = run_check(*check, *warp, 1);
     EXPECT_GT(figure(r, "cos_theta_nan"), 9000.0);
     EXPECT_NE(r.summary.find("samples without a cos theta left out"), std::string::npos) << r.summary;
@@ -190,8 +193,8 @@ TEST(UnbinnedVerdicts, EverySampleNaNIsAFailureThatSaysSo) {
 /// check's rule).
 std::unique_ptr<WarpCase> overweight_hemisphere() {
     return make_warp_case({"overweight_hemisphere", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-                          [](Point2f u) { return UniformHemisphere{}.sample(u); },
-                          [](Vector3f v) { return 1.5 * UniformHemisphere{}.pdf(v); });
+                          warp_of([](Point2f u) { return UniformHemisphere{}.sample(u); })
+                              .with_pdf([](Vector3f v) { return 1.5 * UniformHemisphere{}.pdf(v); }));
 }
 
 TEST(UnbinnedVerdicts, NothingTestedIsNotApplicableAndStillCountsInTheFamily) {
@@ -225,7 +228,8 @@ TEST(UnbinnedVerdicts, NoRowSaysNaN) {
     const auto check = make_unbinned_check();
     const auto cone = make_warp_case(
         {"tiny_cone", {}, "", InputKind::Uniform2D, chi2::Domain::spherical_cap(0.99999)},
-        [](Point2f u) { return UniformCone(0.99999f).sample(u); }, [](Vector3f v) { return UniformCone(0.99999f).pdf(v); });
+        warp_of([](Point2f u) { return UniformCone(0.99999f).sample(u); })
+            .with_pdf([](Vector3f v) { return UniformCone(0.99999f).pdf(v); }));
     const std::unique_ptr<WarpCase> warps[] = {cosine_claiming_power(0.0), cosine_claiming_power(0.2),
                                                overweight_hemisphere()};
     for (const WarpCase* w : {warps[0].get(), warps[1].get(), warps[2].get(), cone.get()}) {

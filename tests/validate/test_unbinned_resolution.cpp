@@ -94,7 +94,7 @@ std::unique_ptr<WarpCase> pbrt_cone(const std::string& name, const Cone& c) {
     auto pdf = [c](Vector3f v) {
         return v.z >= c.cos_max ? 1.0 / (2.0 * std::numbers::pi * (1.0 - static_cast<double>(c.cos_max))) : 0.0;
     };
-    return make_warp_case(info, sample, pdf);
+    return make_warp_case(info, warp_of(sample).with_pdf(pdf));
 }
 
 float cos_degrees(double degrees) { return static_cast<float>(std::cos(degrees * std::numbers::pi / 180.0)); }
@@ -184,10 +184,10 @@ std::unique_ptr<WarpCase> alternating(const std::string& name, double tilt) {
     const auto claimed = std::make_shared<const PiecewiseConstant1D>(bins(0.0), 0.0f, 1.0f);
     WarpCaseInfo info;
     info.family = name;
-    info.input = InputKind::Uniform1D;
     info.domain = chi2::Domain::interval(0.0, 1.0);
     return make_warp_case(
-        info, [drawn](float u) { return drawn->sample(u).x; }, [claimed](float x) { return claimed->pdf(x); });
+        info, warp_of([drawn](float u) { return drawn->sample(u).x; })
+                  .with_pdf([claimed](float x) { return claimed->pdf(x); }));
 }
 
 TEST(UnbinnedResolution, DensityAlternatingWithinStripsPassesAndItsTiltedTwinFails) {
@@ -217,7 +217,7 @@ std::unique_ptr<WarpCase> sphere_with_gap(const std::string& name, double gap) {
         const float phi = kTwoPiF * static_cast<float>(gap + (1.0 - gap) * u.y);
         return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
     };
-    return make_warp_case(info, sample, [](Vector3f) { return 1.0 / (4.0 * std::numbers::pi); });
+    return make_warp_case(info, warp_of(sample).with_pdf([](Vector3f) { return 1.0 / (4.0 * std::numbers::pi); }));
 }
 
 TEST(UnbinnedResolution, AzimuthSliverNextToTheCutFailsAndTheUniformAzimuthPasses) {

@@ -126,11 +126,12 @@ TEST(NoInverse, RoundTripDoesNotApplyAndTheRestPasses) {
         float pdf(Point2f p) const { return testing::twins::disk_pdf(p); }
     };
     auto warp = make_warp_case({.family = "disk_without_inverse", .description = "no inverse",
-                                .input = InputKind::Uniform2D, .domain = chi2::Domain::unit_disk()},
+                                .domain = chi2::Domain::unit_disk()},
                                DiskWithoutInverse{});
     EXPECT_FALSE(warp->has_inverse());
     auto lambdas = make_warp_case({.family = "disk_lambdas", .domain = chi2::Domain::unit_disk()},
-                                  [](Point2f u) { return testing::twins::polar_disk(u, 1.0f); }, testing::twins::disk_pdf);
+                                  warp_of([](Point2f u) { return testing::twins::polar_disk(u, 1.0f); })
+                                      .with_pdf(testing::twins::disk_pdf));
     EXPECT_FALSE(lambdas->has_inverse());
     std::vector<WarpOutput> x(1);
     std::vector<WarpInput> back(1);
@@ -163,8 +164,9 @@ TEST(KnownFlaw, MarkOnOneCheckLeavesOnlyThatCheckOut) {
     Registry registry;
     register_builtin_checks(registry);
     registry.add_case(make_warp_case({.family = "disk_flawed_roundtrip", .domain = chi2::Domain::unit_disk()},
-                                     [](Point2f u) { return testing::twins::polar_disk(u, 1.0f); },
-                                     testing::twins::disk_pdf, [](Point2f) { return Point2f{0.5f, 0.5f}; }));
+                                     warp_of([](Point2f u) { return testing::twins::polar_disk(u, 1.0f); })
+                                         .with_pdf(testing::twins::disk_pdf)
+                                         .with_invert([](Point2f) { return Point2f{0.5f, 0.5f}; })));
     registry.mark_known_flaw("disk_flawed_roundtrip", "roundtrip", "an inverse under repair");
     EXPECT_THROW(registry.mark_known_flaw("disk_flawed_roundtrip", "no_such_check", "x"), std::invalid_argument);
     RunOptions options;

@@ -36,34 +36,35 @@ void expect_nan_fails(const WarpCase& warp, std::initializer_list<std::unique_pt
 }
 
 TEST(NaNEverywhere, PointsAndPdfFailConsistency) {
-    auto warp = make_warp_case({.family = "nan_everywhere"}, [](Point2f) { return Point2f{kNaN, kNaN}; },
-                               [](Point2f) { return kNaN; });
+    auto warp = make_warp_case({.family = "nan_everywhere"},
+        warp_of([](Point2f) { return Point2f{kNaN, kNaN}; }).with_pdf([](Point2f) { return kNaN; }));
     expect_nan_fails(*warp, {make_consistency_check});
 }
 
 TEST(NaNEverywhere, ReturnedPdfFailsConsistencyAndTheMeanOfItsInverse) {
     auto warp = make_warp_case({.family = "nan_returned_pdf"},
-                               [](Point2f) { return PdfSample<Point2f>{{kNaN, kNaN}, kNaN}; });
+                               warp_of([](Point2f) { return PdfSample<Point2f>{{kNaN, kNaN}, kNaN}; }));
     expect_nan_fails(*warp, {make_consistency_check, make_inverse_pdf_mean_check});
 }
 
 TEST(NaNEverywhere, WeightedSamplerFailsTheMeanWeight) {
-    auto warp = make_weighted_case({.family = "nan_weighted", .domain = chi2::Domain::hemisphere()},
-                                   [](Point2f) { return WeightedSample<Vector3f>{{kNaN, kNaN, kNaN}, kNaN}; },
-                                   [](Vector3f) { return kNaN; }, [](Vector3f) { return kNaN; });
+    auto warp = make_warp_case({.family = "nan_weighted", .domain = chi2::Domain::hemisphere()},
+                                   warp_of([](Point2f) { return WeightedSample<Vector3f>{{kNaN, kNaN, kNaN}, kNaN}; })
+                                       .with_pdf([](Vector3f) { return kNaN; })
+                                       .with_eval([](Vector3f) { return kNaN; }));
     expect_nan_fails(*warp, {make_consistency_check, make_weight_mean_check});
 }
 
 TEST(NaNEverywhere, DiscreteSamplerFailsItsChecks) {
-    auto warp = make_warp_case({.family = "nan_discrete", .input = InputKind::Uniform1D, .categories = 4},
-                               [](float) { return DiscreteSample{0, kNaN}; }, [](uint32_t) { return kNaN; });
+    auto warp = make_warp_case({.family = "nan_discrete", .categories = 4},
+                               warp_of([](float) { return DiscreteSample{0, kNaN}; })
+                                   .with_pdf([](uint32_t) { return kNaN; }));
     expect_nan_fails(*warp, {make_pmf_check, make_discrete_chi2_check, make_remapped_u_check});
 }
 
 TEST(NaNEverywhere, FloatSamplersFailTheirChecks) {
-    auto bits64 = make_warp_case({.family = "nan_bits64", .input = InputKind::Bits64,
-                                  .domain = chi2::Domain::interval(0, 1)},
-                                 [](uint64_t) { return kNaN; }, [](float) { return kNaN; });
+    auto bits64 = make_warp_case({.family = "nan_bits64", .domain = chi2::Domain::interval(0, 1)},
+                                 warp_of([](uint64_t) { return kNaN; }).with_pdf([](float) { return kNaN; }));
     expect_nan_fails(*bits64, {make_binade_check, make_consistency_check});
 }
 
@@ -76,15 +77,17 @@ namespace {
 // A discrete sampler with one category of positive pmf: its counts have no
 // degrees of freedom, and the row says what was tested instead of "chi2 nan".
 TEST(NothingTested, DiscreteCountsWithoutDegreesOfFreedomSaySo) {
-    auto one = make_warp_case({.family = "one_category", .input = InputKind::Uniform1D, .categories = 3},
-                              [](float) { return 1; }, [](int i) { return i == 1 ? 1.0f : 0.0f; });
+    auto one = make_warp_case({.family = "one_category", .categories = 3},
+                              warp_of([](float) { return 1; })
+                                  .with_pdf([](int i) { return i == 1 ? 1.0f : 0.0f; }));
     const CheckResult r = run_check(*make_discrete_chi2_check(), *one);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.summary;
     EXPECT_EQ(r.summary.find("nan"), std::string::npos) << r.summary;
     EXPECT_NE(r.summary.find("no degrees of freedom"), std::string::npos) << r.summary;
     // The twin picks a category of pmf 0 for 1% of its inputs.
-    auto wrong = make_warp_case({.family = "one_category_wrong", .input = InputKind::Uniform1D, .categories = 3},
-                                [](float u) { return u < 0.01f ? 2 : 1; }, [](int i) { return i == 1 ? 1.0f : 0.0f; });
+    auto wrong = make_warp_case({.family = "one_category_wrong", .categories = 3},
+                                warp_of([](float u) { return u < 0.01f ? 2 : 1; })
+                                    .with_pdf([](int i) { return i == 1 ? 1.0f : 0.0f; }));
     EXPECT_EQ(run_check(*make_discrete_chi2_check(), *wrong).verdict, Verdict::Fail);
 }
 

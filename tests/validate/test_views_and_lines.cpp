@@ -52,8 +52,8 @@ MonotoneMarginal azimuth_view() {
 
 std::unique_ptr<WarpCase> sphere_case(float bend, std::vector<MonotoneMarginal> views) {
     return make_warp_case({.family = "sphere", .domain = chi2::Domain::sphere(), .views = std::move(views)},
-                          [bend](Point2f u) { return sphere_sample(u, bend); },
-                          [](Vector3f) { return static_cast<float>(0.25 / kPi); });
+                          warp_of([bend](Point2f u) { return sphere_sample(u, bend); })
+                              .with_pdf([](Vector3f) { return static_cast<float>(0.25 / kPi); }));
 }
 
 TEST(Views, EachViewIsTabulatedAndNamed) {
@@ -110,7 +110,7 @@ std::unique_ptr<WarpCase> normal_case(Normal n) {
     view.hi = n.mu + 4.0 * n.sigma;
     view.lower_tail_mass = view.tail_mass = 0.5 * std::erfc(4.0 / std::sqrt(2.0));
     view.label = "x";
-    return make_warp_case({.family = "normal", .input = InputKind::Uniform1D, .domain = chi2::Domain::real_line(),
+    return make_warp_case({.family = "normal", .domain = chi2::Domain::real_line(),
                            .views = {view}},
                           n);
 }
@@ -143,11 +143,10 @@ std::unique_ptr<WarpCase> mirrored_exponential(float b, float rate, float sample
     view.hi = b;
     view.lower_tail_mass = std::exp(-10.0);
     view.label = "x";
-    return make_warp_case({.family = "mirrored_exponential", .input = InputKind::Uniform1D,
-                           .domain = chi2::Domain::lower_half_line(b), .views = {view}},
-                          [b, sample_rate](float u) { return b + std::log1p(-u) / sample_rate; },
-                          [b, rate](float x) { return x > b ? 0.0f : rate * std::exp(rate * (x - b)); },
-                          [b, rate](float x) { return -std::expm1(rate * (x - b)); });
+    return make_warp_case({.family = "mirrored_exponential", .domain = chi2::Domain::lower_half_line(b), .views = {view}},
+                          warp_of([b, sample_rate](float u) { return b + std::log1p(-u) / sample_rate; })
+                              .with_pdf([b, rate](float x) { return x > b ? 0.0f : rate * std::exp(rate * (x - b)); })
+                              .with_invert([b, rate](float x) { return -std::expm1(rate * (x - b)); }));
 }
 
 TEST(LowerHalfLine, MirroredExponentialPassesAndARateErrorFails) {

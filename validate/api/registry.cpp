@@ -2,18 +2,13 @@
 
 #include <stdexcept>
 
-#include "validate/api/case_validation.h"
-
 
 namespace warpcheck {
 
 void Registry::add_case(std::unique_ptr<WarpCase> warp) {
     if (!warp) throw std::invalid_argument("registry: null warp case");
     if (find_case(warp->name())) throw std::invalid_argument("registry: duplicate warp case name " + warp->name());
-    std::string problems;
-    for (const std::string& p : case_problems(*warp)) problems += "\n  - " + p;
-    if (!problems.empty())
-        throw std::invalid_argument("registry: warp case " + warp->name() + " is declared inconsistently:" + problems);
+    validate_case(*warp);
     cases_.push_back(std::move(warp));
 }
 

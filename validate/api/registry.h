@@ -20,7 +20,7 @@ class Registry {
 public:
     /// Adds a case; a second case with the same name is an error (names are how
     /// streams are seeded and how --filter finds a case), and so is a case
-    /// declared inconsistently (validate/api/case_validation.h): the message names
+    /// declared inconsistently (validate_case in warp_case.h): the message names
     /// the case and every problem.
     void add_case(std::unique_ptr<WarpCase> warp);
     /// Adds a check (a class derived from Check); a second check of one name is an error.
