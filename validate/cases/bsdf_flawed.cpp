@@ -1,7 +1,7 @@
 // Known-bad BSDFs: the bugs renderers ship, each a built-in of
 // sampling/bsdf_*.h with one thing wrong, marked as a known flaw (they run
 // with --include-flawed or when named) and each caught by the check named in
-// bsdf_flawed_catalogue(); tests/validate/test_bsdf.cpp holds each to that
+// bsdf_flawed_catalogue(); tests/validate/checks/bsdf/test_bsdf.cpp holds each to that
 // check and to passing the checks its bug does not touch.
 #include <algorithm>
 #include <cmath>

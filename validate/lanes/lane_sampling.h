@@ -13,7 +13,7 @@
 //     has it (elsewhere it keeps its scalar chunk path, the faster there);
 //   - portable: the same source compiled for the baseline target, which the
 //     tests hold to the same bits (LanePath::Portable).
-// tests/validate/test_lane_sampling.cpp holds both paths to the scalar one.
+// tests/validate/lanes/test_lane_sampling.cpp holds both paths to the scalar one.
 #pragma once
 
 #include <cstdint>

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "support/run_command.h"
+#include "support/temp_dir.h"
 
 namespace warpcheck {
 namespace {
@@ -116,20 +117,6 @@ TEST(Cli, FilterIsTakenVerbatim) {
 
 namespace fs = std::filesystem;
 
-// A scratch folder for the output tests, removed afterwards.
-struct Scratch {
-    fs::path dir = fs::temp_directory_path() / ("warpcheck-cli-" + std::to_string(::getpid()));
-    Scratch() {
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~Scratch() {
-        std::error_code ignored;
-        fs::remove_all(dir, ignored);
-    }
-    std::string operator/(const std::string& name) const { return (dir / name).string(); }
-};
-
 std::string contents(const std::string& path) {
     std::ifstream in(path);
     std::stringstream s;
@@ -140,8 +127,8 @@ std::string contents(const std::string& path) {
 constexpr const char* kQuickRun = "--filter uniform_cone --check roundtrip --samples 10000 ";
 
 TEST(CliOutputs, SymlinkIsWrittenThroughAndPermissionsAreKept) {
-    Scratch scratch;
-    const std::string target = scratch / "results.json", link = scratch / "latest.json";
+    testing::TempDir scratch;
+    const std::string target = scratch.file("results.json"), link = scratch.file("latest.json");
     { std::ofstream(target) << "old"; }
     ::chmod(target.c_str(), 0600);
     fs::create_symlink(target, link);
@@ -155,19 +142,19 @@ TEST(CliOutputs, SymlinkIsWrittenThroughAndPermissionsAreKept) {
 }
 
 TEST(CliOutputs, SpecialFilesAndClashesAreRefusedBeforeTheRun) {
-    Scratch scratch;
-    const std::string fifo = scratch / "fifo";
+    testing::TempDir scratch;
+    const std::string fifo = scratch.file("fifo");
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    const std::string a = scratch / "a.json";
-    fs::create_symlink(a, scratch / "b.json");
+    const std::string a = scratch.file("a.json");
+    fs::create_symlink(a, scratch.file("b.json"));
     struct Case {
         std::string args, message;
     };
     const Case cases[] = {
         {"--json " + fifo, "not a regular file (a device, FIFO or socket)"},
         {"--junit /dev/null", "not a regular file"},
-        {"--json " + a + " --junit " + (scratch.dir / "." / "a.json").string(), "is the same file as another output"},
-        {"--json " + a + " --report " + scratch / "b.json", "is the same file as another output"},
+        {"--json " + a + " --junit " + (scratch.path() / "." / "a.json").string(), "is the same file as another output"},
+        {"--json " + a + " --report " + scratch.file("b.json"), "is the same file as another output"},
         {"--json - --junit -", "only one output can be '-'"},
     };
     for (const Case& c : cases) {
@@ -188,12 +175,12 @@ TEST(CliOutputs, DashIsStandardOutput) {
 // temporary name is longer than 255) is written, one of 256 is refused before
 // the run. Both once failed after the run.
 TEST(CliOutputs, LongNamesAreWrittenOrRefusedBeforeTheRun) {
-    Scratch scratch;
-    const std::string fits = scratch / (std::string(245, 'a') + ".json");
+    testing::TempDir scratch;
+    const std::string fits = scratch.file(std::string(245, 'a') + ".json");
     const auto written = run_validate(std::string(kQuickRun) + "--json " + fits);
     EXPECT_EQ(written.status, 0) << written.output;
     EXPECT_NE(contents(fits).find("\"results\""), std::string::npos);
-    const auto refused = run_validate(std::string(kQuickRun) + "--json " + scratch / std::string(256, 'b'));
+    const auto refused = run_validate(std::string(kQuickRun) + "--json " + scratch.file(std::string(256, 'b')));
     EXPECT_EQ(refused.status, 2) << refused.output;
     EXPECT_NE(refused.output.find("the name is longer than the 255 bytes"), std::string::npos) << refused.output;
     EXPECT_EQ(refused.output.find("roundtrip"), std::string::npos) << "no check ran: " << refused.output;
@@ -236,8 +223,8 @@ TEST(Cli, CountsAsPeopleTypeThem) {
 // A program built on warpcheck::main (here: validate under another name) says
 // its own name in every message.
 TEST(Cli, MessagesSayTheProgramsOwnName) {
-    Scratch scratch;
-    const std::string renamed = scratch / "validate_my_warps";
+    testing::TempDir scratch;
+    const std::string renamed = scratch.file("validate_my_warps");
     fs::create_symlink(WARPCHECK_VALIDATE_EXE, renamed);
     for (const char* args : {"--all --samples 1", "--bogus", "--filter nothing_like_it"}) {
         const auto r = testing::run_command(renamed + " " + args);
@@ -258,8 +245,8 @@ TEST(Cli, FailuresOnlyOnAnAllPassRunSaysSo) {
 
 // Each output written says where; --report-on-failure writes only for a failure.
 TEST(CliOutputs, WrittenFilesAreNamedAndEvidenceOnlyOnFailure) {
-    Scratch scratch;
-    const std::string json = scratch / "r.json", evidence = scratch / "evidence.html";
+    testing::TempDir scratch;
+    const std::string json = scratch.file("r.json"), evidence = scratch.file("evidence.html");
     const auto pass = run_validate(std::string(kQuickRun) + "--progress none --json " + json +
                                    " --report-on-failure " + evidence);
     EXPECT_EQ(pass.status, 0) << pass.output;

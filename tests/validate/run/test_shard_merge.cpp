@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/run_command.h"
+#include "support/temp_dir.h"
 #include "support/verdict_twins.h"
 #include "validate/cli/cli.h"
 #include "validate/run/merge.h"
@@ -40,24 +41,16 @@ constexpr const char* kSamples = "--samples 20000";
 std::string fmt_shard(int i) { return "shard" + std::to_string(i) + ".json"; }
 
 struct ShardRuns {
-    fs::path dir = fs::temp_directory_path() / ("warpcheck-shards-" + std::to_string(::getpid()));
-    ShardRuns() {
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~ShardRuns() {
-        std::error_code ignored;
-        fs::remove_all(dir, ignored);
-    }
-    std::string operator/(const std::string& name) const { return (dir / name).string(); }
+    testing::TempDir scratch;
+    std::string operator/(const std::string& name) const { return scratch.file(name); }
     /// Runs shard i of n with extra arguments, writing shard<i>.json.
     testing::CommandResult shard(int i, int n, const std::string& extra = kSamples) const {
         return run_validate(std::string(kSelection) + extra + " --shard " + std::to_string(i) + "/" +
-                            std::to_string(n) + " --json " + (dir / fmt_shard(i)).string());
+                            std::to_string(n) + " --json " + scratch.file(fmt_shard(i)));
     }
     std::string shard_files(int n) const {
         std::string files;
-        for (int i = 1; i <= n; ++i) files.append(" ").append((dir / fmt_shard(i)).string());
+        for (int i = 1; i <= n; ++i) files.append(" ").append(scratch.file(fmt_shard(i)));
         return files;
     }
 };
@@ -329,7 +322,7 @@ TEST(ShardMerge, ReadingIsBoundedAndOnlyOfRegularFiles) {
     const std::pair<std::string, std::string> cases[] = {
         {fifo, "not a regular file"},
         {"/dev/zero", "not a regular file"},
-        {runs.dir.string(), "it is a folder"},
+        {runs.scratch.path().string(), "it is a folder"},
         {big, fmt::format("{} bytes is over the limit of 256 MiB", kMaxShardFileBytes + 1)},
     };
     // AddressSanitizer reserves terabytes of address space for its shadow at

@@ -1,4 +1,5 @@
-// A fresh folder under the system's temporary directory, removed afterwards.
+// The one scratch-folder helper of the tests: a fresh folder under the
+// system's temporary directory, removed afterwards.
 #pragma once
 
 #include <unistd.h>
@@ -16,7 +17,7 @@ public:
     TempDir() {
         static std::atomic<int> counter{0};
         path_ = std::filesystem::temp_directory_path() /
-                ("warpcheck-reports-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+                ("warpcheck-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
         std::filesystem::remove_all(path_);
         std::filesystem::create_directories(path_);
     }
