@@ -2,7 +2,7 @@
 # else: the entry headers below (the case description and registration, the
 # C++17 header, the GoogleTest adapter) and every project header they include,
 # found here by following their #include lines. The rest of the tree is private.
-# tests/external_example/run_example.sh checks the installed count (at most 31)
+# tests/external_example/run_example.sh checks the installed count (at most 30)
 # and that a private header is not installed.
 set(warpcheck_public_entry_headers
   validate/api/external.h

@@ -56,11 +56,11 @@
 #include "paired_timing.h"
 #include "pbrt_style_chi2.h"
 #include "sampling/hemisphere.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/checks/checks.h"
 #include "validate/lanes/lane_sampling.h"
-#include "validate/api/thread_pool.h"
 #include "validate/api/float_template_warp.h"
+#include "validate/run/thread_pool.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -77,7 +77,7 @@ struct Fixture {
         options.samples = kSamples;
         options.threads = threads;
     }
-    CheckContext context() { return CheckContext(options, pool, stream_for(warp->name(), options.seed)); }
+    CheckContext context() { return CheckContext(options, pool.executor(), stream_for(warp->name(), options.seed)); }
     chi2::ParallelFor parallel() {
         return [this](std::size_t n, const std::function<void(std::size_t)>& body) { pool.parallel_for(n, body); };
     }
@@ -260,7 +260,7 @@ struct TemplatedCosineHemisphere {
 // over its float type, its lane instantiation on the planar lane path.
 void BM_PlainWarpVsLanePath(benchmark::State& state) {
     Fixture f(1);
-    const CheckContext ctx(f.options, f.pool, stream_for(f.warp->name(), f.options.seed));
+    const CheckContext ctx(f.options, f.pool.executor(), stream_for(f.warp->name(), f.options.seed));
     WarpCaseInfo info = f.warp->info();
     info.lanes = nullptr;
     const int kind = static_cast<int>(state.range(0));
@@ -290,8 +290,6 @@ void BM_PlainWarpVsLanePath(benchmark::State& state) {
                                : "template over the float type, planar lane path");
 }
 BENCHMARK(BM_PlainWarpVsLanePath)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
-
-
 
 }  // namespace
 }  // namespace warpcheck

@@ -26,7 +26,7 @@
 // with the warp inlined into it, and with contraction off: the renderer's
 // build may contract a * b + c into one rounding (GCC in GNU mode, Clang by
 // default), which its scalar build on the baseline target cannot, and the two
-// would then differ (tests/validate/test_float_template_warp.cpp builds with
+// would then differ (tests/validate/api/test_float_template_warp.cpp builds with
 // -ffp-contract=fast to hold it to that). Clang decides contraction where the
 // warp is written, so under Clang the lane instantiation is built for AVX2
 // without FMA instead. Whatever else could make them differ, the
@@ -35,7 +35,7 @@
 // only where it gave the scalar form's bits on all of them, and
 // lane_form_refused() says why not otherwise. Either way the figures are the
 // scalar form's: the lane path's histogram is the scalar path's, count for
-// count (tests/validate/test_float_template_warp.cpp).
+// count (tests/validate/api/test_float_template_warp.cpp).
 #pragma once
 
 #include <cmath>
@@ -165,7 +165,7 @@ template <typename W>
 class FloatTemplateWarpCase final : public WarpCase {
 public:
     FloatTemplateWarpCase(std::unique_ptr<WarpCase> scalar, W warp)
-        : WarpCase(scalar->info()), scalar_(std::move(scalar)), warp_(std::move(warp)),
+        : WarpCase(scalar->info(), scalar->signature()), scalar_(std::move(scalar)), warp_(std::move(warp)),
           refused_(lane_mismatch(warp_)) {}
 
     const std::string& lane_form_refused() const { return refused_; }
@@ -179,9 +179,6 @@ public:
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override { scalar_->sample(in, out); }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override { scalar_->pdf(x, out); }
     void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override { scalar_->invert(x, out); }
-    bool has_inverse() const override { return scalar_->has_inverse(); }
-    SampleReturns sample_returns() const override { return scalar_->sample_returns(); }
-    bool has_pdf() const override { return scalar_->has_pdf(); }
 
 private:
     std::unique_ptr<WarpCase> scalar_;
@@ -192,30 +189,29 @@ private:
 }  // namespace detail
 
 /// A warp object whose sample is a template over the float type (this file's
-/// top), with plain pdf and, where it has one, invert members.
+/// top), with a plain pdf and, where it has one, a plain invert.
 template <typename W>
-concept FloatTemplateWarp = detail::FloatTemplateSample<W> && requires {
-    typename detail::FirstArg<decltype(&W::pdf)>::type;
-};
+concept FloatTemplateWarp = detail::FloatTemplateSample<W> && detail::warp_has_pdf<W>;
 
 /// Makes the case of a warp written as a template over its float type: the
-/// float instantiation is the warp every check sees, read as a warp object
-/// (its input a Point2f, its output pdf's argument); the chi-square check's
+/// float instantiation is the warp every check sees, a warp object whose
+/// sample takes a Point2f and returns pdf's argument; the chi-square check's
 /// lane path runs the lane instantiation where it gives the same bits.
 template <FloatTemplateWarp W>
 std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, W warp) {
-    using Out = typename detail::FirstArg<decltype(&W::pdf)>::type;
-    auto sample = [warp](Point2f u) {
-        const auto p = warp.template sample<float>({u.x, u.y});
-        if constexpr (requires { Out{p.x, p.y, detail::z_of(p, 0.0f)}; }) return Out{p.x, p.y, detail::z_of(p, 0.0f)};
-        else return Out{p.x, p.y};
-    };
-    auto pdf = [warp](Out x) { return warp.pdf(x); };
+    using Out = typename detail::CallOf<decltype(&W::pdf)>::Arg;
+    const auto sampled = warp_of([warp](Point2f u) {
+                             const auto p = warp.template sample<float>({u.x, u.y});
+                             if constexpr (requires { Out{p.x, p.y, detail::z_of(p, 0.0f)}; })
+                                 return Out{p.x, p.y, detail::z_of(p, 0.0f)};
+                             else
+                                 return Out{p.x, p.y};
+                         }).with_pdf([warp](Out x) { return warp.pdf(x); });
     std::unique_ptr<WarpCase> scalar;
-    if constexpr (requires { &W::invert; })
-        scalar = make_warp_case(std::move(info), sample, pdf, [warp](Out x) { return warp.invert(x); });
+    if constexpr (detail::warp_has_invert<W>)
+        scalar = make_warp_case(std::move(info), sampled.with_invert([warp](Out x) { return warp.invert(x); }));
     else
-        scalar = make_warp_case(std::move(info), sample, pdf);
+        scalar = make_warp_case(std::move(info), sampled);
     return std::make_unique<detail::FloatTemplateWarpCase<W>>(std::move(scalar), std::move(warp));
 }
 

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "chi2/chi2_test.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 
 namespace warpcheck {
 

@@ -17,6 +17,8 @@
 #include "reports/terminal_table.h"
 #include "sampling/hash.h"
 #include "validate/cli/cli_input.h"
+#include "validate/gtest/job_tests.h"
+#include "validate/run/runner.h"
 #include "warpcheck/version.h"
 
 namespace warpcheck::gtest {
@@ -217,6 +219,9 @@ Settings settings_from_environment() {
     } catch (const std::exception& e) {
         return ::testing::AssertionFailure() << "warpcheck: " << e.what() << "; no check ran";
     }
+    if (const std::vector<std::string> problems = case_problems(warp); !problems.empty())
+        return ::testing::AssertionFailure() << "warpcheck: " << expression << ": "
+                                             << declaration_error("warp case " + warp.name(), problems).what();
     std::vector<Job> jobs;
     for (const auto& check : builtin_checks().checks())
         if (check->runs_by_default(settings.run) && check->applies_to(warp)) jobs.push_back({&warp, check.get()});
