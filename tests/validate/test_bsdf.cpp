@@ -16,7 +16,8 @@
 namespace warpcheck {
 namespace {
 
-constexpr const char* kBsdfChecks[] = {"bsdf_chi2", "bsdf_weight", "bsdf_delta", "bsdf_albedo", "bsdf_reciprocity"};
+constexpr const char* kBsdfChecks[] = {"bsdf_chi2",   "bsdf_unbinned",   "bsdf_weight",
+                                       "bsdf_delta", "bsdf_albedo", "bsdf_reciprocity"};
 
 std::vector<std::string> bsdf_checks() { return {std::begin(kBsdfChecks), std::end(kBsdfChecks)}; }
 

@@ -167,6 +167,29 @@ std::unique_ptr<WarpCase> visible_normals_wrong_side() {
         [c](Vector3f wo, Vector3f wi) { return c.f(wo, wi); }, [c](Vector3f wo, Vector3f wi) { return c.pdf(wo, wi); });
 }
 
+/// A sharp conductor seen at 85 degrees whose visible normals are sampled
+/// with alpha 1% too large (a roughness remapped twice, or the sampler fed
+/// the unclamped value), each sample reporting f() and pdf() at its wi: the
+/// weights agree and the lobe lands almost where it should.
+std::unique_ptr<WarpCase> roughness_one_percent_off() {
+    const RoughConductor right(TrowbridgeReitz(0.05f), kGoldEta, kGoldK);
+    const RoughConductor wide(TrowbridgeReitz(0.0505f), kGoldEta, kGoldK);
+    return make_bsdf_case(
+        flawed_info("rough_conductor_alpha_1pct_wide", {{"alpha", 0.05}, {"theta_o", 85}},
+                    "rough conductor sampling its visible normals with alpha 0.0505 instead of 0.05"),
+        {.wo = bsdf_direction(85), .lobes = right.flags()},
+        [right, wide](Vector3f wo, float uc, Point2f u) {
+            BsdfSample s = wide.sample(wo, uc, u);
+            if (s.pdf > 0.0f) {
+                s.f = right.f(wo, s.wi);
+                s.pdf = right.pdf(wo, s.wi);
+            }
+            return s;
+        },
+        [right](Vector3f wo, Vector3f wi) { return right.f(wo, wi); },
+        [right](Vector3f wo, Vector3f wi) { return right.pdf(wo, wi); });
+}
+
 }  // namespace
 
 std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
@@ -175,16 +198,21 @@ std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
         {weight_without_cosine, "bsdf_weight", "the sampled weight misses |cos theta_i|", {"bsdf_albedo"}},
         // The weights are right for the direction it claims, so the albedo holds.
         {eta_swapped, "bsdf_delta", "refracts with 1 / eta in place of eta"},
-        // Weights f |cos| / pdf with the wrong pdf: the mean weight is off too.
+        // Weights f |cos| / pdf with the wrong pdf: the mean weight is off too,
+        // and the samples' marginals are not pdf()'s.
         {mixture_wrong_lobe_pdf, "bsdf_chi2", "pdf() gives each lobe of the mixture the other's probability",
-         {"bsdf_albedo"}},
+         {"bsdf_albedo", "bsdf_unbinned"}},
         // Each lobe's weight is scaled by its claimed over its true probability.
         {lobe_probability_swapped, "bsdf_delta", "chooses reflection with probability F, claims 1 - F",
          {"bsdf_albedo"}},
         {not_reciprocal, "bsdf_reciprocity", "f(wo, wi) != f(wi, wo)"},
         {energy_gain_at_grazing, "bsdf_albedo", "albedo 1.02 at grazing: creates energy"},
-        // Weights against the right pdf of the wrong distribution: the mean is off.
-        {visible_normals_wrong_side, "bsdf_chi2", "visible normals sampled from the wrong side of wo", {"bsdf_albedo"}},
+        // Weights against the right pdf of the wrong distribution: the mean is
+        // off, and so are the marginals.
+        {visible_normals_wrong_side, "bsdf_chi2", "visible normals sampled from the wrong side of wo",
+         {"bsdf_albedo", "bsdf_unbinned"}},
+        // Every sample a little off: bsdf_chi2's cells average it away (p 0.09).
+        {roughness_one_percent_off, "bsdf_unbinned", "visible normals sampled with alpha 1% too large"},
     };
 }
 

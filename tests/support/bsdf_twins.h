@@ -1,0 +1,52 @@
+// Wrong twins of hard BSDFs whose flaw is only where the samples go: each
+// sample reports f() and pdf() at its wi, so every weight agrees with them
+// (bsdf_weight passes) while the sampled distribution is a little off. The
+// distribution checks' hardest cases (tests/validate/test_bsdf_unbinned.cpp)
+// and their power (tests/validate/test_bsdf_power.cpp).
+#pragma once
+
+#include <memory>
+
+#include "sampling/bsdf_conductor.h"
+#include "sampling/bsdf_phase.h"
+#include "validate/api/bsdf_case.h"
+
+namespace warpcheck::testing {
+
+/// A gold conductor whose visible normals are sampled with alpha (1 + eps)
+/// while f() and pdf() use alpha.
+inline std::unique_ptr<WarpCase> conductor_wrong_roughness(float alpha, double theta, double eps) {
+    const RoughConductor right(TrowbridgeReitz(alpha), 0.2f, 3.0f);
+    const RoughConductor wrong(TrowbridgeReitz(static_cast<float>(alpha * (1.0 + eps))), 0.2f, 3.0f);
+    return make_bsdf_case(
+        {.family = "conductor_wrong_roughness", .params = {{"alpha", alpha}, {"theta_o", theta}, {"eps", eps}}},
+        {.wo = bsdf_direction(theta), .lobes = right.flags()},
+        [right, wrong](Vector3f wo, float uc, Point2f u) {
+            BsdfSample s = wrong.sample(wo, uc, u);
+            if (s.pdf > 0.0f) {
+                s.f = right.f(wo, s.wi);
+                s.pdf = right.pdf(wo, s.wi);
+            }
+            return s;
+        },
+        [right](Vector3f wo, Vector3f wi) { return right.f(wo, wi); },
+        [right](Vector3f wo, Vector3f wi) { return right.pdf(wo, wi); });
+}
+
+/// Henyey-Greenstein seen from theta_o = 30 degrees (phi_o 20), sampled with
+/// g + dg while its p and pdf are those of g.
+inline std::unique_ptr<WarpCase> henyey_greenstein_wrong_g(float g, float dg) {
+    const HenyeyGreenstein right(g), wrong(g + dg);
+    return make_bsdf_case(
+        {.family = "hg_wrong_g", .params = {{"g", g}, {"theta_o", 30}, {"dg", dg}}},
+        {.wo = bsdf_direction(30, 20), .lobes = BsdfFlags::Continuous, .phase_function = true},
+        [right, wrong](Vector3f wo, Point2f u) {
+            BsdfSample s = wrong.sample(wo, u);
+            s.f = s.pdf = right.pdf(wo, s.wi);
+            return s;
+        },
+        [right](Vector3f wo, Vector3f wi) { return right.p(wo, wi); },
+        [right](Vector3f wo, Vector3f wi) { return right.pdf(wo, wi); });
+}
+
+}  // namespace warpcheck::testing
