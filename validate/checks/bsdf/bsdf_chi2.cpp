@@ -189,6 +189,7 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
                  {"pearson_p_value", o.p_value()},
                  {"local_p_value", local.p_value},
                  {"local_max_residual", local.residual},
+                 {"local_cell", static_cast<double>(local.cell)},
                  {"landing_p_value", n.p_value},
                  {"pdf_integral", n.integral},
                  {"integral_tolerance", n.tolerance},

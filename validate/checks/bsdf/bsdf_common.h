@@ -85,6 +85,12 @@ inline constexpr std::size_t kFloatNeighbours = 8;
 /// seen edge-on.
 std::vector<WarpOutput> float_neighbours(const WarpOutput& w);
 
+/// This case's point on a plot across its family (FamilyPoint, reports/
+/// result.h), at its theta_o: the grid's "theta_o" parameter where it has
+/// one, else wo's polar angle in degrees; its curves named by its other
+/// parameters ("alpha=0.05"). The caller adds the values and limits.
+FamilyPoint family_point(const BsdfCase& bsdf, std::string title, std::string y_label);
+
 /// The cells of the BSDF checks' sphere: the case's chi2_resolution, or by
 /// default 32 azimuths by 64 heights, so that each hemisphere has the 32 x 32
 /// cells of a hemispherical warp (chi2/binning.h says why about 1000).
