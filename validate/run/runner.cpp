@@ -30,6 +30,10 @@ StreamId job_stream(const WarpCase& warp, const Check& check, uint64_t seed) {
     return stream_for(warp.name() + "/" + check.name(), seed);
 }
 
+bool check_is_for(const Check& check, const WarpCase& warp) {
+    return (warp.sample_returns() == SampleReturns::Bsdf) == check.about_bsdfs();
+}
+
 std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::string>& case_patterns,
                              const std::vector<std::string>& check_names, const RunOptions& options) {
     std::vector<Job> jobs;
@@ -49,7 +53,7 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
                                                     : std::find(check_names.begin(), check_names.end(),
                                                                 check->name()) != check_names.end();
             if (!wanted || (!registry.known_flaw(*warp, *check).empty() && !run_flawed)) continue;
-            if ((warp->sample_returns() == SampleReturns::Bsdf) != check->about_bsdfs()) continue;
+            if (!check_is_for(*check, *warp)) continue;
             if (check->applies_to(*warp)) jobs.push_back({warp.get(), check.get()});
             else if (std::string why = check->not_applicable_because(*warp); !why.empty())
                 jobs.push_back({warp.get(), check.get(), std::move(why)});
