@@ -10,27 +10,16 @@
 #include "sampling/bsdf_conductor.h"
 #include "sampling/bsdf_phase.h"
 #include "validate/api/bsdf_case.h"
+#include "validate/cases/bsdf_flawed.h"
 
 namespace warpcheck::testing {
 
 /// A gold conductor whose visible normals are sampled with alpha (1 + eps)
 /// while f() and pdf() use alpha.
 inline std::unique_ptr<WarpCase> conductor_wrong_roughness(float alpha, double theta, double eps) {
-    const RoughConductor right(TrowbridgeReitz(alpha), 0.2f, 3.0f);
-    const RoughConductor wrong(TrowbridgeReitz(static_cast<float>(alpha * (1.0 + eps))), 0.2f, 3.0f);
-    return make_bsdf_case(
-        {.family = "conductor_wrong_roughness", .params = {{"alpha", alpha}, {"theta_o", theta}, {"eps", eps}}},
-        {.wo = bsdf_direction(theta), .lobes = right.flags()},
-        [right, wrong](Vector3f wo, float uc, Point2f u) {
-            BsdfSample s = wrong.sample(wo, uc, u);
-            if (s.pdf > 0.0f) {
-                s.f = right.f(wo, s.wi);
-                s.pdf = right.pdf(wo, s.wi);
-            }
-            return s;
-        },
-        [right](Vector3f wo, Vector3f wi) { return right.f(wo, wi); },
-        [right](Vector3f wo, Vector3f wi) { return right.pdf(wo, wi); });
+    return sampled_by({.family = "conductor_wrong_roughness", .params = {{"alpha", alpha}, {"theta_o", theta}, {"eps", eps}}},
+                      bsdf_direction(theta), RoughConductor(TrowbridgeReitz(alpha), 0.2f, 3.0f),
+                      RoughConductor(TrowbridgeReitz(static_cast<float>(alpha * (1.0 + eps))), 0.2f, 3.0f));
 }
 
 /// Henyey-Greenstein seen from theta_o = 30 degrees (phi_o 20), sampled with

@@ -13,6 +13,7 @@
 #include "sampling/bsdf_plastic.h"
 #include "validate/api/bsdf_case.h"
 #include "validate/api/registry.h"
+#include "validate/cases/bsdf_flawed.h"
 
 namespace warpcheck {
 namespace {
@@ -172,22 +173,10 @@ std::unique_ptr<WarpCase> visible_normals_wrong_side() {
 /// the unclamped value), each sample reporting f() and pdf() at its wi: the
 /// weights agree and the lobe lands almost where it should.
 std::unique_ptr<WarpCase> roughness_one_percent_off() {
-    const RoughConductor right(TrowbridgeReitz(0.05f), kGoldEta, kGoldK);
-    const RoughConductor wide(TrowbridgeReitz(0.0505f), kGoldEta, kGoldK);
-    return make_bsdf_case(
-        flawed_info("rough_conductor_alpha_1pct_wide", {{"alpha", 0.05}, {"theta_o", 85}},
-                    "rough conductor sampling its visible normals with alpha 0.0505 instead of 0.05"),
-        {.wo = bsdf_direction(85), .lobes = right.flags()},
-        [right, wide](Vector3f wo, float uc, Point2f u) {
-            BsdfSample s = wide.sample(wo, uc, u);
-            if (s.pdf > 0.0f) {
-                s.f = right.f(wo, s.wi);
-                s.pdf = right.pdf(wo, s.wi);
-            }
-            return s;
-        },
-        [right](Vector3f wo, Vector3f wi) { return right.f(wo, wi); },
-        [right](Vector3f wo, Vector3f wi) { return right.pdf(wo, wi); });
+    return sampled_by(flawed_info("rough_conductor_alpha_1pct_wide", {{"alpha", 0.05}, {"theta_o", 85}},
+                                  "rough conductor sampling its visible normals with alpha 0.0505 instead of 0.05"),
+                      bsdf_direction(85), RoughConductor(TrowbridgeReitz(0.05f), kGoldEta, kGoldK),
+                      RoughConductor(TrowbridgeReitz(0.0505f), kGoldEta, kGoldK));
 }
 
 }  // namespace

@@ -627,14 +627,17 @@ double marginal_power(const Computed& c, std::size_t m, double level, uint64_t s
 /// detected on whichever marginal it lies).
 void add_figures(CheckResult& r, const Computed& c, const RunOptions& options, int tests) {
     r.samples = options.samples;
+    // The outputs the source drew (a warp's: every sample; a BSDF's: its
+    // continuous samples), each marginal's tested or left out.
+    const uint64_t drawn = c.sorted_u.empty() ? options.samples : c.sorted_u[0].size() + c.nan[0];
     const double level = power_level(options, tests);
     double worst = 0.0;
     for (chi2::UnbinnedTest t : chi2::kUnbinnedTests)
         r.figures.push_back({fmt::format("power_{}_tilt_eps", chi2::short_name(t)),
-                             chi2::unbinned_tilt_for_power(t, level, options.samples)});
+                             chi2::unbinned_tilt_for_power(t, level, drawn)});
     for (std::size_t m = 0; m < c.marginals.size(); ++m)
         if (c.mode[m] == Mode::Exact || c.mode[m] == Mode::Banded) {
-            const double eps = marginal_power(c, m, level, options.samples);
+            const double eps = marginal_power(c, m, level, drawn);
             worst = std::isnan(eps) || std::isnan(worst) ? std::nan("") : std::max(worst, eps);
         }
     r.figures.push_back({"power_tilt_eps", worst > 0.0 ? worst : std::nan("")});
