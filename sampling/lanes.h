@@ -130,7 +130,7 @@ struct Pcg32Lanes {
     }
 };
 
-/// uniform_float_from_bits (validate/api/check.h) on lanes: w * 2^-64 rounded down
+/// uniform_float_from_bits (validate/checks/check.h) on lanes: w * 2^-64 rounded down
 /// to a float. The 24 leading bits of w are cut from the double nearest to w
 /// (exact for w < 2^53) or to w >> 11 (exact for any w, and it keeps all of
 /// w's leading 24 bits when w >= 2^53), by clearing the low 29 of the

@@ -53,10 +53,10 @@
 #include "paired_timing.h"
 #include "pbrt_style_chi2.h"
 #include "sampling/hemisphere.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/checks/checks.h"
 #include "validate/lanes/lane_sampling.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -73,7 +73,7 @@ struct Fixture {
         options.samples = kSamples;
         options.threads = threads;
     }
-    CheckContext context() { return CheckContext(options, pool, stream_for(warp->name(), options.seed)); }
+    CheckContext context() { return CheckContext(options, pool.executor(), stream_for(warp->name(), options.seed)); }
     chi2::ParallelFor parallel() {
         return [this](std::size_t n, const std::function<void(std::size_t)>& body) { pool.parallel_for(n, body); };
     }
@@ -226,7 +226,7 @@ BENCHMARK(BM_DrawWarpBinPerCore)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMilli
 // check takes for it; arg 1: the scalar chunk path it took before.
 void BM_PlainWarpVsLanePath(benchmark::State& state) {
     Fixture f(1);
-    const CheckContext ctx(f.options, f.pool, stream_for(f.warp->name(), f.options.seed));
+    const CheckContext ctx(f.options, f.pool.executor(), stream_for(f.warp->name(), f.options.seed));
     WarpCaseInfo info = f.warp->info();
     info.lanes = nullptr;
     const auto plain = make_warp_case(info, CosineHemisphere{});

@@ -80,7 +80,7 @@
 
 #include "sampling/unit_float.h"
 #include "validate/api/exhaustive_sweep.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 
 namespace {
 
@@ -185,7 +185,8 @@ uint64_t counter_array_loop() {
 warpcheck::FloatBlockFn hashed_unit_sweep_fn() {
     const auto warp = warpcheck::make_u32_float_case(
         {.family = "hashed_unit", .domain = warpcheck::chi2::Domain::interval(0, 1)}, warpcheck::Monotone::NotClaimed,
-        [](uint32_t u) { return hashed_unit(u); }, [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; });
+        warpcheck::warp_of([](uint32_t u) { return hashed_unit(u); })
+            .with_pdf([](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; }));
     return dynamic_cast<const warpcheck::SweepableCase&>(*warp).sweep_fn();
 }
 

@@ -36,16 +36,15 @@ void register_linear(warpcheck::Registry& registry) {
     for (auto [a, b] : {std::pair{1.0f, 3.0f}, std::pair{0.0f, 1.0f}}) {
         const LinearWarp warp{a, b};
         // With members named sample, pdf and invert, make_warp_case(info, warp)
-        // would do; three callables adapt a warp with any other names.
+        // would do; named callables adapt a warp whose parts have other names.
         registry.add_case(warpcheck::make_warp_case(
             {.family = "linear",
              .params = {{"a", a}, {"b", b}},
              .description = "density proportional to (1-x) a + x b on [0,1]",
-             .input = warpcheck::InputKind::Uniform1D,
              .domain = warpcheck::Domain::interval(0, 1)},
-            [warp](float u) { return warp.sample(u); },
-            [warp](float x) { return warp.pdf(x); },
-            [warp](float x) { return warp.invert(x); }));
+            warpcheck::warp_of([warp](float u) { return warp.sample(u); })
+                .with_pdf([warp](float x) { return warp.pdf(x); })
+                .with_invert([warp](float x) { return warp.invert(x); })));
     }
 }
 
@@ -135,6 +134,7 @@ struct AliasTable {
             if (scaled[l] < 1) large.pop_back(), small.push_back(l);
         }
     }
+    float pdf(uint32_t i) const { return pmf[i]; }  // the pmf
     warpcheck::DiscreteSample sample(float u) const {
         const float scaled = u * float(q.size());
         const uint32_t i = std::min(uint32_t(scaled), uint32_t(q.size() - 1));
@@ -153,21 +153,19 @@ void register_renderer_kinds(warpcheck::Registry& registry) {
             {.family = wrong ? "cosine_returned_pdf_wrong" : "cosine_returned_pdf",
              .description = "cosine-weighted hemisphere whose sample returns its pdf",
              .domain = warpcheck::Domain::hemisphere()},
-            [warp](Point2f u) {
+            warp_of([warp](Point2f u) {
                 float pdf = 0;
                 const Vector3f w = warp.sample(u, &pdf);
                 return PdfSample<Vector3f>{w, pdf};
-            },
-            [warp](Vector3f w) { return warp.pdf(w); }));
+            }).with_pdf([warp](Vector3f w) { return warp.pdf(w); })));
     }
     // A sample that returns its pdf and no pdf function: the returned pdf is the pdf.
     for (bool wrong : {false, true}) {
         const TableSampler table{{1, 3, 2, 0.5f}, wrong};
         registry.add_case(make_warp_case({.family = wrong ? "table_no_pdf_wrong" : "table_no_pdf",
                                           .description = "piecewise-constant table; pdf only from sample",
-                                          .input = InputKind::Uniform1D,
                                           .domain = warpcheck::Domain::interval(0, 1)},
-                                         [table](float u) { return table.sample(u); }));
+                                         table));
     }
     // Weighted samplers, over a grid of exponents and selection probabilities.
     add_case_grid(registry, {.family = "phong_mixture", .domain = warpcheck::Domain::hemisphere()},
@@ -175,26 +173,20 @@ void register_renderer_kinds(warpcheck::Registry& registry) {
                       PhongMixture m;
                       m.n = float(p["n"]);
                       m.select = m.pdf_select = float(p["select"]);
-                      return make_weighted_case(std::move(info), [m](Point2f u) { return m.sample(u); },
-                                                [m](Vector3f w) { return m.eval(w); },
-                                                [m](Vector3f w) { return m.pdf(w); });
+                      return make_warp_case(std::move(info), m);  // its members sample, eval and pdf
                   });
     PhongMixture twin;
     twin.pdf_select = 0.5f;
-    registry.add_case(make_weighted_case({.family = "phong_mixture_wrong", .domain = warpcheck::Domain::hemisphere()},
-                                         [twin](Point2f u) { return twin.sample(u); },
-                                         [twin](Vector3f w) { return twin.eval(w); },
-                                         [twin](Vector3f w) { return twin.pdf(w); }));
+    registry.add_case(
+        make_warp_case({.family = "phong_mixture_wrong", .domain = warpcheck::Domain::hemisphere()}, twin));
     // Discrete: an alias table over weights (one of them 0), with its remapped u.
     for (bool wrong : {false, true}) {
         AliasTable table({1, 0, 3, 2, 0.5f, 7});
         table.remap_not_rescaled = wrong;
         registry.add_case(make_warp_case({.family = wrong ? "alias_table_wrong" : "alias_table",
                                           .description = "alias table over six weights, one of them 0",
-                                          .input = InputKind::Uniform1D,
                                           .categories = table.pmf.size()},
-                                         [table](float u) { return table.sample(u); },
-                                         [table](uint32_t i) { return table.pmf[i]; }));
+                                         table));
     }
     for (const char* twin_name :
          {"cosine_returned_pdf_wrong", "table_no_pdf_wrong", "phong_mixture_wrong", "alias_table_wrong"})
@@ -245,7 +237,6 @@ void register_normal(warpcheck::Registry& registry) {
             {.family = wrong ? "normal_pdf_forgets_sigma" : "normal",
              .params = {{"mu", 2}, {"sigma", 0.5}},
              .description = "normal distribution on the whole real line, by inversion",
-             .input = warpcheck::InputKind::Uniform1D,
              .domain = warpcheck::Domain::real_line(),
              .views = {x}},
             warp));
@@ -277,7 +268,6 @@ void register_mirrored_exponential(warpcheck::Registry& registry) {
             {.family = wrong ? "mirrored_exponential_inverse_flipped" : "mirrored_exponential",
              .params = {{"b", 1}, {"rate", 4}},
              .description = "exponential tail on the half-line (-inf, b]",
-             .input = warpcheck::InputKind::Uniform1D,
              .domain = warpcheck::Domain::lower_half_line(1),
              .views = {x}},
             MirroredExponentialWarp{1.0f, 4.0f, wrong}));
@@ -362,9 +352,12 @@ void register_float_sampler(warpcheck::Registry& registry) {
             {.family = wrong ? "renderer_unit_float_swapped" : "renderer_unit_float",
              .description = "float in [0,1) from the top 24 of 32 random bits",
              .domain = warpcheck::Domain::interval(0, 1)},
-            warpcheck::Monotone::Claimed, [wrong](uint32_t u) { return unit_float_from_bits(u, wrong); },
-            [](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; },
-            [wrong](float x) { return (static_cast<uint32_t>(x * 0x1p24f) ^ (wrong ? 1u : 0u)) << 8; }));
+            warpcheck::Monotone::Claimed,
+            warpcheck::warp_of([wrong](uint32_t u) { return unit_float_from_bits(u, wrong); })
+                .with_pdf([](float x) { return x >= 0 && x < 1 ? 1.0f : 0.0f; })
+                .with_invert([wrong](float x) {
+                    return (static_cast<uint32_t>(x * 0x1p24f) ^ (wrong ? 1u : 0u)) << 8;
+                })));
     }
 }
 

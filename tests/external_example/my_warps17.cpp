@@ -1,9 +1,15 @@
 // A renderer that compiles as C++17 registers its warps in its own files
 // through validate/api/register17.h alone; the program links warpcheck::main.
+// One correct case of every kind a C++20 renderer can register, each new kind
+// with a wrong twin (a known flaw: run_example.sh runs each twin by name and
+// asserts that the check meant to catch it fails).
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <numeric>
 #include <string>
+#include <vector>
 
 #include <validate/api/register17.h>
 
@@ -13,18 +19,20 @@ namespace {
 
 namespace w17 = warpcheck::cxx17;
 
+constexpr float kPi = 3.14159265f;
+constexpr float kInvPi = 0.318309886f;
+
 // A renderer's diffuse BSDF in C++17: cosine-weighted wi, f = R / pi. Its
 // wrong twin returns a sample whose weight misses |cos theta_i| (f / |cos|).
 struct Diffuse17 {
     float r;
     bool wrong = false;
-    static constexpr float kInvPi = 0.318309886f;
     double f(const w17::Point& wo, const w17::Point& wi) const { return wo[2] * wi[2] > 0 ? r * kInvPi : 0.0; }
     double pdf(const w17::Point& wo, const w17::Point& wi) const {
         return wo[2] * wi[2] > 0 ? std::abs(wi[2]) * kInvPi : 0.0;
     }
-    w17::BsdfSample sample(const w17::Point& wo, const std::array<float, 2>& u) const {
-        const float rad = std::sqrt(u[0]), phi = 6.28318531f * u[1];
+    w17::BsdfSample sample(const w17::Point& wo, const w17::Point2& u) const {
+        const float rad = std::sqrt(u[0]), phi = 2 * kPi * u[1];
         w17::Point wi{rad * std::cos(phi), rad * std::sin(phi), std::sqrt(std::max(0.0f, 1 - u[0]))};
         if (wo[2] < 0) wi[2] = -wi[2];
         const float p = std::abs(wi[2]) * kInvPi;
@@ -40,23 +48,17 @@ struct Diffuse17 {
 void register_bsdfs(warpcheck::Registry& registry) {
     for (bool wrong : {false, true})
         for (double theta : {0.0, 70.0}) {
-            const Diffuse17 bsdf{0.6f, wrong};
             w17::BsdfInfo info;
             info.family = wrong ? "diffuse_cxx17_weight_no_cos" : "diffuse_cxx17";
             info.params = {{"theta_o", theta}};
             info.description = "a renderer's diffuse BSDF, registered from C++17";
             info.wo = w17::bsdf_direction(theta);
-            w17::add_bsdf(
-                registry, info,
-                [bsdf](const w17::Point& wo, float, const std::array<float, 2>& u) { return bsdf.sample(wo, u); },
-                [bsdf](const w17::Point& wo, const w17::Point& wi) { return bsdf.f(wo, wi); },
-                [bsdf](const w17::Point& wo, const w17::Point& wi) { return bsdf.pdf(wo, wi); });
+            w17::add_bsdf(registry, info, Diffuse17{0.6f, wrong});
             if (wrong)
                 w17::mark_known_flaw(registry, "diffuse_cxx17_weight_no_cos[theta_o=" + std::to_string(int(theta)) + "]",
                                      "", "the sampled weight misses |cos theta_i|");
         }
 }
-
 
 // The logistic distribution on the whole real line, mean mu, scale s.
 struct Logistic {
@@ -73,16 +75,11 @@ struct Logistic {
     float invert(float x) const { return std::fmin(static_cast<float>(1 / (1 + std::exp(-(x - mu) / s))), 0x1.fffffep-1f); }
 };
 
-}  // namespace
-
-void warpcheck_register(warpcheck::Registry& registry) {
-    namespace w17 = warpcheck::cxx17;
-    const Logistic warp{-3.0f, 0.25f};
+void register_logistic(warpcheck::Registry& registry) {
     w17::CaseInfo info;
     info.family = "logistic_cxx17";
     info.params = {{"mu", -3}, {"s", 0.25}};
     info.description = "logistic distribution on the real line, registered from C++17";
-    info.input = w17::Input::Uniform1D;
     info.domain = w17::Domain::real_line();
     w17::View x;  // truncated where 1e-4 of the mass lies beyond each end
     x.lo = -3 - 0.25 * std::log(1e4 - 1);
@@ -90,9 +87,202 @@ void warpcheck_register(warpcheck::Registry& registry) {
     x.lower_tail_mass = x.tail_mass = 1e-4;
     x.label = "x";
     info.views = {x};
-    w17::add_case(
-        registry, info, [warp](const w17::WarpInput& u) { return w17::Point{warp.sample(u.u[0]), 0, 0}; },
-        [warp](const w17::Point& p) { return warp.pdf(p[0]); },
-        [warp](const w17::Point& p) { return w17::WarpInput{{warp.invert(p[0]), 0}, 0}; });
+    w17::add_case(registry, info, Logistic{-3.0f, 0.25f});
+}
+
+w17::Point direction(float cos_theta, float phi) {
+    const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
+    return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+}
+
+// No inverse: cosine-weighted directions. The twin's density is half the true one.
+struct CosineNoInverse {
+    float pdf_scale = 1;
+    w17::Point sample(const w17::Point2& u) const { return direction(std::sqrt(u[0]), 2 * kPi * u[1]); }
+    float pdf(const w17::Point& w) const { return w[2] < 0 ? 0 : pdf_scale * w[2] * kInvPi; }
+};
+
+// The pdf returned with the sample, and a pdf function: the twin computes the
+// returned pdf from u.x, not from cos theta = sqrt(u.x).
+struct CosineReturnedPdf {
+    bool wrong = false;
+    w17::PdfSample<w17::Point> sample(const w17::Point2& u) const {
+        const float cos_theta = std::sqrt(u[0]);
+        return {direction(cos_theta, 2 * kPi * u[1]), (wrong ? u[0] : cos_theta) * kInvPi};
+    }
+    float pdf(const w17::Point& w) const { return w[2] > 0 ? w[2] * kInvPi : 0; }
+};
+
+// The pdf returned with the sample and no pdf function: a piecewise-constant
+// table on [0,1) with an empty cell, so its support is 3/4 of the interval.
+// The twin returns the cell's probability, not its density.
+struct TableNoPdf {
+    std::array<float, 4> weights{1, 0, 3, 2};
+    bool probability_not_density = false;
+    w17::PdfSample<float> sample(float u) const {
+        const float total = std::accumulate(weights.begin(), weights.end(), 0.0f);
+        std::size_t i = 0;
+        float below = 0;
+        while (i + 1 < weights.size() && (weights[i] == 0 || u * total >= below + weights[i])) below += weights[i++];
+        const float t = std::fmin((u * total - below) / weights[i], 0x1.fffffep-1f);
+        const float probability = weights[i] / total;
+        return {(static_cast<float>(i) + t) / 4, probability_not_density ? probability : probability * 4};
+    }
+};
+
+void register_points(warpcheck::Registry& registry) {
+    for (bool wrong : {false, true}) {
+        w17::CaseInfo info;
+        info.family = wrong ? "cosine_cxx17_no_inverse_half_pdf" : "cosine_cxx17_no_inverse";
+        info.description = "cosine-weighted hemisphere without an inverse, from C++17";
+        info.domain = w17::Domain::hemisphere();
+        w17::add_case(registry, info, CosineNoInverse{wrong ? 0.5f : 1.0f});
+        info.family = wrong ? "cosine_cxx17_returned_pdf_wrong" : "cosine_cxx17_returned_pdf";
+        info.description = "cosine-weighted hemisphere whose sample returns its pdf, from C++17";
+        w17::add_case(registry, info, CosineReturnedPdf{wrong});
+        info.family = wrong ? "table_cxx17_no_pdf_wrong" : "table_cxx17_no_pdf";
+        info.description = "piecewise-constant table with an empty cell; pdf only from sample, from C++17";
+        info.domain = w17::Domain::interval(0, 1);
+        info.support_measure = 0.75;
+        TableNoPdf table;
+        table.probability_not_density = wrong;
+        w17::add_case(registry, info, table);
+    }
+}
+
+// A discrete choice by the CDF of four weights: sample returns the index, pdf
+// is the pmf. The twin's pmf swaps the probabilities of the first two.
+struct Choice {
+    std::array<float, 4> pmf{0.1f, 0.2f, 0.3f, 0.4f};
+    bool pmf_swapped = false;
+    std::uint32_t sample(float u) const {
+        std::uint32_t i = 0;
+        for (float below = pmf[0]; i + 1 < pmf.size() && u >= below; below += pmf[++i]) {}
+        return i;
+    }
+    float pdf(std::uint32_t i) const { return pmf_swapped && i < 2 ? pmf[1 - i] : pmf[i]; }
+};
+
+// The same choice with u remapped to [0,1) for reuse. The twin forgets to
+// rescale the remapped u by the chosen category's probability.
+struct ChoiceRemapped {
+    Choice choice;
+    bool not_rescaled = false;
+    w17::DiscreteSample sample(float u) const {
+        const std::uint32_t i = choice.sample(u);
+        float below = 0;
+        for (std::uint32_t k = 0; k < i; ++k) below += choice.pmf[k];
+        const float up = u - below;
+        return {i, std::fmin(std::max(not_rescaled ? up : up / choice.pmf[i], 0.0f), 0x1.fffffep-1f)};
+    }
+    float pdf(std::uint32_t i) const { return choice.pdf(i); }
+};
+
+void register_discrete(warpcheck::Registry& registry) {
+    for (bool wrong : {false, true}) {
+        w17::CaseInfo info;
+        info.family = wrong ? "choice_cxx17_pmf_swapped" : "choice_cxx17";
+        info.description = "a choice among four weights by their CDF, from C++17";
+        info.categories = 4;
+        Choice choice;
+        choice.pmf_swapped = wrong;
+        w17::add_case(registry, info, choice);
+        info.family = wrong ? "choice_cxx17_remap_not_rescaled" : "choice_cxx17_remapped";
+        info.description = "a choice among four weights that returns u remapped for reuse, from C++17";
+        ChoiceRemapped remapped;
+        remapped.not_rescaled = wrong;
+        w17::add_case(registry, info, remapped);
+    }
+}
+
+// A weighted sampler, a diffuse and a power-cosine lobe: members sample, eval
+// and pdf, so that eval and pdf cannot be swapped. The twin's pdf chooses the
+// power lobe with probability 0.5, its sample with `select`.
+struct PhongMixture {
+    float kd = 0.5f, ks = 0.3f, n = 20, select = 0.3f, pdf_select = 0.3f;
+    float eval(const w17::Point& w) const {
+        return w[2] > 0 ? (kd * kInvPi + ks * (n + 2) / (2 * kPi) * std::pow(w[2], n)) * w[2] : 0;
+    }
+    float pdf(const w17::Point& w) const {
+        return w[2] > 0 ? (1 - pdf_select) * w[2] * kInvPi + pdf_select * (n + 1) / (2 * kPi) * std::pow(w[2], n) : 0;
+    }
+    w17::WeightedSample<w17::Point> sample(const w17::Point2& u) const {
+        const bool power = u[0] < select;
+        const float v = power ? u[0] / select : (u[0] - select) / (1 - select);
+        const w17::Point w = direction(power ? std::pow(1 - v, 1 / (n + 1)) : std::sqrt(1 - v), 2 * kPi * u[1]);
+        return {w, eval(w) / pdf(w)};
+    }
+};
+
+// Weighted samplers over a grid of exponents (the twin over a grid of one).
+void register_weighted_grid(warpcheck::Registry& registry) {
+    w17::CaseInfo info;
+    info.family = "phong_cxx17";
+    info.description = "diffuse + power-cosine mixture with its weight, over a grid of exponents, from C++17";
+    info.domain = w17::Domain::hemisphere();
+    w17::add_case_grid(registry, info, {{"n", {5, 50}}}, [](const w17::GridPoint& p) {
+        PhongMixture m;
+        m.n = static_cast<float>(p["n"]);
+        return m;
+    });
+    info.family = "phong_cxx17_wrong";
+    w17::add_case_grid(registry, info, {{"n", {20}}}, [](const w17::GridPoint& p) {
+        PhongMixture m;
+        m.n = static_cast<float>(p["n"]);
+        m.pdf_select = 0.5f;
+        return m;
+    });
+}
+
+// Float samplers of raw bits on the exhaustive check's fast path: the top 24
+// of 32 bits on the 2^-24 grid of [0,1), and the top 23 of 64 bits as every
+// float of [1,2), each value equally often and in order. The twins swap
+// neighbouring values: every float is still counted equally (the statistics
+// cannot see it), but the monotone order they claim is broken.
+struct UnitFloat32 {
+    bool swap_neighbours = false;
+    float sample(std::uint32_t u) const {
+        return static_cast<float>((u >> 8) ^ (swap_neighbours ? 1u : 0u)) * 0x1p-24f;
+    }
+    float pdf(float x) const { return x >= 0 && x < 1 ? 1.0f : 0.0f; }
+};
+struct OneToTwo64 {
+    bool swap_neighbours = false;
+    float sample(std::uint64_t u) const {
+        return 1 + static_cast<float>((u >> 41) ^ (swap_neighbours ? 1u : 0u)) * 0x1p-23f;
+    }
+    float pdf(float x) const { return x >= 1 && x < 2 ? 1.0f : 0.0f; }
+};
+
+void register_float_samplers(warpcheck::Registry& registry) {
+    for (bool wrong : {false, true}) {
+        w17::CaseInfo info;
+        info.family = wrong ? "unit_float_cxx17_swapped" : "unit_float_cxx17";
+        info.description = "float in [0,1) from the top 24 of 32 random bits, from C++17";
+        info.domain = w17::Domain::interval(0, 1);
+        w17::add_u32_float_case(registry, info, w17::Monotone::Claimed, UnitFloat32{wrong});
+        info.family = wrong ? "one_to_two_cxx17_swapped" : "one_to_two_cxx17";
+        info.description = "every float of [1,2) from the top 23 of 64 random bits, swept over those bits, from C++17";
+        info.domain = w17::Domain::interval(1, 2);
+        w17::U64Subrange top23;
+        top23.shift = 41;
+        w17::add_u64_float_case(registry, info, top23, w17::Monotone::Claimed, OneToTwo64{wrong});
+    }
+}
+
+}  // namespace
+
+void warpcheck_register(warpcheck::Registry& registry) {
+    register_logistic(registry);
+    register_points(registry);
+    register_discrete(registry);
+    register_weighted_grid(registry);
+    register_float_samplers(registry);
     register_bsdfs(registry);
+    // The wrong twins: known flaws, run by name (or with --include-flawed).
+    for (const char* twin :
+         {"cosine_cxx17_no_inverse_half_pdf", "cosine_cxx17_returned_pdf_wrong", "table_cxx17_no_pdf_wrong",
+          "choice_cxx17_pmf_swapped", "choice_cxx17_remap_not_rescaled", "phong_cxx17_wrong[n=20]",
+          "unit_float_cxx17_swapped", "one_to_two_cxx17_swapped"})
+        w17::mark_known_flaw(registry, twin, "", "a wrong twin: run_example.sh checks that it fails");
 }

@@ -17,7 +17,9 @@ cmake --install "$build_dir" --prefix "$work/prefix" > "$work/install.log"
 # of the private rooms' (the command line, the worker supervisor, the checks).
 installed=$(find "$work/prefix/include/warpcheck" -name '*.h' | wc -l)
 [ "$installed" -le 30 ] || { echo "$installed installed headers, more than 30"; exit 1; }
-for private in validate/cli/cli.h validate/run/worker_supervisor.h validate/checks/checks.h reports/json_report.h; do
+for private in validate/cli/cli.h validate/run/worker_supervisor.h validate/run/runner.h validate/run/job.h \
+  validate/run/thread_pool.h validate/checks/checks.h validate/checks/check.h validate/gtest/job_tests.h \
+  reports/json_report.h reports/result.h; do
   [ ! -e "$work/prefix/include/warpcheck/$private" ] || { echo "private header $private installed"; exit 1; }
 done
 echo "$installed installed headers"
@@ -76,14 +78,33 @@ for theta in 0 60 85; do
 done
 expect_fail "renderer_diffuse_not_reciprocal[theta_o=60]" bsdf_reciprocity "not reciprocal"
 
-# A C++17 translation unit registers its warps through validate/api/register17.h.
-"$work/build/validate_my_warps17" --all --samples 200000 --color never | tee "$work/all17.txt"
-grep -q "logistic_cxx17\[mu=-3,s=0.25\]" "$work/all17.txt"
-grep -Eq "^pass +bsdf_weight +diffuse_cxx17\[theta_o=70\]" "$work/all17.txt" \
-  || { echo "expected the C++17 BSDF to pass bsdf_weight"; exit 1; }
-status=0
-out=$("$work/build/validate_my_warps17" --filter "diffuse_cxx17_weight_no_cos[theta_o=70]" --check bsdf_weight \
-  --samples 200000 --color never 2>&1) || status=$?
-[ "$status" -eq 1 ] && grep -Eq "^FAIL +bsdf_weight +" <<< "$out" \
-  || { echo "$out"; echo "expected the C++17 BSDF's twin to fail bsdf_weight"; exit 1; }
+# A C++17 translation unit registers one case of every kind through
+# validate/api/register17.h; every correct one passes (--all exits 0), and each
+# wrong twin of a kind fails the check meant to catch it.
+program="$work/build/validate_my_warps17"
+"$program" --all --samples 200000 --color never | tee "$work/all.txt"
+expect_row pass roundtrip "logistic_cxx17[mu=-3,s=0.25]"
+expect_row pass tabulated "logistic_cxx17[mu=-3,s=0.25]"
+grep -Eq "^n/a +roundtrip +cosine_cxx17_no_inverse +not applicable: the warp has no inverse" "$work/all.txt" \
+  || { echo "expected an n/a round trip for the C++17 warp without an inverse"; exit 1; }
+expect_row pass chi2 cosine_cxx17_no_inverse
+expect_row pass sample_pdf cosine_cxx17_returned_pdf
+expect_row pass inverse_pdf_mean table_cxx17_no_pdf
+for check in pmf discrete_chi2; do expect_row pass "$check" choice_cxx17; done
+for check in pmf discrete_chi2 remapped_u; do expect_row pass "$check" choice_cxx17_remapped; done
+for n in 5 50; do
+  for check in weight weight_mean chi2; do expect_row pass "$check" "phong_cxx17[n=$n]"; done
+done
+expect_row pass exhaustive unit_float_cxx17    # all 2^32 inputs, the block loop compiled as C++17
+expect_row pass exhaustive one_to_two_cxx17    # the top 23 of 64 bits
+for theta in 0 70; do expect_row pass bsdf_weight "diffuse_cxx17[theta_o=$theta]"; done
+expect_fail cosine_cxx17_no_inverse_half_pdf chi2 ", not 1 (tolerance"
+expect_fail cosine_cxx17_returned_pdf_wrong sample_pdf
+expect_fail table_cxx17_no_pdf_wrong inverse_pdf_mean
+expect_fail choice_cxx17_pmf_swapped discrete_chi2
+expect_fail choice_cxx17_remap_not_rescaled remapped_u
+expect_fail "phong_cxx17_wrong[n=20]" weight_mean
+expect_fail unit_float_cxx17_swapped exhaustive
+expect_fail one_to_two_cxx17_swapped exhaustive
+expect_fail "diffuse_cxx17_weight_no_cos[theta_o=70]" bsdf_weight
 echo "external example: built against the installed package and passed"

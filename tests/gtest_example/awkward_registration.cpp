@@ -20,7 +20,6 @@ warpcheck::WarpCaseInfo power_info(const char* family, std::vector<warpcheck::Pa
     return {.family = family,
             .params = std::move(params),
             .description = "density 3 x^2 on [0,1]",
-            .input = warpcheck::InputKind::Uniform1D,
             .domain = warpcheck::Domain::interval(0, 1)};
 }
 

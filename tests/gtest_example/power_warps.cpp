@@ -11,7 +11,6 @@ warpcheck::WarpCaseInfo power_case(const char* family, float n) {
     return {.family = family,
             .params = {{"n", n}},
             .description = "density (n+1) x^n on [0,1]",
-            .input = warpcheck::InputKind::Uniform1D,
             .domain = warpcheck::Domain::interval(0, 1)};
 }
 
@@ -23,8 +22,9 @@ void warpcheck_register(warpcheck::Registry& registry) {
     // Without an inverse: its round-trip checks do not apply (skipped tests, n/a rows).
     const PowerWarp cubic{3};
     registry.add_case(warpcheck::make_warp_case(
-        power_case("power_no_inverse", 3), [cubic](float u) { return cubic.sample(u); },
-        [cubic](float x) { return cubic.pdf(x); }));
+        power_case("power_no_inverse", 3),
+            warpcheck::warp_of([cubic](float u) { return cubic.sample(u); })
+                .with_pdf([cubic](float x) { return cubic.pdf(x); })));
     // A BSDF seen from two outgoing directions: the BSDF checks run on it.
     for (double theta : {0.0, 60.0})
         registry.add_case(warpcheck::make_bsdf_case({.family = "diffuse", .params = {{"theta_o", theta}}},

@@ -17,7 +17,6 @@ warpcheck::WarpCaseInfo lobe(float n) {
     return {.family = "power_lobe",
             .params = {{"n", n}},
             .description = "density (n+1) x^n on [0,1]",
-            .input = warpcheck::InputKind::Uniform1D,
             .domain = warpcheck::Domain::interval(0, 1)};
 }
 

@@ -81,15 +81,17 @@ void register_hashes(warpcheck::Registry& registry) {
              .params = {{"key", static_cast<double>(key)}},
              .description = "hash of 32 bits times 2^-32, rounded down",
              .domain = Domain::interval(0, 1)},
-            warpcheck::Monotone::NotClaimed, [key](uint32_t u) { return u32_times_2_pow_32_down(hash32(key, u)); },
-            uniform_pdf));
+            warpcheck::Monotone::NotClaimed,
+                warpcheck::warp_of([key](uint32_t u) { return u32_times_2_pow_32_down(hash32(key, u)); })
+                    .with_pdf(uniform_pdf)));
     registry.add_case(warpcheck::make_u32_float_case(
         {.family = "hash_u32_short",
          .params = {{"key", 1}},
          .description = "the hash times 0.99: never reaches [0.99, 1)",
          .domain = Domain::interval(0, 1)},
         warpcheck::Monotone::NotClaimed,
-        [](uint32_t u) { return u32_times_2_pow_32_down(hash32(1, u)) * 0.99f; }, uniform_pdf));
+        warpcheck::warp_of([](uint32_t u) { return u32_times_2_pow_32_down(hash32(1, u)) * 0.99f; })
+            .with_pdf(uniform_pdf)));
     mark_twin(registry, "hash_u32_short[key=1]", "exhaustive", "outputs never reach the top 1% of [0,1)");
 }
 
@@ -121,7 +123,6 @@ void add_logistic(warpcheck::Registry& registry, const std::string& family, doub
         {.family = family,
          .params = {{"mu", mu}, {"s", s}},
          .description = "logistic distribution on the real line, by inversion in double",
-         .input = InputKind::Uniform1D,
          .domain = Domain::real_line(),
          .views = {x}},
         Logistic{static_cast<float>(mu), static_cast<float>(s), stretch}));

@@ -94,7 +94,6 @@ void add_smooth(warpcheck::Registry& registry, bool twin) {
     registry.add_case(warpcheck::make_warp_case({.family = "smooth_linear" + suffix,
                                                  .params = {{"a", 1}, {"b", 3}},
                                                  .description = "density (1 - x) a + x b on [0,1], by inversion",
-                                                 .input = warpcheck::InputKind::Uniform1D,
                                                  .domain = Domain::interval(0, 1)},
                                                 Linear{1, 3, scale}));
     registry.add_case(warpcheck::make_warp_case({.family = "smooth_cosine_hemisphere" + suffix,

@@ -51,10 +51,9 @@ void register_misses(warpcheck::Registry& registry) {
         registry.add_case(warpcheck::make_warp_case(
             {.family = twin ? "alias_discrete_remap_10bit" : "alias_discrete",
              .description = "alias table over eight weights (one 0) with its remapped u",
-             .input = InputKind::Uniform1D,
              .categories = weights.size()},
-            [table = DiscreteAlias{pmf, AliasTable(weights), twin}](float u) { return table.sample(u); },
-            [pmf](uint32_t i) { return pmf[i]; }));
+            warpcheck::warp_of([table = DiscreteAlias{pmf, AliasTable(weights), twin}](float u) { return table.sample(u); })
+                .with_pdf([pmf](uint32_t i) { return pmf[i]; })));
     mark_twin(registry, "alias_discrete_remap_10bit", "remapped_u", "the remapped u takes only 1024 values");
 
     for (bool twin : {false, true})

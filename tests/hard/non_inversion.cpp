@@ -60,7 +60,6 @@ void register_non_inversion(warpcheck::Registry& registry) {
         registry.add_case(warpcheck::make_warp_case(
             {.family = twin ? "alias_1d_weight_20pc_off" : "alias_1d",
              .description = "piecewise-constant density on [0,1] through an alias table (not monotone in u)",
-             .input = InputKind::Uniform1D,
              .domain = Domain::interval(0, 1)},
             Alias1D{weights, AliasTable(twin ? skewed : weights)}));
     mark_twin(registry, "alias_1d_weight_20pc_off", "chi2,unbinned", "the table's bucket 4 weighs 3.6, the pdf's 3");
@@ -70,7 +69,6 @@ void register_non_inversion(warpcheck::Registry& registry) {
             {.family = twin ? "mixture_1d_wrong_weight" : "mixture_1d",
              .params = {{"select", 0.3}},
              .description = "0.3 of density 2x, 0.7 of 3 (1-x)^2, the component chosen by u",
-             .input = InputKind::Uniform1D,
              .domain = Domain::interval(0, 1)},
             Mixture1D{0.3f, twin ? 0.35f : 0.3f}));
     mark_twin(registry, "mixture_1d_wrong_weight[select=0.3]", "chi2,unbinned", "the pdf weighs the components 0.35");

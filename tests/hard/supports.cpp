@@ -136,15 +136,14 @@ void register_table(warpcheck::Registry& registry) {
         registry.add_case(warpcheck::make_warp_case(
             {.family = twin ? "table_zero_buckets_pdf_forgets_weight" : "table_zero_buckets",
              .description = "piecewise-constant table with buckets of weight 0; pdf only from sample",
-             .input = InputKind::Uniform1D,
              .domain = Domain::interval(0, 1),
              // Declared, as a renderer knows its table's empty buckets: 4 of
              // the 8 buckets, 0.5. Undeclared, inverse_pdf_mean can only test
              // E[1/pdf] <= 1 (the domain's length), which the twin's 0.46 meets.
              .support_measure = 0.5},
-            [table = TableReturningPdf{PiecewiseConstant1D(weights), twin ? 0.5f : 0.0f}](float u) {
-                return table.sample(u);
-            }));
+            warpcheck::warp_of([table = TableReturningPdf{PiecewiseConstant1D(weights), twin ? 0.5f : 0.0f}](float u) {
+                                   return table.sample(u);
+                               })));
     }
     mark_twin(registry, "table_zero_buckets_pdf_forgets_weight", "inverse_pdf_mean",
               "the returned pdf divides by a total without the bucket of weight 0.5");

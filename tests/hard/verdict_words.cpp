@@ -58,8 +58,8 @@ void register_nan_free_rows(warpcheck::Registry& registry) {
          .description = "1 + (u >> 41) 2^-23: every float of [1, 2) from 64 bits",
          .domain = Domain::interval(1, 2)},
         {.shift = 41}, warpcheck::Monotone::Claimed,
-        [](uint64_t u) { return 1 + static_cast<float>(u >> 41) * 0x1p-23f; },
-        [](float x) { return x >= 1 && x < 2 ? 1.0f : 0.0f; }));
+        warpcheck::warp_of([](uint64_t u) { return 1 + static_cast<float>(u >> 41) * 0x1p-23f; })
+            .with_pdf([](float x) { return x >= 1 && x < 2 ? 1.0f : 0.0f; })));
 }
 
 }  // namespace
@@ -67,7 +67,6 @@ void register_nan_free_rows(warpcheck::Registry& registry) {
 void register_verdict_words(warpcheck::Registry& registry) {
     registry.add_case(warpcheck::make_warp_case({.family = "nan_everywhere_1d",
                                                  .description = "sample, pdf and inverse return NaN for every input",
-                                                 .input = InputKind::Uniform1D,
                                                  .domain = Domain::interval(0, 1)},
                                                 NanInterval{}));
     mark_twin(registry, "nan_everywhere_1d", "every check", "sample, pdf and inverse are NaN");
@@ -82,14 +81,16 @@ void register_verdict_words(warpcheck::Registry& registry) {
         {.family = "lerp_offset_bits", .params = {{"a", -3}, {"b", 5}},
          .description = "a + t (b - a), t the top 24 of 32 bits: monotone, as claimed",
          .domain = Domain::interval(-3, 5)},
-        warpcheck::Monotone::Claimed, [](uint32_t u) { return lerp_of_bits(u, -3, 5, false); },
-        [](float x) { return x >= -3 && x < 5 ? 0.125f : 0.0f; }));
+        warpcheck::Monotone::Claimed,
+            warpcheck::warp_of([](uint32_t u) { return lerp_of_bits(u, -3, 5, false); })
+                .with_pdf([](float x) { return x >= -3 && x < 5 ? 0.125f : 0.0f; })));
     registry.add_case(warpcheck::make_u32_float_case(
         {.family = "lerp_blend_bits", .params = {{"a", 0.2}, {"b", 0.3}},
          .description = "(1 - t) a + t b, t the top 24 of 32 bits, claimed monotone",
          .domain = Domain::interval(0.2f, 0.3f)},
-        warpcheck::Monotone::Claimed, [](uint32_t u) { return lerp_of_bits(u, 0.2f, 0.3f, true); },
-        [](float x) { return x >= 0.2f && x < 0.3f ? 10.0f : 0.0f; }));
+        warpcheck::Monotone::Claimed,
+            warpcheck::warp_of([](uint32_t u) { return lerp_of_bits(u, 0.2f, 0.3f, true); })
+                .with_pdf([](float x) { return x >= 0.2f && x < 0.3f ? 10.0f : 0.0f; })));
     mark_twin(registry, "lerp_blend_bits[a=0.2,b=0.3]", "exhaustive", "steps down although claimed monotone, reaches b");
 }
 

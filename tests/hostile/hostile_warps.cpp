@@ -119,7 +119,6 @@ void add_healthy(warpcheck::Registry& registry, const char* family, std::vector<
     registry.add_case(warpcheck::make_warp_case({.family = family,
                                                  .params = std::move(params),
                                                  .description = "identity on [0,1)",
-                                                 .input = warpcheck::InputKind::Uniform1D,
                                                  .domain = warpcheck::chi2::Domain::interval(0, 1)},
                                                 UnitInterval{}));
 }
@@ -131,13 +130,13 @@ void add(warpcheck::Registry& registry, const std::string& family, Misbehave mis
         {.family = family,
          .params = {},
          .description = "hostile: see tests/hostile/hostile_warps.cpp",
-         .input = warpcheck::InputKind::Uniform1D,
          .domain = warpcheck::chi2::Domain::interval(0, 1)},
-        [misbehave](float u) {
-            misbehave();
-            return u;
-        },
-        [](float x) { return UnitInterval{}.pdf(x); }, [](float x) { return x; }));
+        warpcheck::warp_of([misbehave](float u) {
+                               misbehave();
+                               return u;
+                           })
+            .with_pdf([](float x) { return UnitInterval{}.pdf(x); })
+            .with_invert([](float x) { return x; })));
 }
 
 /// A case whose sample() calls `act` once per process (the first call in each
@@ -213,11 +212,10 @@ void add_impolite(warpcheck::Registry& registry) {
     registry.add_case(warpcheck::make_warp_case({.family = "hostile_name\x1b[2J\x1b]0;owned\x07\r\n",
                                                  .params = {},
                                                  .description = "identity on [0,1), inverse halved",
-                                                 .input = warpcheck::InputKind::Uniform1D,
                                                  .domain = warpcheck::chi2::Domain::interval(0, 1)},
-                                                [](float u) { return u; },
-                                                [](float x) { return UnitInterval{}.pdf(x); },
-                                                [](float x) { return 0.5f * x; }));
+                                                warpcheck::warp_of([](float u) { return u; })
+                                                    .with_pdf([](float x) { return UnitInterval{}.pdf(x); })
+                                                    .with_invert([](float x) { return 0.5f * x; })));
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 
 #include "reports/atomic_file.h"
 #include "reports/outputs.h"
-#include "tests/reports/temp_dir.h"
+#include "support/temp_dir.h"
 
 namespace warpcheck {
 namespace {

@@ -18,7 +18,7 @@
 #include "reports/svg_plot.h"
 #include "tests/reports/html_unpack.h"
 #include "tests/reports/sample_run.h"
-#include "tests/reports/temp_dir.h"
+#include "support/temp_dir.h"
 #include "tests/reports/xml_check.h"
 
 namespace warpcheck {

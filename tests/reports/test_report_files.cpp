@@ -14,7 +14,7 @@
 #include "tests/reports/html_unpack.h"
 #include "tests/reports/json_schema_check.h"
 #include "tests/reports/sample_run.h"
-#include "tests/reports/temp_dir.h"
+#include "support/temp_dir.h"
 #include "tests/reports/xml_check.h"
 
 namespace warpcheck {

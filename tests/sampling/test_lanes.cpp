@@ -1,7 +1,7 @@
 // sin_cos against the correctly rounded values, and the lane forms of
 // sampling/lanes.h and sampling/lane_warps.h against their scalar twins, bit
 // for bit (this file is compiled for the baseline target: the portable form;
-// tests/validate/test_lane_sampling.cpp runs the AVX-512 form end to end).
+// tests/validate/lanes/test_lane_sampling.cpp runs the AVX-512 form end to end).
 #include <gtest/gtest.h>
 
 #include <bit>

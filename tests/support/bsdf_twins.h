@@ -1,8 +1,8 @@
 // Wrong twins of hard BSDFs whose flaw is only where the samples go: each
 // sample reports f() and pdf() at its wi, so every weight agrees with them
 // (bsdf_weight passes) while the sampled distribution is a little off. The
-// distribution checks' hardest cases (tests/validate/test_bsdf_unbinned.cpp)
-// and their power (tests/validate/test_bsdf_power.cpp).
+// distribution checks' hardest cases (tests/validate/checks/bsdf/test_bsdf_unbinned.cpp)
+// and their power (tests/validate/checks/bsdf/test_bsdf_power.cpp).
 #pragma once
 
 #include <memory>
@@ -26,16 +26,16 @@ inline std::unique_ptr<WarpCase> conductor_wrong_roughness(float alpha, double t
 /// g + dg while its p and pdf are those of g.
 inline std::unique_ptr<WarpCase> henyey_greenstein_wrong_g(float g, float dg) {
     const HenyeyGreenstein right(g), wrong(g + dg);
-    return make_bsdf_case(
-        {.family = "hg_wrong_g", .params = {{"g", g}, {"theta_o", 30}, {"dg", dg}}},
-        {.wo = bsdf_direction(30, 20), .lobes = BsdfFlags::Continuous, .phase_function = true},
-        [right, wrong](Vector3f wo, Point2f u) {
-            BsdfSample s = wrong.sample(wo, u);
-            s.f = s.pdf = right.pdf(wo, s.wi);
-            return s;
-        },
-        [right](Vector3f wo, Vector3f wi) { return right.p(wo, wi); },
-        [right](Vector3f wo, Vector3f wi) { return right.pdf(wo, wi); });
+    const auto sample = [right, wrong](Vector3f wo, Point2f u) {
+        BsdfSample s = wrong.sample(wo, u);
+        s.f = s.pdf = right.pdf(wo, s.wi);
+        return s;
+    };
+    return make_bsdf_case({.family = "hg_wrong_g", .params = {{"g", g}, {"theta_o", 30}, {"dg", dg}}},
+                          {.wo = bsdf_direction(30, 20), .lobes = BsdfFlags::Continuous, .phase_function = true},
+                          bsdf_of(sample)
+                              .with_f([right](Vector3f wo, Vector3f wi) { return right.p(wo, wi); })
+                              .with_pdf([right](Vector3f wo, Vector3f wi) { return right.pdf(wo, wi); }));
 }
 
 }  // namespace warpcheck::testing

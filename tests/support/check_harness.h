@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/run/runner.h"
 
 namespace warpcheck::testing {

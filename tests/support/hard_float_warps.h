@@ -1,7 +1,7 @@
 // Correct float warps that are hard for the statistics, and their wrong twins
 // of the same hardness, written as a renderer writes them (float arithmetic,
 // the textbook formulas), not taken from sampling/. The chi-square tests of
-// tests/validate/test_chi2_float.cpp run them.
+// tests/validate/checks/chi2/test_chi2_float.cpp run them.
 #pragma once
 
 #include <algorithm>

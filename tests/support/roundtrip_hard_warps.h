@@ -35,17 +35,17 @@ inline std::unique_ptr<WarpCase> triangle(const std::string& name, float offset 
     info.roundtrip_tolerance = tolerance;
     return make_warp_case(
         info,
-        [](Point2f u) {
-            const float s = std::sqrt(u.x);
-            return Point2f{1.0f - s, u.y * s};
-        },
-        [](Point2f p) { return p.x >= 0.0f && p.y >= 0.0f && p.x + p.y <= 1.0f ? 2.0f : 0.0f; },
-        [offset, near](Point2f p) {
-            const float s = 1.0f - p.x;
-            float v = s > 0.0f ? p.y / s : 0.0f;
-            if (s < near) v += offset;
-            return Point2f{s * s, std::clamp(v, 0.0f, kBelowOne)};
-        });
+        warp_of([](Point2f u) {
+                    const float s = std::sqrt(u.x);
+                    return Point2f{1.0f - s, u.y * s};
+                })
+            .with_pdf([](Point2f p) { return p.x >= 0.0f && p.y >= 0.0f && p.x + p.y <= 1.0f ? 2.0f : 0.0f; })
+            .with_invert([offset, near](Point2f p) {
+                             const float s = 1.0f - p.x;
+                             float v = s > 0.0f ? p.y / s : 0.0f;
+                             if (s < near) v += offset;
+                             return Point2f{s * s, std::clamp(v, 0.0f, kBelowOne)};
+                         }));
 }
 
 /// The Phong lobe cos^n theta on the hemisphere: cos theta = u.x^(1/(n+1)),
@@ -60,13 +60,13 @@ inline std::unique_ptr<WarpCase> phong(const std::string& name, float n, float e
     const float exponent = off_by_one ? n : (n + 1.0f) * exponent_scale;
     return make_warp_case(
         info,
-        [n](Point2f u) {
+        warp_of([n](Point2f u) {
             const float z = std::pow(u.x, 1.0f / (n + 1.0f));
             const float r = std::sqrt(std::fmax(0.0f, 1.0f - z * z)), phi = kTwoPi * u.y;
             return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
-        },
-        [n](Vector3f w) { return w.z >= 0.0f ? (n + 1.0f) / kTwoPi * std::pow(w.z, n) : 0.0f; },
-        [exponent](Vector3f w) { return Point2f{std::fmin(std::pow(w.z, exponent), kBelowOne), azimuth(w.x, w.y)}; });
+        })
+            .with_pdf([n](Vector3f w) { return w.z >= 0.0f ? (n + 1.0f) / kTwoPi * std::pow(w.z, n) : 0.0f; })
+            .with_invert([exponent](Vector3f w) { return Point2f{std::fmin(std::pow(w.z, exponent), kBelowOne), azimuth(w.x, w.y)}; }));
 }
 
 /// A uniform cone (a sun) of half-angle `degrees` on its own cap, as one-minus-
@@ -81,15 +81,15 @@ inline std::unique_ptr<WarpCase> tiny_cone(const std::string& name, float degree
                       chi2::Domain::spherical_cap(cos_max)};
     return make_warp_case(
         info,
-        [cos_max](Point2f u) {
+        warp_of([cos_max](Point2f u) {
             const float one_minus_cos = u.x * (1.0f - cos_max), phi = kTwoPi * u.y;
             const float r = std::sqrt(one_minus_cos * (2.0f - one_minus_cos));
             return Vector3f{r * std::cos(phi), r * std::sin(phi), 1.0f - one_minus_cos};
-        },
-        [cos_max](Vector3f w) { return w.z >= cos_max ? 1.0f / (kTwoPi * (1.0f - cos_max)) : 0.0f; },
-        [cos_max, inverse_scale](Vector3f w) {
-            return Point2f{std::fmin(inverse_scale * (1.0f - w.z) / (1.0f - cos_max), kBelowOne), azimuth(w.x, w.y)};
-        });
+        })
+            .with_pdf([cos_max](Vector3f w) { return w.z >= cos_max ? 1.0f / (kTwoPi * (1.0f - cos_max)) : 0.0f; })
+            .with_invert([cos_max, inverse_scale](Vector3f w) {
+                return Point2f{std::fmin(inverse_scale * (1.0f - w.z) / (1.0f - cos_max), kBelowOne), azimuth(w.x, w.y)};
+            }));
 }
 
 /// Uniform on [0, a] as x = a u, inverted by multiplying with the reciprocal,
@@ -98,11 +98,12 @@ inline std::unique_ptr<WarpCase> tiny_cone(const std::string& name, float degree
 inline std::unique_ptr<WarpCase> scaled_interval(const std::string& name, float a, float from = 2.0f) {
     WarpCaseInfo info{name, {{"a", a}}, "uniform on [0, a]", InputKind::Uniform1D, chi2::Domain::interval(0.0, a)};
     return make_warp_case(
-        info, [a](float u) { return a * u; }, [a](float x) { return x >= 0.0f && x <= a ? 1.0f / a : 0.0f; },
-        [a, from](float x) {
-            const float u = x * (1.0f / a);
-            return u >= from ? 1.0f : u;
-        });
+        info, warp_of([a](float u) { return a * u; })
+                  .with_pdf([a](float x) { return x >= 0.0f && x <= a ? 1.0f / a : 0.0f; })
+                  .with_invert([a, from](float x) {
+                                   const float u = x * (1.0f / a);
+                                   return u >= from ? 1.0f : u;
+                               }));
 }
 
 /// The same in 2D: uniform on the rectangle [0, a] x [0, 1] (a light of width
@@ -112,12 +113,13 @@ inline std::unique_ptr<WarpCase> scaled_rectangle(const std::string& name, float
     WarpCaseInfo info{name, {{"a", a}}, "uniform on [0, a] x [0, 1]", InputKind::Uniform2D,
                       chi2::Domain::box(0.0, a, 0.0, 1.0)};
     return make_warp_case(
-        info, [a](Point2f u) { return Point2f{a * u.x, u.y}; },
-        [a](Point2f p) { return p.x >= 0.0f && p.x <= a && p.y >= 0.0f && p.y <= 1.0f ? 1.0f / a : 0.0f; },
-        [a, from](Point2f p) {
-            const float u = p.x * (1.0f / a);
-            return Point2f{u >= from ? 1.0f : u, p.y};
-        });
+        info,
+            warp_of([a](Point2f u) { return Point2f{a * u.x, u.y}; })
+                .with_pdf([a](Point2f p) { return p.x >= 0.0f && p.x <= a && p.y >= 0.0f && p.y <= 1.0f ? 1.0f / a : 0.0f; })
+                .with_invert([a, from](Point2f p) {
+                    const float u = p.x * (1.0f / a);
+                    return Point2f{u >= from ? 1.0f : u, p.y};
+                }));
 }
 
 }  // namespace warpcheck::testing::hard

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/api/registry.h"
 #include "validate/run/runner.h"
 #include "validate/api/warp_case.h"

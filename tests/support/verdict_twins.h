@@ -53,10 +53,12 @@ inline float disk_pdf(Point2f p) { return p.x * p.x + p.y * p.y <= 1.0f ? kInvPi
 /// The polar disk, turning counter-clockwise (turn 1) or clockwise (turn -1).
 inline std::unique_ptr<WarpCase> polar(const std::string& n, float turn, bool wrap) {
     return make_warp_case(info(n, chi2::Domain::unit_disk(), InputKind::Uniform2D),
-                          [turn](Point2f u) { return polar_disk(u, turn); }, disk_pdf, [turn, wrap](Point2f p) {
-                              const float phi = wrap ? azimuth(p.x, turn * p.y) : std::atan2(turn * p.y, p.x) / kTwoPi;
-                              return Point2f{std::fmin(p.x * p.x + p.y * p.y, kBelowOne), phi};
-                          });
+                          warp_of([turn](Point2f u) { return polar_disk(u, turn); })
+                              .with_pdf(disk_pdf)
+                              .with_invert([turn, wrap](Point2f p) {
+  const float phi = wrap ? azimuth(p.x, turn * p.y) : std::atan2(turn * p.y, p.x) / kTwoPi;
+  return Point2f{std::fmin(p.x * p.x + p.y * p.y, kBelowOne), phi};
+  }));
 }
 
 /// The uniform sphere with z = 2 u.x - 1 (the mirror of pbrt's 1 - 2 u.x), its
@@ -64,16 +66,16 @@ inline std::unique_ptr<WarpCase> polar(const std::string& n, float turn, bool wr
 inline std::unique_ptr<WarpCase> sphere(const std::string& n, bool nan_near_pole, float scale = 1.0f) {
     return make_warp_case(
         info(n, chi2::Domain::sphere(), InputKind::Uniform2D),
-        [](Point2f u) {
+        warp_of([](Point2f u) {
             const float z = 2.0f * u.x - 1.0f, r = std::sqrt(std::fmax(0.0f, (1.0f - z) * (1.0f + z)));
             const float phi = kTwoPi * u.y;
             return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
-        },
-        [scale](Vector3f) { return scale * 0.25f * kInvPi; },
-        [nan_near_pole](Vector3f w) {
-            if (nan_near_pole && w.z > 0.999f) return Point2f{std::numeric_limits<float>::quiet_NaN(), 0.0f};
-            return Point2f{std::fmin(0.5f * (w.z + 1.0f), kBelowOne), azimuth(w.x, w.y)};
-        });
+        })
+            .with_pdf([scale](Vector3f) { return scale * 0.25f * kInvPi; })
+            .with_invert([nan_near_pole](Vector3f w) {
+                if (nan_near_pole && w.z > 0.999f) return Point2f{std::numeric_limits<float>::quiet_NaN(), 0.0f};
+                return Point2f{std::fmin(0.5f * (w.z + 1.0f), kBelowOne), azimuth(w.x, w.y)};
+            }));
 }
 
 /// Malley's method on the polar disk: a cosine-weighted hemisphere, with 1/pi
@@ -81,19 +83,21 @@ inline std::unique_ptr<WarpCase> sphere(const std::string& n, bool nan_near_pole
 inline std::unique_ptr<WarpCase> malley_polar(const std::string& n, float inv_pi = kInvPi) {
     return make_warp_case(
         info(n, chi2::Domain::hemisphere(), InputKind::Uniform2D),
-        [](Point2f u) {
+        warp_of([](Point2f u) {
             const Point2f d = polar_disk(u, 1.0f);
             return Vector3f{d.x, d.y, std::sqrt(std::fmax(0.0f, 1.0f - u.x))};
-        },
-        [inv_pi](Vector3f w) { return w.z >= 0.0f ? w.z * inv_pi : 0.0f; },
-        [](Vector3f w) { return Point2f{std::fmin(w.x * w.x + w.y * w.y, kBelowOne), azimuth(w.x, w.y)}; });
+        })
+            .with_pdf([inv_pi](Vector3f w) { return w.z >= 0.0f ? w.z * inv_pi : 0.0f; })
+            .with_invert([](Vector3f w) { return Point2f{std::fmin(w.x * w.x + w.y * w.y, kBelowOne), azimuth(w.x, w.y)}; }));
 }
 
 /// x = u on [0, 1]; the wrong inverse adds 7.
 inline std::unique_ptr<WarpCase> identity(const std::string& n, float offset) {
     return make_warp_case(
-        info(n, chi2::Domain::interval(0, 1), InputKind::Uniform1D), [](float u) { return u; },
-        [](float x) { return x >= 0.0f && x <= 1.0f ? 1.0f : 0.0f; }, [offset](float x) { return x + offset; });
+        info(n, chi2::Domain::interval(0, 1), InputKind::Uniform1D),
+            warp_of([](float u) { return u; })
+                .with_pdf([](float x) { return x >= 0.0f && x <= 1.0f ? 1.0f : 0.0f; })
+                .with_invert([offset](float x) { return x + offset; }));
 }
 
 /// The exponential of rate 1e7: every sample lies below 2e-6, so any u maps
@@ -102,12 +106,13 @@ inline std::unique_ptr<WarpCase> identity(const std::string& n, float offset) {
 inline std::unique_ptr<WarpCase> steep_exponential(const std::string& n, bool survival) {
     constexpr float rate = 1e7f;
     return make_warp_case(
-        info(n, chi2::Domain::half_line(0), InputKind::Uniform1D), [](float u) { return -std::log1p(-u) / rate; },
-        [](float x) { return x >= 0.0f ? rate * std::exp(-rate * x) : 0.0f; },
-        [survival](float x) {
-            const float cdf = -std::expm1(-rate * x);
-            return std::fmin(survival ? 1.0f - cdf : cdf, kBelowOne);
-        });
+        info(n, chi2::Domain::half_line(0), InputKind::Uniform1D),
+            warp_of([](float u) { return -std::log1p(-u) / rate; })
+                .with_pdf([](float x) { return x >= 0.0f ? rate * std::exp(-rate * x) : 0.0f; })
+                .with_invert([survival](float x) {
+                    const float cdf = -std::expm1(-rate * x);
+                    return std::fmin(survival ? 1.0f - cdf : cdf, kBelowOne);
+                }));
 }
 
 /// The linear density 2x on [0, 1] (x = sqrt(u)); the wrong sampler returns
@@ -115,11 +120,11 @@ inline std::unique_ptr<WarpCase> steep_exponential(const std::string& n, bool su
 inline std::unique_ptr<WarpCase> ramp(const std::string& n, bool wrong_below, float top = 1.0f) {
     return make_warp_case(
         info(n, chi2::Domain::interval(0, 1), InputKind::Uniform1D),
-        [wrong_below, top](float u) {
-            return wrong_below && u > 0.0f && u <= 0x1p-26f ? 0.5f : std::fmin(std::sqrt(u), top);
-        },
-        [](float x) { return x >= 0.0f && x <= 1.0f ? 2.0f * x : 0.0f; },
-        [](float x) { return std::fmin(x * x, kBelowOne); });
+        warp_of([wrong_below, top](float u) {
+                    return wrong_below && u > 0.0f && u <= 0x1p-26f ? 0.5f : std::fmin(std::sqrt(u), top);
+                })
+            .with_pdf([](float x) { return x >= 0.0f && x <= 1.0f ? 2.0f * x : 0.0f; })
+            .with_invert([](float x) { return std::fmin(x * x, kBelowOne); }));
 }
 
 }  // namespace twins

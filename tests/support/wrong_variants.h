@@ -34,25 +34,26 @@ inline std::unique_ptr<WarpCase> tr_normals(float alpha, bool wrong) {
     info.views = {m};
     const TrowbridgeReitzNormals normals = TrowbridgeReitz(alpha).normals();
     return make_warp_case(
-        info, [normals](Point2f u) { return normals.sample(u); },
-        [alpha, wrong](Vector3f w) { return w.z > 0.0f ? isotropic_D(alpha, w.z, wrong) * w.z : 0.0; },
-        [normals](Vector3f w) { return normals.invert(w); });
+        info,
+            warp_of([normals](Point2f u) { return normals.sample(u); })
+                .with_pdf([alpha, wrong](Vector3f w) { return w.z > 0.0f ? isotropic_D(alpha, w.z, wrong) * w.z : 0.0; })
+                .with_invert([normals](Vector3f w) { return normals.invert(w); }));
 }
 
 inline std::unique_ptr<WarpCase> trimmed(float c, float x_max, bool wrong) {
     WarpCaseInfo info;
     info.family = wrong ? "trimmed_exponential_untrimmed_norm" : "trimmed_exponential";
     info.params = {{"c", c}, {"x_max", x_max}};
-    info.input = InputKind::Uniform1D;
     info.domain = chi2::Domain::interval(0.0, x_max);
     const TrimmedExponential t(c, x_max);
     return make_warp_case(
-        info, [t](float u) { return t.sample(u); },
-        [t, wrong](float x) {
-            // The bug: c exp(-c x), forgetting the 1 / (1 - exp(-c x_max)) of the trimming.
-            return wrong ? (x >= 0.0f && x <= t.x_max() ? t.rate() * std::exp(-t.rate() * x) : 0.0f) : t.pdf(x);
-        },
-        [t](float x) { return t.invert(x); });
+        info,
+            warp_of([t](float u) { return t.sample(u); })
+                .with_pdf([t, wrong](float x) {
+                    // The bug: c exp(-c x), forgetting the 1 / (1 - exp(-c x_max)) of the trimming.
+                    return wrong ? (x >= 0.0f && x <= t.x_max() ? t.rate() * std::exp(-t.rate() * x) : 0.0f) : t.pdf(x);
+                })
+                .with_invert([t](float x) { return t.invert(x); }));
 }
 
 inline std::unique_ptr<WarpCase> visible(float alpha, double theta_o_degrees, bool wrong) {
@@ -64,15 +65,16 @@ inline std::unique_ptr<WarpCase> visible(float alpha, double theta_o_degrees, bo
     const TrowbridgeReitz tr(alpha);
     const auto vis = tr.visible_normals({static_cast<float>(std::sin(t)), 0.0f, static_cast<float>(std::cos(t))});
     return make_warp_case(
-        info, [vis](Point2f u) { return vis.sample(u); },
-        [vis, wrong](Vector3f w) {
-            if (!wrong) return vis.pdf(w);
-            // The bug: |wo.wm| lets back-facing normals into the density, which
-            // then integrates to more than 1 (the samples never go there).
-            const TrowbridgeReitz& d = vis.distribution();
-            return w.z >= 0.0f ? d.G1_over_cos(vis.wo()) * std::abs(dot(vis.wo(), w)) * d.D(w) : 0.0f;
-        },
-        [vis](Vector3f w) { return vis.invert(w); });
+        info,
+            warp_of([vis](Point2f u) { return vis.sample(u); })
+                .with_pdf([vis, wrong](Vector3f w) {
+                    if (!wrong) return vis.pdf(w);
+                    // The bug: |wo.wm| lets back-facing normals into the density, which
+                    // then integrates to more than 1 (the samples never go there).
+                    const TrowbridgeReitz& d = vis.distribution();
+                    return w.z >= 0.0f ? d.G1_over_cos(vis.wo()) * std::abs(dot(vis.wo(), w)) * d.D(w) : 0.0f;
+                })
+                .with_invert([vis](Vector3f w) { return vis.invert(w); }));
 }
 
 }  // namespace warpcheck::testing

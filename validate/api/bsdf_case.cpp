@@ -5,8 +5,6 @@
 #include <numbers>
 #include <vector>
 
-#include <fmt/format.h>
-
 namespace warpcheck {
 
 Vector3f bsdf_direction(double theta_degrees, double phi_degrees) {
@@ -18,36 +16,22 @@ Vector3f bsdf_direction(double theta_degrees, double phi_degrees) {
 namespace {
 
 WarpCaseInfo bsdf_info(WarpCaseInfo info) {
-    info.input = InputKind::Uniform3D;
     info.domain = chi2::Domain::sphere();
     return info;
 }
 
-/// The first thing wrong with the claims, or "".
-std::string claims_problem(const BsdfClaims& c) {
-    const double len = std::hypot(static_cast<double>(c.wo.x), static_cast<double>(c.wo.y), static_cast<double>(c.wo.z));
-    // A float direction rounded from a unit vector is within 2^-23 of unit length;
-    // 2^-16 leaves room for a renderer's own normalisation and still refuses a
-    // wo that was never normalised.
-    if (!(std::abs(len - 1.0) <= 0x1p-16))
-        return fmt::format("wo ({}, {}, {}) is not a unit vector (length {})", c.wo.x, c.wo.y, c.wo.z, len);
-    if (c.wo.z == 0.0f && !c.phase_function) return "wo lies on the horizon (z = 0): on neither side of the surface";
-    if (!has(c.lobes, BsdfFlags::Continuous) && !has(c.lobes, BsdfFlags::Delta))
-        return "claims.lobes names no lobe: set BsdfFlags::Continuous and/or BsdfFlags::Delta";
-    if (c.phase_function && c.lobes != BsdfFlags::Continuous)
-        return "a phase function has one continuous lobe on the sphere (claims.lobes = BsdfFlags::Continuous)";
-    if (!c.phase_function && !has(c.lobes, BsdfFlags::Reflection) && !has(c.lobes, BsdfFlags::Transmission))
-        return "claims.lobes names neither Reflection nor Transmission";
-    if (!(c.eta > 0.0f && std::isfinite(c.eta))) return fmt::format("claims.eta {} is not a positive index", c.eta);
-    return "";
-}
+/// What every BSDF case is: (uc, u) in, a direction on the sphere out, with f and a pdf.
+constexpr WarpSignature kBsdfSignature{.input = InputKind::Uniform3D,
+                                       .returns = SampleReturns::Bsdf,
+                                       .output_dimension = 3,
+                                       .has_pdf = true,
+                                       .has_inverse = false,
+                                       .has_eval = false};
 
 }  // namespace
 
-BsdfCase::BsdfCase(WarpCaseInfo info, BsdfClaims claims) : WarpCase(bsdf_info(std::move(info))), claims_(claims) {
-    if (const std::string problem = claims_problem(claims_); !problem.empty())
-        throw std::invalid_argument("BSDF case " + name() + ": " + problem);
-}
+BsdfCase::BsdfCase(WarpCaseInfo info, BsdfClaims claims)
+    : WarpCase(bsdf_info(std::move(info)), kBsdfSignature), claims_(claims) {}
 
 void BsdfCase::f_cos(std::span<const WarpOutput> wi, std::span<double> out) const {
     const std::vector<WarpOutput> wo(wi.size(), detail::to_output_of(claims_.wo));

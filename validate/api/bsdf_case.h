@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cmath>
+#include <concepts>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -59,9 +60,9 @@ Vector3f bsdf_direction(double theta_degrees, double phi_degrees = 0.0);
 
 class BsdfCase : public WarpCase {
 public:
-    /// Sets info.input to Uniform3D and info.domain to the sphere; refuses
-    /// (std::invalid_argument naming the case) a wo that is not a finite unit
-    /// vector off the horizon, no lobes, or a phase function with surface lobes.
+    /// Sets info.domain to the sphere; its input is Uniform3D (uc, u). The
+    /// claims are checked with the rest of the declaration (validate_case):
+    /// wo must be a finite unit vector off the horizon, and there must be lobes.
     BsdfCase(WarpCaseInfo info, BsdfClaims claims);
 
     const BsdfClaims& claims() const { return claims_; }
@@ -91,11 +92,53 @@ public:
 
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override;
     void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override;
-    bool has_inverse() const override { return false; }
-    SampleReturns sample_returns() const override { return SampleReturns::Bsdf; }
 
 private:
     BsdfClaims claims_;
+};
+
+/// A BSDF given as callables, each part named, so that f and pdf (of one type)
+/// cannot take each other's place: bsdf_of(sample).with_f(f).with_pdf(pdf),
+/// with sample(Vector3f wo, float uc, Point2f u) -> BsdfSample (a phase
+/// function's sample(Vector3f wo, Point2f u)), f(Vector3f wo, Vector3f wi) and
+/// pdf(Vector3f wo, Vector3f wi) -> float or double.
+template <typename Sample, typename F = detail::NotGiven, typename Pdf = detail::NotGiven>
+struct CallableBsdf {
+    Sample sample;
+    F f{};
+    Pdf pdf{};
+
+    /// This BSDF with `g` as its f(wo, wi).
+    template <typename G>
+    CallableBsdf<Sample, G, Pdf> with_f(G g) const {
+        static_assert(std::is_same_v<F, detail::NotGiven>, "f is given twice");
+        return {sample, std::move(g), pdf};
+    }
+    /// This BSDF with `g` as its pdf(wo, wi).
+    template <typename G>
+    CallableBsdf<Sample, F, G> with_pdf(G g) const {
+        static_assert(std::is_same_v<Pdf, detail::NotGiven>, "the pdf is given twice");
+        return {sample, f, std::move(g)};
+    }
+};
+
+/// A BSDF of callables whose sample is `sample` (CallableBsdf).
+template <typename Sample>
+CallableBsdf<Sample> bsdf_of(Sample sample) {
+    return {std::move(sample)};
+}
+
+/// A BSDF object: const members sample(Vector3f, float, Point2f) -> BsdfSample
+/// (a phase function's sample(Vector3f, Point2f)), f(Vector3f, Vector3f) (a
+/// phase function's p) and pdf(Vector3f, Vector3f), as the BSDFs of
+/// sampling/bsdf_*.h have, and flags() -> BsdfFlags, eta() and transport()
+/// where it has them; or a CallableBsdf (bsdf_of).
+template <typename B>
+concept BsdfObject = requires(const B& b, Vector3f w, float uc, Point2f u) {
+    requires(requires { { b.sample(w, uc, u) } -> std::convertible_to<BsdfSample>; } ||
+             requires { { b.sample(w, u) } -> std::convertible_to<BsdfSample>; });
+    requires(requires { b.f(w, w); } || requires { b.p(w, w); });
+    b.pdf(w, w);
 };
 
 namespace detail {
@@ -103,14 +146,13 @@ namespace detail {
 inline Vector3f to_vector(const WarpOutput& o) { return {o[0], o[1], o[2]}; }
 inline WarpOutput to_output_of(const Vector3f& v) { return {v.x, v.y, v.z}; }
 
-/// A BSDF given as three callables over its natural types: sample(wo, uc, u) or,
-/// for a phase function, sample(wo, u), returning BsdfSample; f(wo, wi) and
-/// pdf(wo, wi) returning a float or double.
-template <typename Sample, typename F, typename Pdf>
-class LambdaBsdfCase final : public BsdfCase {
+/// A BSDF case around a BSDF object, whose members are called directly, so
+/// that they inline into the batch loops.
+template <BsdfObject B>
+class ObjectBsdfCase final : public BsdfCase {
 public:
-    LambdaBsdfCase(WarpCaseInfo info, BsdfClaims claims, Sample s, F f, Pdf p)
-        : BsdfCase(std::move(info), claims), sample_(std::move(s)), f_(std::move(f)), pdf_(std::move(p)) {}
+    ObjectBsdfCase(WarpCaseInfo info, BsdfClaims claims, B bsdf)
+        : BsdfCase(std::move(info), claims), bsdf_(std::move(bsdf)) {}
 
     void sample_bsdf(std::span<const WarpInput> in, std::span<BsdfRecord> out) const override {
         const Vector3f wo = this->wo();
@@ -120,52 +162,44 @@ public:
         }
     }
     void f(std::span<const WarpOutput> a, std::span<const WarpOutput> b, std::span<double> out) const override {
-        for (std::size_t k = 0; k < a.size(); ++k) out[k] = static_cast<double>(f_(to_vector(a[k]), to_vector(b[k])));
+        for (std::size_t k = 0; k < a.size(); ++k) out[k] = call_f(to_vector(a[k]), to_vector(b[k]));
     }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
         const Vector3f wo = this->wo();
-        for (std::size_t k = 0; k < x.size(); ++k) out[k] = static_cast<double>(pdf_(wo, to_vector(x[k])));
+        for (std::size_t k = 0; k < x.size(); ++k) out[k] = static_cast<double>(bsdf_.pdf(wo, to_vector(x[k])));
     }
 
 private:
     BsdfSample call_sample(Vector3f wo, const WarpInput& in) const {
-        if constexpr (std::is_invocable_v<const Sample&, Vector3f, float, Point2f>)
-            return sample_(wo, in.u[0], Point2f{in.u[1], in.u[2]});
+        if constexpr (requires { bsdf_.sample(wo, in.u[0], Point2f{}); })
+            return bsdf_.sample(wo, in.u[0], Point2f{in.u[1], in.u[2]});
         else
-            return sample_(wo, Point2f{in.u[1], in.u[2]});
+            return bsdf_.sample(wo, Point2f{in.u[1], in.u[2]});
+    }
+    double call_f(Vector3f wo, Vector3f wi) const {
+        if constexpr (requires { bsdf_.f(wo, wi); }) return static_cast<double>(bsdf_.f(wo, wi));
+        else return static_cast<double>(bsdf_.p(wo, wi));
     }
 
-    Sample sample_;
-    F f_;
-    Pdf pdf_;
+    B bsdf_;
 };
 
 }  // namespace detail
 
-/// Makes a BSDF case from three callables: sample(Vector3f wo, float uc,
-/// Point2f u) -> BsdfSample (a phase function's sample(Vector3f wo, Point2f u)),
-/// f(Vector3f wo, Vector3f wi) and pdf(Vector3f wo, Vector3f wi) -> float.
-/// claims.lobes must say which lobes it samples. Lambdas inline into the batch loops.
-template <typename Sample, typename F, typename Pdf>
-std::unique_ptr<WarpCase> make_bsdf_case(WarpCaseInfo info, BsdfClaims claims, Sample sample, F f, Pdf pdf) {
-    static_assert(std::is_invocable_r_v<BsdfSample, const Sample&, Vector3f, float, Point2f> ||
-                      std::is_invocable_r_v<BsdfSample, const Sample&, Vector3f, Point2f>,
-                  "sample must take (Vector3f wo, float uc, Point2f u), or (Vector3f wo, Point2f u) for a phase "
-                  "function, and return a BsdfSample");
-    return std::make_unique<detail::LambdaBsdfCase<Sample, F, Pdf>>(std::move(info), claims, std::move(sample),
-                                                                     std::move(f), std::move(pdf));
+/// Makes a BSDF case from a BSDF object (or a CallableBsdf) seen from
+/// claims.wo: the lobes come from its flags(), eta and transport from its
+/// eta() and transport() when it has them; otherwise, and for the rest of the
+/// claims (reciprocity), as given. Refused where the declaration contradicts
+/// itself (validate_case).
+template <BsdfObject B>
+std::unique_ptr<WarpCase> make_bsdf_case(WarpCaseInfo info, BsdfClaims claims, B bsdf) {
+    if constexpr (requires { bsdf.flags(); }) claims.lobes = bsdf.flags();
+    if constexpr (requires { bsdf.eta(); }) claims.eta = bsdf.eta();
+    if constexpr (requires { bsdf.transport(); }) claims.transport = bsdf.transport();
+    auto bsdf_case = std::make_unique<detail::ObjectBsdfCase<B>>(std::move(info), claims, std::move(bsdf));
+    validate_case(*bsdf_case);
+    return bsdf_case;
 }
-
-/// A BSDF object: const members sample(Vector3f, float, Point2f) -> BsdfSample,
-/// f(Vector3f, Vector3f), pdf(Vector3f, Vector3f) and flags() -> BsdfFlags, as
-/// the BSDFs of sampling/bsdf_*.h have; eta() and transport() where it transmits.
-template <typename B>
-concept BsdfObject = requires(const B& b, Vector3f w, float uc, Point2f u) {
-    { b.sample(w, uc, u) } -> std::convertible_to<BsdfSample>;
-    b.f(w, w);
-    b.pdf(w, w);
-    { b.flags() } -> std::convertible_to<BsdfFlags>;
-};
 
 /// A phase-function object: sample(Vector3f, Point2f) -> BsdfSample, p and pdf.
 template <typename P>
@@ -175,28 +209,11 @@ concept PhaseObject = requires(const P& p, Vector3f w, Point2f u) {
     p.pdf(w, w);
 };
 
-/// Makes a BSDF case from a BSDF object seen from claims.wo: the lobes come
-/// from its flags(), eta and transport from its eta() and transport() when it
-/// has them; the rest of the claims (reciprocity) as given.
-template <BsdfObject B>
-std::unique_ptr<WarpCase> make_bsdf_case(WarpCaseInfo info, BsdfClaims claims, B bsdf) {
-    claims.lobes = bsdf.flags();
-    if constexpr (requires { bsdf.eta(); }) claims.eta = bsdf.eta();
-    if constexpr (requires { bsdf.transport(); }) claims.transport = bsdf.transport();
-    return make_bsdf_case(
-        std::move(info), claims, [bsdf](Vector3f wo, float uc, Point2f u) { return bsdf.sample(wo, uc, u); },
-        [bsdf](Vector3f wo, Vector3f wi) { return bsdf.f(wo, wi); },
-        [bsdf](Vector3f wo, Vector3f wi) { return bsdf.pdf(wo, wi); });
-}
-
 /// Makes a phase function's case seen from wo (reciprocal, one continuous lobe).
 template <PhaseObject P>
 std::unique_ptr<WarpCase> make_phase_case(WarpCaseInfo info, Vector3f wo, P phase) {
-    BsdfClaims claims{.wo = wo, .lobes = BsdfFlags::Continuous, .phase_function = true};
-    return make_bsdf_case(
-        std::move(info), claims, [phase](Vector3f w, Point2f u) { return phase.sample(w, u); },
-        [phase](Vector3f a, Vector3f b) { return phase.p(a, b); },
-        [phase](Vector3f a, Vector3f b) { return phase.pdf(a, b); });
+    return make_bsdf_case(std::move(info), {.wo = wo, .lobes = BsdfFlags::Continuous, .phase_function = true},
+                          std::move(phase));
 }
 
 /// The BSDF case inside a WarpCase, or nullptr.

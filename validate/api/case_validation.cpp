@@ -1,21 +1,106 @@
-#include "validate/api/case_validation.h"
-
+// The one place a case's declaration is checked (warp_case.h: case_problems,
+// validate_case): its types against what its description says, its settings,
+// its views, a BSDF's claims and a swept float sampler's domain. Every problem
+// is a sentence; the refusal lists them all under the case's name.
 #include <cmath>
 #include <set>
 
 #include <fmt/format.h>
 
+#include "validate/api/bsdf_case.h"
+#include "validate/api/exhaustive_sweep.h"
+#include "validate/api/warp_case.h"
+
 namespace warpcheck {
 namespace {
 
-/// The case's own settings. (Its types against .input and the domain are
-/// checked when the case is made: WarpCase::validate_declaration.)
-void type_problems(const WarpCase& warp, std::vector<std::string>& out) {
+const char* input_name(InputKind k) {
+    switch (k) {
+        case InputKind::Uniform1D: return "Uniform1D (a float)";
+        case InputKind::Uniform2D: return "Uniform2D (a Point2f)";
+        case InputKind::Bits32: return "Bits32 (a uint32_t)";
+        case InputKind::Bits64: return "Bits64 (a uint64_t)";
+        case InputKind::Uniform3D: return "Uniform3D (a BSDF's uc and u)";
+    }
+    return "?";
+}
+
+/// Whether the domain is the one WarpCaseInfo starts with, i.e. left unset.
+bool default_domain(const chi2::Domain& d) {
+    if (!d.is<chi2::Box>()) return false;
+    const chi2::Box& b = d.as<chi2::Box>();
+    return b.x0 == 0.0 && b.x1 == 1.0 && b.y0 == 0.0 && b.y1 == 1.0;
+}
+
+// The first thing wrong with a discrete case, or "".
+std::string discrete_problem(const WarpCaseInfo& info, const WarpSignature& s) {
+    if (info.categories == 0) return "its sample returns an index, so it needs .categories (how many there are)";
+    if (info.categories > (std::size_t{1} << 24))
+        return fmt::format("{} categories: at most 2^24 (indices travel as exact floats)", info.categories);
+    if (!default_domain(info.domain))
+        return fmt::format("a discrete case has no continuous domain, but .domain is the {} (leave it unset: "
+                           ".categories declares the choices)", info.domain.describe());
+    if (s.has_inverse) return "a discrete case has no inverse";
+    if (s.has_eval) return "a discrete case has no eval";
+    if (!info.views.empty()) return "a discrete case has no monotone views";
+    return "";
+}
+
+// The first thing wrong with a continuous case, or "".
+std::string continuous_problem(const WarpCaseInfo& info, const WarpSignature& s) {
+    if (info.categories != 0) return "it declares .categories but its sample returns a point, not an index";
+    if (s.output_dimension != info.domain.point_dimension())
+        return fmt::format("its points have {} coordinates, but the {} has {}", s.output_dimension,
+                           info.domain.describe(), info.domain.point_dimension());
+    if (s.returns == SampleReturns::PointAndWeight && !s.has_eval)
+        return "its sample returns a weight but there is no eval to check it against "
+               "(an eval member, or warp_of(sample).with_pdf(pdf).with_eval(eval))";
+    if (s.has_eval && s.returns != SampleReturns::PointAndWeight)
+        return "it has an eval but its sample returns no weight (return a WeightedSample)";
+    if (!s.has_pdf && s.returns != SampleReturns::PointAndPdf)
+        return "it has no pdf: give a pdf function, or return the pdf with each sample (PdfSample)";
+    return "";
+}
+
+/// The case's types against its description: the first thing wrong, or "".
+std::string type_problem(const WarpCase& warp) {
+    const WarpCaseInfo& info = warp.info();
+    const WarpSignature& s = warp.signature();
+    if (info.input && *info.input != s.input)
+        return fmt::format("its sample takes {} but .input is {}", input_name(s.input), input_name(*info.input));
+    return warp.is_discrete() ? discrete_problem(info, s) : continuous_problem(info, s);
+}
+
+/// The case's own settings.
+void setting_problems(const WarpCase& warp, std::vector<std::string>& out) {
     const double tol = warp.info().roundtrip_tolerance;
     if (!(tol > 0.0 && tol < 1.0)) out.push_back(fmt::format("roundtrip_tolerance {} is not in (0, 1)", tol));
     const double support = warp.info().support_measure, domain = warp.domain().measure();
     if (support != 0.0 && !(support > 0.0 && std::isfinite(support) && support <= domain))
         out.push_back(fmt::format("support_measure {} is not in (0, {}] (the domain's measure)", support, domain));
+    if (dynamic_cast<const SweepableCase*>(&warp) && !warp.domain().is<chi2::Interval>())
+        out.push_back(fmt::format("a float sampler swept exhaustively needs an interval [a, b) as its domain, not "
+                                  "the {}", warp.domain().describe()));
+}
+
+/// A BSDF's claims: the first thing wrong, or "".
+std::string claims_problem(const BsdfClaims& c) {
+    const double len =
+        std::hypot(static_cast<double>(c.wo.x), static_cast<double>(c.wo.y), static_cast<double>(c.wo.z));
+    // A float direction rounded from a unit vector is within 2^-23 of unit length;
+    // 2^-16 leaves room for a renderer's own normalisation and still refuses a
+    // wo that was never normalised.
+    if (!(std::abs(len - 1.0) <= 0x1p-16))
+        return fmt::format("wo ({}, {}, {}) is not a unit vector (length {})", c.wo.x, c.wo.y, c.wo.z, len);
+    if (c.wo.z == 0.0f && !c.phase_function) return "wo lies on the horizon (z = 0): on neither side of the surface";
+    if (!has(c.lobes, BsdfFlags::Continuous) && !has(c.lobes, BsdfFlags::Delta))
+        return "claims.lobes names no lobe: set BsdfFlags::Continuous and/or BsdfFlags::Delta";
+    if (c.phase_function && c.lobes != BsdfFlags::Continuous)
+        return "a phase function has one continuous lobe on the sphere (claims.lobes = BsdfFlags::Continuous)";
+    if (!c.phase_function && !has(c.lobes, BsdfFlags::Reflection) && !has(c.lobes, BsdfFlags::Transmission))
+        return "claims.lobes names neither Reflection nor Transmission";
+    if (!(c.eta > 0.0f && std::isfinite(c.eta))) return fmt::format("claims.eta {} is not a positive index", c.eta);
+    return "";
 }
 
 /// One view against the warp's input and domain.
@@ -52,7 +137,10 @@ void view_problems(const WarpCase& warp, const MonotoneMarginal& m, std::vector<
 
 std::vector<std::string> case_problems(const WarpCase& warp) {
     std::vector<std::string> out;
-    type_problems(warp, out);
+    if (std::string problem = type_problem(warp); !problem.empty()) out.push_back(std::move(problem));
+    if (const BsdfCase* bsdf = as_bsdf(warp))
+        if (std::string problem = claims_problem(bsdf->claims()); !problem.empty()) out.push_back(std::move(problem));
+    setting_problems(warp, out);
     std::set<std::string> labels;
     for (const MonotoneMarginal& m : warp.info().views) {
         if (m.label.empty() && warp.info().views.size() > 1)
@@ -61,6 +149,17 @@ std::vector<std::string> case_problems(const WarpCase& warp) {
         view_problems(warp, m, out);
     }
     return out;
+}
+
+std::invalid_argument declaration_error(const std::string& what, const std::vector<std::string>& problems) {
+    std::string text = what + " is declared inconsistently:";
+    for (const std::string& p : problems) text += "\n  - " + p;
+    return std::invalid_argument(text);
+}
+
+void validate_case(const WarpCase& warp) {
+    if (std::vector<std::string> problems = case_problems(warp); !problems.empty())
+        throw declaration_error("warp case " + warp.name(), problems);
 }
 
 }  // namespace warpcheck

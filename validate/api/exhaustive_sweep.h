@@ -13,7 +13,6 @@
 
 #include "chi2/float_sweep.h"
 #include "chi2/run_borders.h"
-#include "validate/api/check.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -53,13 +52,20 @@ class SweepableWarpCase final : public WarpCase, public SweepableCase {
 public:
     SweepableWarpCase(std::unique_ptr<WarpCase> inner, FloatBlockFn fn, uint64_t inputs, std::string grid,
                       bool monotone, FloatBordersFn borders = {})
-        : WarpCase(inner->info()), inner_(std::move(inner)), fn_(std::move(fn)), borders_(std::move(borders)),
-          inputs_(inputs), grid_(std::move(grid)), monotone_(monotone) {}
+        : WarpCase(inner->info(), inner->signature()), inner_(std::move(inner)), fn_(std::move(fn)),
+          borders_(std::move(borders)), inputs_(inputs), grid_(std::move(grid)), monotone_(monotone) {}
 
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override { inner_->sample(in, out); }
+    void sample_planar(const float* u0, const float* u1, float* x, float* y, float* z, std::size_t n) const override {
+        inner_->sample_planar(u0, u1, x, y, z, n);
+    }
+    void sample_with_value(std::span<const WarpInput> in, std::span<WarpOutput> out,
+                           std::span<double> value) const override {
+        inner_->sample_with_value(in, out, value);
+    }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override { inner_->pdf(x, out); }
+    void eval(std::span<const WarpOutput> x, std::span<double> out) const override { inner_->eval(x, out); }
     void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override { inner_->invert(x, out); }
-    bool has_inverse() const override { return inner_->has_inverse(); }
 
     FloatBlockFn sweep_fn() const override { return fn_; }
     FloatBordersFn sweep_borders_fn() const override { return borders_; }
@@ -75,19 +81,6 @@ private:
     std::string grid_;
     bool monotone_;
 };
-
-/// The time budget of a check that makes `calls` sampler calls: the run's
-/// budget if the user set it, otherwise at least calls * 100 ns. 100 ns is a
-/// stated worst per-call cost: the slowest measured full sweep, the generic
-/// batch path over 2^32 inputs of a non-monotone sampler with its exact
-/// recount, took 121 s on two cores (28 ns per call); 100 ns leaves a factor
-/// 3.5 for slower or busier machines (2^32 calls: 430 s).
-inline double sweep_time_budget(const RunOptions& options, uint64_t calls) {
-    constexpr double kWorstSecondsPerCall = 100e-9;
-    if (options.time_budget_set) return options.check_time_budget;
-    const double needed = static_cast<double>(calls) * kWorstSecondsPerCall;
-    return options.check_time_budget > needed ? options.check_time_budget : needed;
-}
 
 namespace detail {
 

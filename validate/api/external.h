@@ -23,8 +23,8 @@
 #include "validate/api/registry.h"
 #include "validate/api/warp_case.h"
 
-/// Defined by the program that links warpcheck::main: adds its warp cases (and
-/// any checks of its own) to the registry.
+/// Defined by the program that links warpcheck::main: adds its warp cases to
+/// the registry.
 void warpcheck_register(warpcheck::Registry& registry);
 
 namespace warpcheck {
@@ -47,49 +47,63 @@ struct U64Subrange {
 
 namespace detail {
 
-inline void require_interval(const WarpCaseInfo& info, const char* what) {
-    if (!info.domain.is<chi2::Interval>())
-        throw std::invalid_argument(std::string(what) + ": a float sampler's domain must be an interval [a, b)");
+/// A case whose float sampler the exhaustive check sweeps over every u32
+/// input: `fn` (and `borders`, when not empty) is the sampler in blocks.
+inline std::unique_ptr<WarpCase> u32_sweep(std::unique_ptr<WarpCase> inner, FloatBlockFn fn, Monotone monotone,
+                                           FloatBordersFn borders = {}) {
+    auto swept = std::make_unique<SweepableWarpCase>(std::move(inner), std::move(fn), uint64_t{1} << 32,
+                                                     "all 2^32 inputs", monotone == Monotone::Claimed,
+                                                     std::move(borders));
+    validate_case(*swept);
+    return swept;
 }
 
-}  // namespace detail
-
-/// A case for a u32 -> float sampler on the interval info.domain (info.input is
-/// set to Bits32): `sample(uint32_t) -> float` and `pdf(float)`, plus
-/// optionally `invert(float) -> uint32_t`, as for make_warp_case. Every check
-/// that applies runs on it; the exhaustive one sweeps all 2^32 inputs through
-/// a vectorised loop with `sample` inlined (pass a lambda or function object;
-/// a plain function pointer works but is called per input).
-template <typename Sample, typename Pdf, typename... Invert>
-std::unique_ptr<WarpCase> make_u32_float_case(WarpCaseInfo info, Monotone monotone, Sample sample, Pdf pdf,
-                                              Invert... invert) {
-    static_assert(sizeof...(Invert) <= 1, "at most one inverse");
-    detail::require_interval(info, "make_u32_float_case");
-    info.input = InputKind::Bits32;
-    auto call = [sample](uint32_t u) -> float { return sample(u); };
-    auto inner = make_warp_case(std::move(info), call, std::move(pdf), std::move(invert)...);
-    return std::make_unique<SweepableWarpCase>(std::move(inner), u32_block_fn(call), uint64_t{1} << 32,
-                                               "all 2^32 inputs", monotone == Monotone::Claimed,
-                                               u32_borders_fn(call));
-}
-
-/// A case for a u64 -> float sampler, as make_u32_float_case (info.input is set
-/// to Bits64), whose exhaustive sweep enumerates `subrange`.
-template <typename Sample, typename Pdf, typename... Invert>
-std::unique_ptr<WarpCase> make_u64_float_case(WarpCaseInfo info, U64Subrange subrange, Monotone monotone,
-                                              Sample sample, Pdf pdf, Invert... invert) {
-    static_assert(sizeof...(Invert) <= 1, "at most one inverse");
-    detail::require_interval(info, "make_u64_float_case");
+/// A case whose u64 float sampler the exhaustive check sweeps over
+/// `subrange`: `fn` is the sampler on the subrange's i-th input, in blocks.
+inline std::unique_ptr<WarpCase> u64_sweep(std::unique_ptr<WarpCase> inner, FloatBlockFn fn, U64Subrange subrange,
+                                           Monotone monotone) {
     if (subrange.shift < 32 || subrange.shift > 63 || (subrange.low_bits >> subrange.shift) != 0)
-        throw std::invalid_argument("make_u64_float_case: needs 32 <= shift < 64 and low_bits < 2^shift");
-    info.input = InputKind::Bits64;
-    auto call = [sample](uint64_t u) -> float { return sample(u); };
-    auto inner = make_warp_case(std::move(info), call, std::move(pdf), std::move(invert)...);
+        throw declaration_error("warp case " + inner->name(),
+                                {"its U64Subrange needs 32 <= shift < 64 and low_bits < 2^shift, not shift " +
+                                 std::to_string(subrange.shift) + " and low_bits " +
+                                 std::to_string(subrange.low_bits)});
     const int bits = 64 - subrange.shift;
     std::string grid = "u = (i << " + std::to_string(subrange.shift) + ") | " + std::to_string(subrange.low_bits) +
                        " for every i < 2^" + std::to_string(bits);
-    return std::make_unique<SweepableWarpCase>(std::move(inner), u64_block_fn(call, subrange.shift, subrange.low_bits),
-                                               uint64_t{1} << bits, std::move(grid), monotone == Monotone::Claimed);
+    auto swept = std::make_unique<SweepableWarpCase>(std::move(inner), std::move(fn), uint64_t{1} << bits,
+                                                     std::move(grid), monotone == Monotone::Claimed);
+    validate_case(*swept);
+    return swept;
+}
+
+/// Whether W's sample takes `Bits` and returns a float.
+template <typename W, typename Bits>
+constexpr bool samples_float_from = std::is_same_v<typename WarpTypesOf<W>::In, Bits> &&
+                                    std::is_same_v<typename WarpTypesOf<W>::Result, float>;
+
+}  // namespace detail
+
+/// A case for a u32 -> float sampler on an interval domain [a, b): a warp
+/// object (or Warp of callables) whose `sample(uint32_t) -> float` has a
+/// `pdf(float)` and, optionally, `invert(float) -> uint32_t`, as for
+/// make_warp_case. Every check that applies runs on it; the exhaustive one
+/// sweeps all 2^32 inputs through a vectorised loop with `sample` inlined.
+template <WarpObject W>
+std::unique_ptr<WarpCase> make_u32_float_case(WarpCaseInfo info, Monotone monotone, W warp) {
+    static_assert(detail::samples_float_from<W, uint32_t>, "make_u32_float_case: sample must be uint32_t -> float");
+    auto call = [warp](uint32_t u) -> float { return warp.sample(u); };
+    return detail::u32_sweep(make_warp_case(std::move(info), std::move(warp)), u32_block_fn(call), monotone,
+                             u32_borders_fn(call));
+}
+
+/// A case for a u64 -> float sampler, as make_u32_float_case (sample(uint64_t)
+/// -> float), whose exhaustive sweep enumerates `subrange`.
+template <WarpObject W>
+std::unique_ptr<WarpCase> make_u64_float_case(WarpCaseInfo info, U64Subrange subrange, Monotone monotone, W warp) {
+    static_assert(detail::samples_float_from<W, uint64_t>, "make_u64_float_case: sample must be uint64_t -> float");
+    auto call = [warp](uint64_t u) -> float { return warp.sample(u); };
+    return detail::u64_sweep(make_warp_case(std::move(info), std::move(warp)),
+                             u64_block_fn(call, subrange.shift, subrange.low_bits), subrange, monotone);
 }
 
 }  // namespace warpcheck

@@ -1,25 +1,18 @@
 // The C++17 registration header's functions (validate/api/register17.h), compiled
 // as C++20 with the rest of warpcheck: each converts the plain description to
-// a WarpCaseInfo and wraps the callables in a WarpCase.
+// a WarpCaseInfo and the erased warp to a WarpCase, and takes the path a case
+// made by make_warp_case takes (the same signature, validation and sweeps).
 #include "validate/api/register17.h"
 
 #include <stdexcept>
 
 #include "validate/api/bsdf_case.h"
+#include "validate/api/case_grid.h"
+#include "validate/api/external.h"
 #include "validate/api/registry.h"
 
 namespace warpcheck::cxx17 {
 namespace {
-
-InputKind to_input_kind(Input input) {
-    switch (input) {
-        case Input::Uniform1D: return InputKind::Uniform1D;
-        case Input::Uniform2D: return InputKind::Uniform2D;
-        case Input::Bits32: return InputKind::Bits32;
-        case Input::Bits64: return InputKind::Bits64;
-    }
-    throw std::invalid_argument("register17: unknown input kind");
-}
 
 chi2::Domain to_domain(const Domain& d) {
     switch (d.kind) {
@@ -48,46 +41,96 @@ MonotoneMarginal to_view(const View& v) {
     return m;
 }
 
+std::vector<Parameter> to_params(const std::vector<std::pair<std::string, double>>& params) {
+    std::vector<Parameter> out;
+    for (const auto& [name, value] : params) out.push_back({name, value});
+    return out;
+}
+
 WarpCaseInfo to_info(const CaseInfo& in) {
     WarpCaseInfo info;
     info.family = in.family;
-    for (const auto& [name, value] : in.params) info.params.push_back({name, value});
+    info.params = to_params(in.params);
     info.description = in.description;
-    info.input = to_input_kind(in.input);
     info.domain = to_domain(in.domain);
     info.roundtrip_tolerance = in.roundtrip_tolerance;
+    info.exact_inverse = in.exact_inverse;
     for (const View& v : in.views) info.views.push_back(to_view(v));
     info.inversion = in.inversion == Inversion::Claimed        ? warpcheck::Inversion::Claimed
                      : in.inversion == Inversion::NotInversion ? warpcheck::Inversion::NotInversion
                                                                : warpcheck::Inversion::Measure;
+    info.support_measure = in.support_measure;
+    info.categories = in.categories;
     return info;
 }
 
+InputKind to_input_kind(detail::Input input) {
+    switch (input) {
+        case detail::Input::Uniform1D: return InputKind::Uniform1D;
+        case detail::Input::Uniform2D: return InputKind::Uniform2D;
+        case detail::Input::Bits32: return InputKind::Bits32;
+        case detail::Input::Bits64: return InputKind::Bits64;
+    }
+    throw std::invalid_argument("register17: unknown input kind");
+}
+
+SampleReturns to_returns(detail::Returns returns) {
+    switch (returns) {
+        case detail::Returns::Point: return SampleReturns::Point;
+        case detail::Returns::PointAndPdf: return SampleReturns::PointAndPdf;
+        case detail::Returns::PointAndWeight: return SampleReturns::PointAndWeight;
+        case detail::Returns::Index: return SampleReturns::Index;
+        case detail::Returns::IndexAndRemappedU: return SampleReturns::IndexAndRemappedU;
+    }
+    throw std::invalid_argument("register17: unknown sample result");
+}
+
+/// What the erased warp's types said, as make_warp_case would read them.
+WarpSignature signature_of(const detail::ErasedWarp& w) {
+    return {.input = to_input_kind(w.input),
+            .returns = to_returns(w.returns),
+            .output_dimension = w.dimension,
+            .has_pdf = static_cast<bool>(w.pdf),
+            .has_inverse = static_cast<bool>(w.invert),
+            .has_eval = static_cast<bool>(w.eval)};
+}
+
+detail::WarpInput to_input17(const warpcheck::WarpInput& in) { return {{in.u[0], in.u[1]}, in.bits}; }
+
 /// A warp given as std::functions over plain arrays.
-class FunctionWarpCase final : public WarpCase {
+class ErasedWarpCase final : public WarpCase {
 public:
-    FunctionWarpCase(WarpCaseInfo info, SampleFn sample, PdfFn pdf, InvertFn invert)
-        : WarpCase(std::move(info)), sample_(std::move(sample)), pdf_(std::move(pdf)), invert_(std::move(invert)) {}
+    ErasedWarpCase(WarpCaseInfo info, detail::ErasedWarp warp)
+        : WarpCase(std::move(info), signature_of(warp)), warp_(std::move(warp)) {}
 
     void sample(std::span<const warpcheck::WarpInput> in, std::span<WarpOutput> out) const override {
-        for (std::size_t k = 0; k < in.size(); ++k) out[k] = sample_({{in[k].u[0], in[k].u[1]}, in[k].bits});
+        double value = 0.0;
+        for (std::size_t k = 0; k < in.size(); ++k) out[k] = warp_.sample(to_input17(in[k]), value);
+    }
+    void sample_with_value(std::span<const warpcheck::WarpInput> in, std::span<WarpOutput> out,
+                           std::span<double> value) const override {
+        if (sample_returns() == SampleReturns::Point || sample_returns() == SampleReturns::Index)
+            return WarpCase::sample_with_value(in, out, value);
+        for (std::size_t k = 0; k < in.size(); ++k) out[k] = warp_.sample(to_input17(in[k]), value[k]);
     }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
-        for (std::size_t k = 0; k < x.size(); ++k) out[k] = pdf_(x[k]);
+        if (!warp_.pdf) throw std::logic_error("warp case " + name() + " has no pdf function");
+        for (std::size_t k = 0; k < x.size(); ++k) out[k] = warp_.pdf(x[k]);
+    }
+    void eval(std::span<const WarpOutput> x, std::span<double> out) const override {
+        if (!warp_.eval) return WarpCase::eval(x, out);
+        for (std::size_t k = 0; k < x.size(); ++k) out[k] = warp_.eval(x[k]);
     }
     void invert(std::span<const WarpOutput> x, std::span<warpcheck::WarpInput> out) const override {
-        if (!invert_) throw std::logic_error("warp case " + name() + " has no inverse");
+        if (!warp_.invert) throw std::logic_error("warp case " + name() + " has no inverse");
         for (std::size_t k = 0; k < x.size(); ++k) {
-            const WarpInput u = invert_(x[k]);
-            out[k] = {{u.u[0], u.u[1]}, u.bits};
+            const detail::WarpInput u = warp_.invert(x[k]);
+            out[k] = {{u.u[0], u.u[1], 0.0f}, u.bits};
         }
     }
-    bool has_inverse() const override { return static_cast<bool>(invert_); }
 
 private:
-    SampleFn sample_;
-    PdfFn pdf_;
-    InvertFn invert_;
+    detail::ErasedWarp warp_;
 };
 
 BsdfFlags to_lobes(const BsdfInfo& in) {
@@ -119,33 +162,56 @@ Point to_point(Vector3f v) { return {v.x, v.y, v.z}; }
 
 }  // namespace
 
-void add_bsdf(Registry& registry, const BsdfInfo& info, BsdfSampleFn sample, BsdfEvalFn f, BsdfEvalFn pdf) {
-    WarpCaseInfo converted;
-    converted.family = info.family;
-    for (const auto& [name, value] : info.params) converted.params.push_back({name, value});
-    converted.description = info.description;
-    const std::string name = case_name(converted.family, converted.params);
-    if (!sample || !f || !pdf) throw std::invalid_argument("registry: BSDF case " + name + " needs sample, f and pdf");
-    const BsdfClaims claims = to_claims(info);
-    registry.add_case(make_bsdf_case(
-        std::move(converted), claims,
-        [sample = std::move(sample)](Vector3f wo, float uc, Point2f u) {
-            return to_sample(sample(to_point(wo), uc, {u.x, u.y}));
-        },
-        [f = std::move(f)](Vector3f wo, Vector3f wi) { return f(to_point(wo), to_point(wi)); },
-        [pdf = std::move(pdf)](Vector3f wo, Vector3f wi) { return pdf(to_point(wo), to_point(wi)); }));
+double GridPoint::operator[](const std::string& name) const {
+    for (const auto& [axis, value] : params_)
+        if (axis == name) return value;
+    throw std::invalid_argument("grid point has no parameter " + name);
 }
+
+namespace detail {
+
+void add_erased(Registry& registry, const CaseInfo& info, ErasedWarp warp, Sweep sweep) {
+    std::unique_ptr<WarpCase> made = std::make_unique<ErasedWarpCase>(to_info(info), std::move(warp));
+    if (sweep.input_bits == 32)
+        made = warpcheck::detail::u32_sweep(std::move(made), std::move(sweep.block),
+                                            static_cast<warpcheck::Monotone>(sweep.monotone));
+    else if (sweep.input_bits == 64)
+        made = warpcheck::detail::u64_sweep(std::move(made), std::move(sweep.block),
+                                            {.shift = sweep.subrange.shift, .low_bits = sweep.subrange.low_bits},
+                                            static_cast<warpcheck::Monotone>(sweep.monotone));
+    registry.add_case(std::move(made));
+}
+
+std::vector<GridPoint> grid_points(const CaseInfo& base, const std::vector<GridAxis>& axes) {
+    WarpCaseInfo info;
+    info.family = base.family;
+    info.params = to_params(base.params);
+    std::vector<warpcheck::GridAxis> converted;
+    for (const GridAxis& axis : axes) converted.push_back({axis.name, axis.values});
+    std::vector<GridPoint> points;
+    for (const warpcheck::GridPoint& point : warpcheck::grid_points(info, converted)) {
+        std::vector<std::pair<std::string, double>> params;
+        for (const Parameter& p : point.params()) params.emplace_back(p.name, p.value);
+        points.emplace_back(std::move(params));
+    }
+    return points;
+}
+
+void add_erased_bsdf(Registry& registry, const BsdfInfo& info, BsdfSampleFn sample, BsdfEvalFn f, BsdfEvalFn pdf) {
+    WarpCaseInfo converted{.family = info.family, .params = to_params(info.params), .description = info.description};
+    registry.add_case(make_bsdf_case(
+        std::move(converted), to_claims(info),
+        bsdf_of([sample = std::move(sample)](Vector3f wo, float uc, Point2f u) {
+            return to_sample(sample(to_point(wo), uc, {u.x, u.y}));
+        })
+            .with_f([f = std::move(f)](Vector3f wo, Vector3f wi) { return f(to_point(wo), to_point(wi)); })
+            .with_pdf([pdf = std::move(pdf)](Vector3f wo, Vector3f wi) { return pdf(to_point(wo), to_point(wi)); })));
+}
+
+}  // namespace detail
 
 Point bsdf_direction(double theta_degrees, double phi_degrees) {
     return to_point(::warpcheck::bsdf_direction(theta_degrees, phi_degrees));
-}
-
-void add_case(Registry& registry, const CaseInfo& info, SampleFn sample, PdfFn pdf, InvertFn invert) {
-    WarpCaseInfo converted = to_info(info);
-    const std::string name = case_name(converted.family, converted.params);
-    if (!sample || !pdf) throw std::invalid_argument("registry: warp case " + name + " needs sample and pdf functions");
-    registry.add_case(
-        std::make_unique<FunctionWarpCase>(std::move(converted), std::move(sample), std::move(pdf), std::move(invert)));
 }
 
 void mark_known_flaw(Registry& registry, const std::string& case_name, const std::string& check_name,

@@ -6,19 +6,27 @@
 //
 //     #include <validate/api/register17.h>
 //     void warpcheck_register(warpcheck::Registry& registry) {
-//         warpcheck::cxx17::add_case(registry, info, sample, pdf, invert);
+//         warpcheck::cxx17::add_case(registry, info, MyWarp{...});
 //     }
 //
-// The warp is given as callables over plain arrays; the same checks, options
-// and reports apply as to a case made with make_warp_case. In CMake, link the
-// C++17 files' target to warpcheck::register17 (include path only) and the
-// program to warpcheck::main.
+// The same one way as make_warp_case (validate/api/warp_case.h): a warp object
+// with const members sample, and pdf, invert, eval as it has them, whose types
+// say the input and the kind of case. Its types are the plain ones below
+// (float, Point2, Point, uint32_t, uint64_t, an integer index, PdfSample,
+// WeightedSample, DiscreteSample): a renderer's own types go through a small
+// adapter object. The header turns the object into std::functions over plain
+// arrays, and the C++20 side makes the same case of it as make_warp_case
+// would, validated the same way. In CMake, link the C++17 files' target to
+// warpcheck::register17 (include path only) and the program to warpcheck::main.
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -31,17 +39,26 @@ void warpcheck_register(warpcheck::Registry& registry);
 
 namespace warpcheck::cxx17 {
 
-/// What a warp consumes: uniform floats in [0,1) (one or two), or raw bits.
-enum class Input { Uniform1D, Uniform2D, Bits32, Bits64 };
-
-/// One input: u[0..1] for uniform inputs, `bits` for raw bits.
-struct WarpInput {
-    std::array<float, 2> u{};
-    std::uint64_t bits = 0;
-};
-
-/// One output point: x; (x, y); or a direction (x, y, z). Unused coordinates are 0.
+/// A uniform input of [0,1)^2, or a point of the plane: (x, y).
+using Point2 = std::array<float, 2>;
+/// A direction (x, y, z).
 using Point = std::array<float, 3>;
+
+/// What sample returns besides the point (warp_case.h says what each means).
+template <typename X>
+struct PdfSample {
+    X x;
+    float pdf;
+};
+template <typename X>
+struct WeightedSample {
+    X x;
+    float weight;
+};
+struct DiscreteSample {
+    std::uint32_t index;
+    float u_remapped;
+};
 
 /// The domain and the measure the pdf is a density of.
 struct Domain {
@@ -85,26 +102,46 @@ struct View {
 /// Whether sample is the inversion method (WarpCaseInfo::inversion says what each means).
 enum class Inversion { Measure, Claimed, NotInversion };
 
-/// The case's name, description, input, domain and views (WarpCaseInfo).
+/// The case's description (WarpCaseInfo says what each field means); the
+/// input is read off sample's argument.
 struct CaseInfo {
     std::string family;
     std::vector<std::pair<std::string, double>> params;
     std::string description;
-    Input input = Input::Uniform2D;
     Domain domain = Domain::unit_square();
     double roundtrip_tolerance = 1.0 / 65536.0;
+    bool exact_inverse = false;
     std::vector<View> views;
     Inversion inversion = Inversion::Measure;
+    double support_measure = 0.0;  ///< where the density is positive, if less than the domain
+    std::size_t categories = 0;    ///< discrete cases: how many indices sample chooses among
 };
 
-using SampleFn = std::function<Point(const WarpInput&)>;
-using PdfFn = std::function<double(const Point&)>;
-/// Empty: the warp has no inverse, and its round-trip checks are not applicable.
-using InvertFn = std::function<WarpInput(const Point&)>;
+/// What a float sampler claims about its order (external.h, Monotone).
+enum class Monotone : bool { NotClaimed = false, Claimed = true };
+/// Which inputs of a u64 -> float sampler the exhaustive check enumerates (external.h, U64Subrange).
+struct U64Subrange {
+    int shift = 32;
+    std::uint64_t low_bits = 0;
+};
 
-/// Adds a case to the registry, validated as Registry::add_case validates
-/// (an inconsistent declaration throws std::invalid_argument naming the case).
-void add_case(Registry& registry, const CaseInfo& info, SampleFn sample, PdfFn pdf, InvertFn invert = {});
+/// One parameter of a grid and the values it takes, in order.
+struct GridAxis {
+    std::string name;
+    std::vector<double> values;
+};
+
+/// One point of a grid: its parameters in axis order, looked up by name.
+class GridPoint {
+public:
+    explicit GridPoint(std::vector<std::pair<std::string, double>> params) : params_(std::move(params)) {}
+    /// The value of the named axis; an unknown name is a std::invalid_argument.
+    double operator[](const std::string& name) const;
+    const std::vector<std::pair<std::string, double>>& params() const { return params_; }
+
+private:
+    std::vector<std::pair<std::string, double>> params_;
+};
 
 /// A BSDF's or phase function's sample as a renderer returns it (pbrt-v4's
 /// BSDFSample): the direction wi, f(wo, wi) (for a delta lobe the value whose
@@ -121,7 +158,7 @@ struct BsdfSample {
 };
 
 /// A BSDF case: its name, the outgoing direction wo it is checked at, and what
-/// it claims (BsdfClaims in validate/bsdf/bsdf_case.h says what each means).
+/// it claims (BsdfClaims in validate/api/bsdf_case.h says what each means).
 struct BsdfInfo {
     std::string family;
     std::vector<std::pair<std::string, double>> params;
@@ -135,15 +172,296 @@ struct BsdfInfo {
     bool phase_function = false; ///< wi on the whole sphere, weight p / pdf (no cosine)
 };
 
-/// sample(wo, uc, u): uc chooses the lobe, u = (u1, u2) the direction.
-using BsdfSampleFn = std::function<BsdfSample(const Point& wo, float uc, const std::array<float, 2>& u)>;
-/// f(wo, wi) or pdf(wo, wi).
+namespace detail {
+
+/// What a warp consumes and what its sample returns (warp_case.h: InputKind, SampleReturns).
+enum class Input { Uniform1D, Uniform2D, Bits32, Bits64 };
+enum class Returns { Point, PointAndPdf, PointAndWeight, Index, IndexAndRemappedU };
+
+/// One input as the C++20 side hands it over: u for uniform inputs, bits for raw bits.
+struct WarpInput {
+    Point2 u{};
+    std::uint64_t bits = 0;
+};
+
+/// A warp as the C++20 side takes it: what its types say, as values, and its
+/// parts as std::functions over plain arrays (an empty one: the part is missing).
+struct ErasedWarp {
+    Input input = Input::Uniform2D;
+    Returns returns = Returns::Point;
+    int dimension = 2;
+    /// The point of sample(in), and in `value` what came with it (pdf, weight, remapped u).
+    std::function<Point(const WarpInput& in, double& value)> sample;
+    std::function<double(const Point&)> pdf;
+    std::function<WarpInput(const Point&)> invert;
+    std::function<double(const Point&)> eval;
+};
+
+/// How the exhaustive check sweeps a float sampler: input_bits 0 (no fast
+/// path), 32 (every input) or 64 (the subrange); `block` writes out[i] =
+/// sample(i-th input of the sweep from `first`) for i < n.
+struct Sweep {
+    int input_bits = 0;
+    U64Subrange subrange{};
+    Monotone monotone = Monotone::NotClaimed;
+    std::function<void(std::uint64_t first, std::size_t n, float* out)> block;
+};
+
+/// Registers the case of an erased warp (validate/api/register17.cpp).
+void add_erased(Registry& registry, const CaseInfo& info, ErasedWarp warp, Sweep sweep = {});
+/// grid_points of validate/api/case_grid.h: the product of the axes.
+std::vector<GridPoint> grid_points(const CaseInfo& base, const std::vector<GridAxis>& axes);
+
+using BsdfSampleFn = std::function<BsdfSample(const Point& wo, float uc, const Point2& u)>;
 using BsdfEvalFn = std::function<double(const Point& wo, const Point& wi)>;
+void add_erased_bsdf(Registry& registry, const BsdfInfo& info, BsdfSampleFn sample, BsdfEvalFn f, BsdfEvalFn pdf);
+
+/// What sample returns, when it is a point or an index: itself, and nothing with it.
+template <typename T, Returns R>
+struct ReturnedAlone {
+    static constexpr bool known = true;
+    using PointType = T;
+    static constexpr Returns returns = R;
+    static const T& point(const T& r) { return r; }
+    static double value(const T&) { return 0.0; }
+};
+
+/// One traits struct per type, as warp_case.h's WarpType: as sample's
+/// argument (is_input, input, to_input, from_input), as a point (dimension,
+/// to_point, from_point) and as what sample returns (point, value).
+template <typename T, typename = void>
+struct Type {
+    static constexpr bool known = false;
+    static constexpr bool is_input = false;
+};
+template <>
+struct Type<float> : ReturnedAlone<float, Returns::Point> {
+    static constexpr bool is_input = true;
+    static constexpr Input input = Input::Uniform1D;
+    static constexpr int dimension = 1;
+    static WarpInput to_input(float u) { return {{u, 0.0f}, 0}; }
+    static float from_input(const WarpInput& in) { return in.u[0]; }
+    static Point to_point(float x) { return {x, 0.0f, 0.0f}; }
+    static float from_point(const Point& p) { return p[0]; }
+};
+template <>
+struct Type<Point2> : ReturnedAlone<Point2, Returns::Point> {
+    static constexpr bool is_input = true;
+    static constexpr Input input = Input::Uniform2D;
+    static constexpr int dimension = 2;
+    static WarpInput to_input(const Point2& u) { return {u, 0}; }
+    static Point2 from_input(const WarpInput& in) { return in.u; }
+    static Point to_point(const Point2& p) { return {p[0], p[1], 0.0f}; }
+    static Point2 from_point(const Point& p) { return {p[0], p[1]}; }
+};
+template <>
+struct Type<Point> : ReturnedAlone<Point, Returns::Point> {
+    static constexpr bool is_input = false;
+    static constexpr int dimension = 3;
+    static Point to_point(const Point& p) { return p; }
+    static Point from_point(const Point& p) { return p; }
+};
+/// An integer: as an input, raw bits (uint32_t or uint64_t); as what sample
+/// returns, a discrete index.
+template <typename T>
+struct Type<T, std::enable_if_t<std::is_integral_v<T>>> : ReturnedAlone<T, Returns::Index> {
+    static constexpr bool is_input = std::is_same_v<T, std::uint32_t> || std::is_same_v<T, std::uint64_t>;
+    static constexpr Input input = std::is_same_v<T, std::uint32_t> ? Input::Bits32 : Input::Bits64;
+    static constexpr int dimension = 0;
+    static WarpInput to_input(T bits) { return {{}, static_cast<std::uint64_t>(bits)}; }
+    static T from_input(const WarpInput& in) { return static_cast<T>(in.bits); }
+    static Point to_point(T index) { return {static_cast<float>(index), 0.0f, 0.0f}; }
+    static T from_point(const Point& p) { return static_cast<T>(p[0]); }
+};
+template <typename X>
+struct Type<PdfSample<X>> {
+    static constexpr bool known = Type<X>::known;
+    static constexpr bool is_input = false;
+    using PointType = X;
+    static constexpr Returns returns = Returns::PointAndPdf;
+    static const X& point(const PdfSample<X>& r) { return r.x; }
+    static double value(const PdfSample<X>& r) { return r.pdf; }
+};
+template <typename X>
+struct Type<WeightedSample<X>> {
+    static constexpr bool known = Type<X>::known;
+    static constexpr bool is_input = false;
+    using PointType = X;
+    static constexpr Returns returns = Returns::PointAndWeight;
+    static const X& point(const WeightedSample<X>& r) { return r.x; }
+    static double value(const WeightedSample<X>& r) { return r.weight; }
+};
+template <>
+struct Type<DiscreteSample> {
+    static constexpr bool known = true;
+    static constexpr bool is_input = false;
+    using PointType = std::uint32_t;
+    static constexpr Returns returns = Returns::IndexAndRemappedU;
+    static std::uint32_t point(const DiscreteSample& r) { return r.index; }
+    static double value(const DiscreteSample& r) { return r.u_remapped; }
+};
+
+/// The argument type of a const member function.
+template <typename M>
+struct ArgOf {};
+template <typename C, typename R, typename A>
+struct ArgOf<R (C::*)(A) const> {
+    using type = std::decay_t<A>;
+};
+template <typename C, typename R, typename A>
+struct ArgOf<R (C::*)(A) const noexcept> : ArgOf<R (C::*)(A) const> {};
+
+/// Whether W has the member.
+template <typename W, typename = void>
+struct HasPdf : std::false_type {};
+template <typename W>
+struct HasPdf<W, std::void_t<decltype(&W::pdf)>> : std::true_type {};
+template <typename W, typename = void>
+struct HasInvert : std::false_type {};
+template <typename W>
+struct HasInvert<W, std::void_t<decltype(&W::invert)>> : std::true_type {};
+template <typename W, typename = void>
+struct HasEval : std::false_type {};
+template <typename W>
+struct HasEval<W, std::void_t<decltype(&W::eval)>> : std::true_type {};
+
+/// A warp object's types: In what sample takes, Result what it returns, Out the point in it.
+template <typename W>
+struct TypesOf {
+    using In = typename ArgOf<decltype(&W::sample)>::type;
+    using Result = std::decay_t<decltype(std::declval<const W&>().sample(std::declval<In>()))>;
+    using Out = typename Type<Result>::PointType;
+};
+
+/// The warp object as an ErasedWarp: one shared copy, called by every part.
+template <typename W>
+ErasedWarp erase(W warp) {
+    using In = typename TypesOf<W>::In;
+    using Result = typename TypesOf<W>::Result;
+    using Out = typename TypesOf<W>::Out;
+    static_assert(Type<In>::is_input, "sample must take float or Point2 (uniform input) or uint32_t or uint64_t");
+    static_assert(Type<Result>::known && Type<Out>::known,
+                  "sample must return float, Point2, Point, an integer index, PdfSample<X>, WeightedSample<X> or "
+                  "DiscreteSample");
+    using R = Type<Result>;
+    using O = Type<Out>;
+    const auto w = std::make_shared<const W>(std::move(warp));
+    ErasedWarp e;
+    e.input = Type<In>::input;
+    e.returns = R::returns;
+    e.dimension = O::dimension;
+    e.sample = [w](const WarpInput& in, double& value) {
+        const Result r = w->sample(Type<In>::from_input(in));
+        value = R::value(r);
+        return O::to_point(R::point(r));
+    };
+    if constexpr (HasPdf<W>::value)
+        e.pdf = [w](const Point& p) { return static_cast<double>(w->pdf(O::from_point(p))); };
+    if constexpr (HasInvert<W>::value)
+        e.invert = [w](const Point& p) { return Type<In>::to_input(w->invert(O::from_point(p))); };
+    if constexpr (HasEval<W>::value)
+        e.eval = [w](const Point& p) { return static_cast<double>(w->eval(O::from_point(p))); };
+    return e;
+}
+
+/// Whether a BSDF object's sample takes the lobe's uc (sample(wo, uc, u)) or
+/// not (a phase function's sample(wo, u)), and whether it names its value f or p.
+template <typename B, typename = void>
+struct SamplesWithUc : std::false_type {};
+template <typename B>
+struct SamplesWithUc<B, std::void_t<decltype(std::declval<const B&>().sample(std::declval<const Point&>(), 0.0f,
+                                                                             std::declval<const Point2&>()))>>
+    : std::true_type {};
+template <typename B, typename = void>
+struct HasF : std::false_type {};
+template <typename B>
+struct HasF<B, std::void_t<decltype(&B::f)>> : std::true_type {};
+
+}  // namespace detail
+
+/// Adds the case of a warp object: a class with a const `sample(In)` member
+/// and, as it has them, `pdf(Out)`, `invert(Out) -> In` and `eval(Out)`, none
+/// overloaded or a template. In is float or Point2 (uniform floats) or
+/// uint32_t or uint64_t (raw bits); sample returns Out (float, Point2 or
+/// Point), PdfSample<Out>, WeightedSample<Out> (with eval), an integer index or
+/// DiscreteSample (with info.categories; pdf is the pmf). Refused, as
+/// Registry::add_case refuses, where the declaration contradicts itself.
+template <typename W>
+void add_case(Registry& registry, const CaseInfo& info, W warp) {
+    detail::add_erased(registry, info, detail::erase(std::move(warp)));
+}
+
+/// A u32 -> float sampler on the exhaustive check's fast path (external.h,
+/// make_u32_float_case): a warp object whose sample(std::uint32_t) returns a
+/// float, on an interval domain. The block loop over all 2^32 inputs is
+/// compiled here, with sample inlined.
+template <typename W>
+void add_u32_float_case(Registry& registry, const CaseInfo& info, Monotone monotone, W warp) {
+    static_assert(std::is_same_v<typename detail::TypesOf<W>::In, std::uint32_t> &&
+                      std::is_same_v<typename detail::TypesOf<W>::Result, float>,
+                  "add_u32_float_case: sample must be std::uint32_t -> float");
+    const auto w = std::make_shared<const W>(warp);
+    detail::Sweep sweep{32, {}, monotone, [w](std::uint64_t first, std::size_t n, float* out) {
+                            const auto base = static_cast<std::uint32_t>(first);
+                            const auto count = static_cast<std::uint32_t>(n);  // keeps the loop in 32-bit lanes
+                            for (std::uint32_t i = 0; i < count; ++i) out[i] = w->sample(base + i);
+                        }};
+    detail::add_erased(registry, info, detail::erase(std::move(warp)), std::move(sweep));
+}
+
+/// A u64 -> float sampler on the fast path (make_u64_float_case): its sweep
+/// enumerates u = (i << shift) | low_bits for every i < 2^(64 - shift).
+template <typename W>
+void add_u64_float_case(Registry& registry, const CaseInfo& info, U64Subrange subrange, Monotone monotone, W warp) {
+    static_assert(std::is_same_v<typename detail::TypesOf<W>::In, std::uint64_t> &&
+                      std::is_same_v<typename detail::TypesOf<W>::Result, float>,
+                  "add_u64_float_case: sample must be std::uint64_t -> float");
+    const auto w = std::make_shared<const W>(warp);
+    detail::Sweep sweep{64, subrange, monotone, [w, subrange](std::uint64_t first, std::size_t n, float* out) {
+                            for (std::size_t i = 0; i < n; ++i)
+                                out[i] = w->sample(((first + i) << subrange.shift) | subrange.low_bits);
+                        }};
+    detail::add_erased(registry, info, detail::erase(std::move(warp)), std::move(sweep));
+}
+
+/// add_case for every point of the product of the axes (the first varying
+/// slowest): make(point) returns the point's warp object, and the case is
+/// named family[...base params...,axis=value,...]. Refused as add_case_grid
+/// (validate/api/case_grid.h) refuses: an axis without values or with a
+/// non-finite one, two parameters of one name.
+template <typename Maker>
+void add_case_grid(Registry& registry, const CaseInfo& base, const std::vector<GridAxis>& axes, Maker make) {
+    for (const GridPoint& point : detail::grid_points(base, axes)) {
+        CaseInfo info = base;
+        info.params.insert(info.params.end(), point.params().begin(), point.params().end());
+        add_case(registry, info, make(point));
+    }
+}
 
 /// Adds a BSDF case that the BSDF checks take (bsdf_chi2, bsdf_weight,
-/// bsdf_delta, bsdf_albedo, bsdf_reciprocity); validated as make_bsdf_case
-/// validates (a bad wo or no lobes throws std::invalid_argument naming it).
-void add_bsdf(Registry& registry, const BsdfInfo& info, BsdfSampleFn sample, BsdfEvalFn f, BsdfEvalFn pdf);
+/// bsdf_delta, bsdf_albedo, bsdf_reciprocity), from a BSDF object: const
+/// members sample(const Point& wo, float uc, const Point2& u) -> BsdfSample
+/// (or sample(wo, u) without the lobe's uc), f(wo, wi) (a phase function's
+/// p(wo, wi)) and pdf(wo, wi). Validated as make_bsdf_case validates (a bad wo
+/// or no lobes throws std::invalid_argument naming the case).
+template <typename B>
+void add_bsdf(Registry& registry, const BsdfInfo& info, B bsdf) {
+    const auto b = std::make_shared<const B>(std::move(bsdf));
+    detail::BsdfSampleFn sample = [b](const Point& wo, float uc, const Point2& u) {
+        if constexpr (detail::SamplesWithUc<B>::value) {
+            return BsdfSample(b->sample(wo, uc, u));
+        } else {
+            (void)uc;
+            return BsdfSample(b->sample(wo, u));
+        }
+    };
+    detail::BsdfEvalFn f = [b](const Point& wo, const Point& wi) {
+        if constexpr (detail::HasF<B>::value) return static_cast<double>(b->f(wo, wi));
+        else return static_cast<double>(b->p(wo, wi));
+    };
+    detail::BsdfEvalFn pdf = [b](const Point& wo, const Point& wi) { return static_cast<double>(b->pdf(wo, wi)); };
+    detail::add_erased_bsdf(registry, info, std::move(sample), std::move(f), std::move(pdf));
+}
 
 /// The outgoing direction at theta degrees from the normal and azimuth phi degrees.
 Point bsdf_direction(double theta_degrees, double phi_degrees = 0.0);

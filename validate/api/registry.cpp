@@ -2,24 +2,20 @@
 
 #include <stdexcept>
 
-#include "validate/api/case_validation.h"
 
 namespace warpcheck {
 
 void Registry::add_case(std::unique_ptr<WarpCase> warp) {
     if (!warp) throw std::invalid_argument("registry: null warp case");
     if (find_case(warp->name())) throw std::invalid_argument("registry: duplicate warp case name " + warp->name());
-    std::string problems;
-    for (const std::string& p : case_problems(*warp)) problems += "\n  - " + p;
-    if (!problems.empty())
-        throw std::invalid_argument("registry: warp case " + warp->name() + " is declared inconsistently:" + problems);
+    validate_case(*warp);
     cases_.push_back(std::move(warp));
 }
 
-void Registry::add_check(std::unique_ptr<Check> check) {
-    if (!check) throw std::invalid_argument("registry: null check");
-    if (find_check(check->name())) throw std::invalid_argument("registry: duplicate check name " + check->name());
+void Registry::add_named_check(std::string name, std::shared_ptr<const Check> check) {
+    if (find_check(name)) throw std::invalid_argument("registry: duplicate check name " + name);
     checks_.push_back(std::move(check));
+    check_names_.push_back(std::move(name));
 }
 
 const WarpCase* Registry::find_case(std::string_view name) const {
@@ -46,15 +42,15 @@ std::string Registry::known_flaw(const WarpCase& warp) const {
     return {};
 }
 
-std::string Registry::known_flaw(const WarpCase& warp, const Check& check) const {
+std::string Registry::known_flaw(const WarpCase& warp, std::string_view check_name) const {
     for (const Flaw& f : flaws_)
-        if (f.case_name == warp.name() && f.check_name == check.name()) return f.text;
+        if (f.case_name == warp.name() && f.check_name == check_name) return f.text;
     return known_flaw(warp);
 }
 
 const Check* Registry::find_check(std::string_view name) const {
-    for (const auto& c : checks_)
-        if (c->name() == name) return c.get();
+    for (std::size_t i = 0; i < checks_.size(); ++i)
+        if (check_names_[i] == name) return checks_[i].get();
     return nullptr;
 }
 

@@ -2,26 +2,37 @@
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
-#include "validate/api/check.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
+
+/// A check (validate/checks/check.h, private to warpcheck): the registry holds
+/// the checks that run, and names them, without a renderer seeing their interface.
+class Check;
 
 class Registry {
 public:
     /// Adds a case; a second case with the same name is an error (names are how
     /// streams are seeded and how --filter finds a case), and so is a case
-    /// declared inconsistently (validate/api/case_validation.h): the message names
+    /// declared inconsistently (validate_case in warp_case.h): the message names
     /// the case and every problem.
     void add_case(std::unique_ptr<WarpCase> warp);
-    void add_check(std::unique_ptr<Check> check);
+    /// Adds a check (a class derived from Check); a second check of one name is an error.
+    template <typename C>
+    void add_check(std::unique_ptr<C> check) {
+        if (!check) throw std::invalid_argument("registry: null check");
+        std::string name = check->name();
+        add_named_check(std::move(name), std::shared_ptr<const Check>(std::move(check)));
+    }
 
     const std::vector<std::unique_ptr<WarpCase>>& cases() const { return cases_; }
-    const std::vector<std::unique_ptr<Check>>& checks() const { return checks_; }
+    const std::vector<std::shared_ptr<const Check>>& checks() const { return checks_; }
     const WarpCase* find_case(std::string_view name) const;
     const Check* find_check(std::string_view name) const;
 
@@ -35,10 +46,13 @@ public:
     void mark_known_flaw(const std::string& case_name, const std::string& check_name, std::string flaw);
     /// The flaw of a whole case, or an empty string.
     std::string known_flaw(const WarpCase& warp) const;
-    /// The flaw of one check of a case: its own mark, else the whole case's, else empty.
-    std::string known_flaw(const WarpCase& warp, const Check& check) const;
+    /// The flaw of one check (by its name) of a case: its own mark, else the
+    /// whole case's, else empty.
+    std::string known_flaw(const WarpCase& warp, std::string_view check_name) const;
 
 private:
+    void add_named_check(std::string name, std::shared_ptr<const Check> check);
+
     struct Flaw {
         std::string case_name;
         std::string check_name;  ///< empty: the whole case
@@ -46,7 +60,8 @@ private:
     };
     std::vector<Flaw> flaws_;
     std::vector<std::unique_ptr<WarpCase>> cases_;
-    std::vector<std::unique_ptr<Check>> checks_;
+    std::vector<std::shared_ptr<const Check>> checks_;
+    std::vector<std::string> check_names_;  ///< checks_[i]'s name
 };
 
 /// Whether `name` matches `pattern`: a glob with * and ? when the pattern has

@@ -1,9 +1,16 @@
 // A warp case: one warp with concrete parameter values and a stable name. The
 // checks see every warp through this one type-erased interface, which works on
 // batches so that the virtual call is paid once per batch, not once per sample.
+//
+// One way to make a case: make_warp_case(info, warp), where warp is a warp
+// object (const members sample, and pdf, invert, eval as it has them) or the
+// same parts as named callables, warp_of(sample).with_pdf(pdf). What sample takes and
+// returns, and so the input kind and the kind of case, is read off its type
+// (detail::WarpType, one traits struct per type).
 #pragma once
 
 #include <array>
+#include <concepts>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -145,7 +152,10 @@ struct WarpCaseInfo {
     std::string family{};             ///< e.g. "uniform_cone"
     std::vector<Parameter> params{};  ///< concrete values, in display order
     std::string description{};        ///< one line: what it samples, with which density
-    InputKind input = InputKind::Uniform2D;
+    /// What sample consumes. Unset (the usual): read off the type of sample's
+    /// argument. Set, it is a claim that must agree with that type: a case
+    /// whose sample takes something else is refused.
+    std::optional<InputKind> input{};
     chi2::Domain domain = chi2::Domain::unit_square();
     /// Largest |invert(sample(u)) - u| (max norm, in u units) that the round trip
     /// accepts. The default, 2^-16, is ~500 float ulps at u = 0.5: float warps with
@@ -189,9 +199,23 @@ struct WarpCaseInfo {
     const LaneSampler* lanes = nullptr;
 };
 
+/// What a case's parts are: what sample takes and returns, and which of pdf,
+/// invert and eval it has. make_warp_case reads it off the types of the warp's
+/// members; a case class written by hand states it.
+struct WarpSignature {
+    InputKind input = InputKind::Uniform2D;
+    SampleReturns returns = SampleReturns::Point;
+    int output_dimension = 2;  ///< coordinates of a point: 1, 2 or 3; 0 for an index
+    bool has_pdf = true;
+    bool has_inverse = false;
+    bool has_eval = false;
+};
+
 class WarpCase {
 public:
-    explicit WarpCase(WarpCaseInfo info) : info_(std::move(info)), name_(case_name(info_.family, info_.params)) {}
+    /// `signature` says what the case's sample takes and returns; info.input,
+    /// when set, must agree with it (validate_case says so where it does not).
+    WarpCase(WarpCaseInfo info, const WarpSignature& signature);
     virtual ~WarpCase() = default;
     WarpCase(const WarpCase&) = delete;
     WarpCase& operator=(const WarpCase&) = delete;
@@ -199,12 +223,14 @@ public:
     const std::string& name() const { return name_; }
     const WarpCaseInfo& info() const { return info_; }
     const chi2::Domain& domain() const { return info_.domain; }
-    InputKind input_kind() const { return info_.input; }
+    const WarpSignature& signature() const { return signature_; }
+    /// What sample consumes, as its argument's type says.
+    InputKind input_kind() const { return signature_.input; }
 
     /// out[i] = sample(in[i]). Sizes must match.
     virtual void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const = 0;
     /// sample() of a Uniform2D warp on planar arrays, the layout of the
-    /// vectorised chi-square path (validate/lane_sampling.h): (x[i], y[i], z[i])
+    /// vectorised chi-square path (validate/lanes/lane_sampling.h): (x[i], y[i], z[i])
     /// = sample({u0[i], u1[i]}) for i < n (z = 0 for a point of the plane). A
     /// case made by make_warp_case does it in one loop with sample inlined; this
     /// default converts through sample().
@@ -216,13 +242,13 @@ public:
     /// Whether the warp has an inverse. Many real warps have none (visible-normal
     /// or table-driven samplers): for them the round-trip checks do not apply,
     /// which is not an error.
-    virtual bool has_inverse() const { return true; }
+    bool has_inverse() const { return signature_.has_inverse; }
 
     /// What sample returns besides the point (SampleReturns).
-    virtual SampleReturns sample_returns() const { return SampleReturns::Point; }
+    SampleReturns sample_returns() const { return signature_.returns; }
     /// Whether the case has a pdf function. One whose sample returns the pdf may
     /// have none: then only the checks that need the pdf at the samples apply.
-    virtual bool has_pdf() const { return true; }
+    bool has_pdf() const { return signature_.has_pdf; }
     /// Whether the case chooses among WarpCaseInfo::categories.
     bool is_discrete() const {
         const SampleReturns r = sample_returns();
@@ -242,154 +268,215 @@ public:
         throw std::logic_error("warp case " + name() + " has no eval");
     }
 
-protected:
-    /// What a case's callables declare, for validate_declaration.
-    struct Declaration {
-        std::optional<InputKind> input;  ///< the kind its sample's argument type implies
-        int output_dimension = 0;        ///< 1, 2 or 3 for points; 0 for indices
-        bool has_eval = false;
-    };
-    /// Refuses an inconsistent case at registration (a discrete case with a
-    /// continuous domain, a weight without eval, a point of the wrong dimension,
-    /// ...): throws std::invalid_argument naming the case.
-    void validate_declaration(const Declaration& d) const;
-
 private:
     WarpCaseInfo info_;
+    WarpSignature signature_;
     std::string name_;
 };
 
+/// Everything inconsistent in a case's declaration, one sentence each; empty
+/// when nothing is: its types against .input, .domain and .categories, the
+/// parts its kind needs (a weight needs eval), its settings and views, a BSDF's
+/// claims, a swept float sampler's domain.
+std::vector<std::string> case_problems(const WarpCase& warp);
+
+/// The one error of a refused declaration: "<what> is declared inconsistently:"
+/// and a line per problem; `what` names it ("warp case cone[x=1]").
+std::invalid_argument declaration_error(const std::string& what, const std::vector<std::string>& problems);
+
+/// Throws declaration_error("warp case <name>", problems) where case_problems
+/// finds any. make_warp_case, make_bsdf_case and Registry::add_case call it, so
+/// a case is refused where it is made, and a case class written by hand where
+/// it is registered.
+void validate_case(const WarpCase& warp);
+
 namespace detail {
 
-// Conversions between a warp's natural types and the uniform WarpInput/WarpOutput.
-template <typename T> struct WarpTypes;
-template <> struct WarpTypes<float> {
+/// What sample returns, when it is a point or an index: the value itself, and
+/// nothing with it.
+template <typename T, SampleReturns Returns>
+struct ReturnedAlone {
+    static constexpr bool known = true;
+    using Point = T;
+    static constexpr SampleReturns returns = Returns;
+    static const T& point(const T& r) { return r; }
+    static double value(const T&) { return 0.0; }
+};
+
+/// One traits struct per type a warp's sample takes or returns, with all that
+/// the type says: as sample's argument, its input kind (`input`, empty where
+/// the type is no input) and the conversions from and to WarpInput; as a
+/// point, its coordinates (`dimension`, 0 for an index) and the conversions
+/// from and to WarpOutput; as what sample returns, the point in it and the
+/// value that comes with it (SampleReturns). `known` is false for any other type.
+template <typename T>
+struct WarpType {
+    static constexpr bool known = false;
+};
+
+template <>
+struct WarpType<float> : ReturnedAlone<float, SampleReturns::Point> {
+    static constexpr std::optional<InputKind> input = InputKind::Uniform1D;
+    static constexpr int dimension = 1;
+    static WarpInput to_input(float u) { return {{u, 0.0f, 0.0f}, 0}; }
+    static float from_input(const WarpInput& in) { return in.u[0]; }
     static WarpOutput to_output(float v) { return {v, 0.0f, 0.0f}; }
     static float from_output(const WarpOutput& o) { return o[0]; }
-    static WarpInput to_input(float u) { return {{u, 0.0f}, 0}; }
-    static float from_input(const WarpInput& in) { return in.u[0]; }
 };
-template <> struct WarpTypes<Point2f> {
+
+template <>
+struct WarpType<Point2f> : ReturnedAlone<Point2f, SampleReturns::Point> {
+    static constexpr std::optional<InputKind> input = InputKind::Uniform2D;
+    static constexpr int dimension = 2;
+    static WarpInput to_input(Point2f u) { return {{u.x, u.y, 0.0f}, 0}; }
+    static Point2f from_input(const WarpInput& in) { return {in.u[0], in.u[1]}; }
     static WarpOutput to_output(Point2f p) { return {p.x, p.y, 0.0f}; }
     static Point2f from_output(const WarpOutput& o) { return {o[0], o[1]}; }
-    static WarpInput to_input(Point2f u) { return {{u.x, u.y}, 0}; }
-    static Point2f from_input(const WarpInput& in) { return {in.u[0], in.u[1]}; }
 };
-template <> struct WarpTypes<Vector3f> {
+
+template <>
+struct WarpType<Vector3f> : ReturnedAlone<Vector3f, SampleReturns::Point> {
+    static constexpr std::optional<InputKind> input{};  // no warp takes a direction
+    static constexpr int dimension = 3;
     static WarpOutput to_output(Vector3f v) { return {v.x, v.y, v.z}; }
     static Vector3f from_output(const WarpOutput& o) { return {o[0], o[1], o[2]}; }
 };
-template <> struct WarpTypes<uint32_t> {
-    static WarpInput to_input(uint32_t b) { return {{0.0f, 0.0f}, b}; }
-    static uint32_t from_input(const WarpInput& in) { return static_cast<uint32_t>(in.bits); }
-};
-template <> struct WarpTypes<uint64_t> {
-    static WarpInput to_input(uint64_t b) { return {{0.0f, 0.0f}, b}; }
-    static uint64_t from_input(const WarpInput& in) { return in.bits; }
+
+/// An integer: as an input, raw random bits (uint32_t or uint64_t); as what
+/// sample returns, a discrete index, carried as a float (exact below 2^24).
+template <std::integral T>
+struct WarpType<T> : ReturnedAlone<T, SampleReturns::Index> {
+    static constexpr std::optional<InputKind> input = std::is_same_v<T, uint32_t>   ? InputKind::Bits32
+                                                      : std::is_same_v<T, uint64_t> ? InputKind::Bits64
+                                                                                     : std::optional<InputKind>{};
+    static constexpr int dimension = 0;
+    static WarpInput to_input(T bits) { return {{}, static_cast<uint64_t>(bits)}; }
+    static T from_input(const WarpInput& in) { return static_cast<T>(in.bits); }
+    static WarpOutput to_output(T index) { return {static_cast<float>(index), 0.0f, 0.0f}; }
+    static T from_output(const WarpOutput& o) { return static_cast<T>(o[0]); }
 };
 
-// Integer outputs are discrete indices, carried as floats (exact below 2^24).
-template <typename T>
-WarpOutput to_output(const T& v) {
-    if constexpr (std::is_integral_v<T>) return {static_cast<float>(v), 0.0f, 0.0f};
-    else return WarpTypes<T>::to_output(v);
-}
-template <typename T>
-T from_output(const WarpOutput& o) {
-    if constexpr (std::is_integral_v<T>) return static_cast<T>(o[0]);
-    else return WarpTypes<T>::from_output(o);
-}
-template <typename T>
-constexpr int output_dimension() {
-    if constexpr (std::is_integral_v<T>) return 0;
-    else if constexpr (std::is_same_v<T, float>) return 1;
-    else if constexpr (std::is_same_v<T, Point2f>) return 2;
-    else return 3;
-}
-template <typename T>
-constexpr std::optional<InputKind> input_kind_of() {
-    if constexpr (std::is_same_v<T, float>) return InputKind::Uniform1D;
-    else if constexpr (std::is_same_v<T, Point2f>) return InputKind::Uniform2D;
-    else if constexpr (std::is_same_v<T, uint32_t>) return InputKind::Bits32;
-    else if constexpr (std::is_same_v<T, uint64_t>) return InputKind::Bits64;
-    else return std::nullopt;
-}
-
-// What sample returns, split into its point and the value that comes with it.
-template <typename R>
-struct SampleResult {
-    using Point = R;
-    static constexpr SampleReturns kReturns = std::is_integral_v<R> ? SampleReturns::Index : SampleReturns::Point;
-    static const R& point(const R& r) { return r; }
-    static double value(const R&) { return 0.0; }
-};
 template <typename X>
-struct SampleResult<PdfSample<X>> {
+struct WarpType<PdfSample<X>> {
+    static constexpr bool known = WarpType<X>::known;
     using Point = X;
-    static constexpr SampleReturns kReturns = SampleReturns::PointAndPdf;
+    static constexpr SampleReturns returns = SampleReturns::PointAndPdf;
     static const X& point(const PdfSample<X>& r) { return r.x; }
     static double value(const PdfSample<X>& r) { return r.pdf; }
 };
+
 template <typename X>
-struct SampleResult<WeightedSample<X>> {
+struct WarpType<WeightedSample<X>> {
+    static constexpr bool known = WarpType<X>::known;
     using Point = X;
-    static constexpr SampleReturns kReturns = SampleReturns::PointAndWeight;
+    static constexpr SampleReturns returns = SampleReturns::PointAndWeight;
     static const X& point(const WeightedSample<X>& r) { return r.x; }
     static double value(const WeightedSample<X>& r) { return r.weight; }
 };
+
 template <>
-struct SampleResult<DiscreteSample> {
+struct WarpType<DiscreteSample> {
+    static constexpr bool known = true;
     using Point = uint32_t;
-    static constexpr SampleReturns kReturns = SampleReturns::IndexAndRemappedU;
+    static constexpr SampleReturns returns = SampleReturns::IndexAndRemappedU;
     static uint32_t point(const DiscreteSample& r) { return r.index; }
     static double value(const DiscreteSample& r) { return r.u_remapped; }
 };
 
-template <typename F> struct FirstArg : FirstArg<decltype(&F::operator())> {};
-template <typename C, typename R, typename A> struct FirstArg<R (C::*)(A) const> {
-    using type = std::remove_cvref_t<A>;
+/// Whether T can be sample's argument, and whether it can be the point sample returns.
+template <typename T>
+constexpr bool is_input = [] {
+    if constexpr (requires { WarpType<T>::input; }) return WarpType<T>::input.has_value();
+    else return false;
+}();
+template <typename T>
+constexpr bool is_point = requires { WarpType<T>::dimension; };
+
+/// The value of a CallableWarp's part that is not given.
+struct NotGiven {};
+
+/// The one-argument call behind a callable type, or behind a pointer to a
+/// member (a const member function, or a data member that holds a callable):
+/// whether there is one (`given`) and its argument type (`Arg`).
+template <typename F>
+struct CallOf : CallOf<decltype(&F::operator())> {};
+template <>
+struct CallOf<NotGiven> {
+    static constexpr bool given = false;
+    using Arg = void;
 };
-template <typename R, typename A> struct FirstArg<R (*)(A)> {
-    using type = std::remove_cvref_t<A>;
+template <typename R, typename A>
+struct CallOf<R (*)(A)> {
+    static constexpr bool given = true;
+    using Arg = std::remove_cvref_t<A>;
+};
+template <typename R, typename A>
+struct CallOf<R (*)(A) noexcept> : CallOf<R (*)(A)> {};
+template <typename C, typename R, typename A>
+struct CallOf<R (C::*)(A) const> : CallOf<R (*)(A)> {};
+template <typename C, typename R, typename A>
+struct CallOf<R (C::*)(A) const noexcept> : CallOf<R (*)(A)> {};
+template <typename C, typename F>
+    requires(!std::is_function_v<F>)
+struct CallOf<F C::*> : CallOf<F> {};
+
+/// Whether W has the part: a const member function, or a data member holding
+/// a callable (a CallableWarp's part that is not NotGiven).
+template <typename W>
+constexpr bool warp_has_pdf = [] {
+    if constexpr (requires { &W::pdf; }) return CallOf<decltype(&W::pdf)>::given;
+    else return false;
+}();
+template <typename W>
+constexpr bool warp_has_invert = [] {
+    if constexpr (requires { &W::invert; }) return CallOf<decltype(&W::invert)>::given;
+    else return false;
+}();
+template <typename W>
+constexpr bool warp_has_eval = [] {
+    if constexpr (requires { &W::eval; }) return CallOf<decltype(&W::eval)>::given;
+    else return false;
+}();
+
+/// A warp's types: In what sample takes, Result what it returns, Out the point in it.
+template <typename W>
+struct WarpTypesOf {
+    using In = typename CallOf<decltype(&W::sample)>::Arg;
+    using Result = std::remove_cvref_t<decltype(std::declval<const W&>().sample(std::declval<In>()))>;
+    using Out = typename WarpType<Result>::Point;
 };
 
-/// The Invert of a warp without an inverse.
-struct NoInverse {};
-/// The Pdf of a warp whose sample returns its pdf and has no pdf function.
-struct NoPdf {};
-/// The Eval of a warp that returns no weight.
-struct NoEval {};
-
-// The output type: the pdf's argument, or the point sample returns when there is no pdf.
-template <typename Pdf, typename Point> struct OutputType {
-    using type = typename FirstArg<Pdf>::type;
-};
-template <typename Point> struct OutputType<NoPdf, Point> {
-    using type = Point;
-};
-
-template <typename Sample, typename Pdf, typename Invert, typename Eval = NoEval>
-class LambdaWarpCase final : public WarpCase {
-    using In = typename FirstArg<Sample>::type;
-    using Result = SampleResult<std::remove_cvref_t<std::invoke_result_t<const Sample&, In>>>;
-    using Out = typename OutputType<Pdf, typename Result::Point>::type;
+/// A warp case around a warp object (or a CallableWarp), whose members
+/// are called directly, so that they inline into the batch loops.
+template <typename W>
+class ObjectWarpCase final : public WarpCase {
+    using In = typename WarpTypesOf<W>::In;
+    using Result = WarpType<typename WarpTypesOf<W>::Result>;
+    using Out = typename WarpTypesOf<W>::Out;
+    using InType = WarpType<In>;
+    using OutType = WarpType<Out>;
 
 public:
-    LambdaWarpCase(WarpCaseInfo info, Sample s, Pdf p, Invert i, Eval e = {})
-        : WarpCase(std::move(info)), sample_(std::move(s)), pdf_(std::move(p)), invert_(std::move(i)),
-          eval_(std::move(e)) {
-        validate_declaration({input_kind_of<In>(), detail::output_dimension<Out>(), !std::is_same_v<Eval, NoEval>});
+    ObjectWarpCase(WarpCaseInfo info, W warp) : WarpCase(std::move(info), signature()), warp_(std::move(warp)) {}
+
+    static constexpr WarpSignature signature() {
+        return {.input = *InType::input,
+                .returns = Result::returns,
+                .output_dimension = OutType::dimension,
+                .has_pdf = warp_has_pdf<W>,
+                .has_inverse = warp_has_invert<W>,
+                .has_eval = warp_has_eval<W>};
     }
 
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override {
         for (std::size_t k = 0; k < in.size(); ++k)
-            out[k] = to_output<Out>(Result::point(sample_(WarpTypes<In>::from_input(in[k]))));
+            out[k] = OutType::to_output(Result::point(warp_.sample(InType::from_input(in[k]))));
     }
     void sample_planar(const float* u0, const float* u1, float* x, float* y, float* z,
                        std::size_t n) const override {
         if constexpr (std::is_same_v<In, Point2f>) {
             for (std::size_t k = 0; k < n; ++k) {
-                const WarpOutput o = to_output<Out>(Result::point(sample_(Point2f{u0[k], u1[k]})));
+                const WarpOutput o = OutType::to_output(Result::point(warp_.sample(Point2f{u0[k], u1[k]})));
                 x[k] = o[0], y[k] = o[1], z[k] = o[2];
             }
         } else {
@@ -398,119 +485,133 @@ public:
     }
     void sample_with_value(std::span<const WarpInput> in, std::span<WarpOutput> out,
                            std::span<double> value) const override {
-        if constexpr (Result::kReturns == SampleReturns::Point || Result::kReturns == SampleReturns::Index) {
+        if constexpr (Result::returns == SampleReturns::Point || Result::returns == SampleReturns::Index) {
             WarpCase::sample_with_value(in, out, value);
         } else {
             for (std::size_t k = 0; k < in.size(); ++k) {
-                const auto r = sample_(WarpTypes<In>::from_input(in[k]));
-                out[k] = to_output<Out>(Result::point(r));
+                const auto r = warp_.sample(InType::from_input(in[k]));
+                out[k] = OutType::to_output(Result::point(r));
                 value[k] = Result::value(r);
             }
         }
     }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
-        if constexpr (std::is_same_v<Pdf, NoPdf>) {
+        if constexpr (warp_has_pdf<W>) {
+            for (std::size_t k = 0; k < x.size(); ++k)
+                out[k] = static_cast<double>(warp_.pdf(OutType::from_output(x[k])));
+        } else {
             (void)x, (void)out;
             throw std::logic_error("warp case " + name() + " has no pdf function");
-        } else {
-            for (std::size_t k = 0; k < x.size(); ++k) out[k] = static_cast<double>(pdf_(from_output<Out>(x[k])));
         }
     }
     void eval(std::span<const WarpOutput> x, std::span<double> out) const override {
-        if constexpr (std::is_same_v<Eval, NoEval>) {
-            WarpCase::eval(x, out);
-        } else {
-            for (std::size_t k = 0; k < x.size(); ++k) out[k] = static_cast<double>(eval_(from_output<Out>(x[k])));
-        }
-    }
-    SampleReturns sample_returns() const override { return Result::kReturns; }
-    bool has_pdf() const override { return !std::is_same_v<Pdf, NoPdf>; }
-    void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override {
-        if constexpr (std::is_same_v<Invert, NoInverse>) {
-            (void)x;
-            (void)out;
-            throw std::logic_error("warp case " + name() + " has no inverse");
-        } else {
+        if constexpr (warp_has_eval<W>) {
             for (std::size_t k = 0; k < x.size(); ++k)
-                out[k] = WarpTypes<In>::to_input(invert_(from_output<Out>(x[k])));
+                out[k] = static_cast<double>(warp_.eval(OutType::from_output(x[k])));
+        } else {
+            WarpCase::eval(x, out);
         }
     }
-    bool has_inverse() const override { return !std::is_same_v<Invert, NoInverse>; }
+    void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override {
+        if constexpr (warp_has_invert<W>) {
+            for (std::size_t k = 0; k < x.size(); ++k)
+                out[k] = InType::to_input(warp_.invert(OutType::from_output(x[k])));
+        } else {
+            (void)x, (void)out;
+            throw std::logic_error("warp case " + name() + " has no inverse");
+        }
+    }
 
 private:
-    Sample sample_;
-    Pdf pdf_;
-    Invert invert_;
-    Eval eval_;
+    W warp_;
 };
 
 }  // namespace detail
 
-/// Makes a warp case from three callables over the warp's natural types:
-///   sample: In -> Out, pdf: Out -> float/double, invert: Out -> In,
-/// with In one of float, Point2f, uint32_t, uint64_t and Out one of float,
-/// Point2f, Vector3f. Lambdas are inlined into the batch loops; plain functions
-/// are called through a pointer. sample may return PdfSample<Out> instead: its
-/// pdf is then checked against pdf(x) ("sample_pdf"). Refused (std::invalid_argument
-/// naming the case) where the callables and the info disagree.
-template <typename Sample, typename Pdf, typename Invert>
-std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample, Pdf pdf, Invert invert) {
-    return std::make_unique<detail::LambdaWarpCase<Sample, Pdf, Invert>>(std::move(info), std::move(sample),
-                                                                         std::move(pdf), std::move(invert));
-}
+/// A warp given as callables, each part named, so that none can take another's
+/// place (eval and pdf have the same type): made by warp_of(sample) and its
+/// with_ members, e.g.
+///   warp_of([](Point2f u) { ... }).with_pdf([](Vector3f w) { ... }).with_eval(...)
+/// each part a lambda or function of one argument; a part not given is not
+/// there (no inverse, no pdf function, no eval). Its data members are what
+/// make_warp_case calls, as a warp object's members.
+template <typename Sample, typename Pdf = detail::NotGiven, typename Invert = detail::NotGiven,
+          typename Eval = detail::NotGiven>
+struct CallableWarp {
+    Sample sample;
+    Pdf pdf{};
+    Invert invert{};
+    Eval eval{};
 
-/// Makes a warp case without an inverse from two callables (sample and pdf, as
-/// above): the round-trip checks do not apply to it. A discrete case is made
-/// this way too: sample: In -> an integer index, or DiscreteSample with the
-/// remapped u; pdf: index -> its probability (the pmf); with .categories set.
-template <typename Sample, typename Pdf>
-std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample, Pdf pdf) {
-    return make_warp_case(std::move(info), std::move(sample), std::move(pdf), detail::NoInverse{});
-}
-
-/// Makes a warp case from its sample alone, for a sampler that returns its pdf
-/// (sample: In -> PdfSample<Out>) and has no pdf function: the checks that need
-/// the pdf only at the samples use the returned one (consistency and
-/// inverse_pdf_mean); those that need it elsewhere (chi2, tabulated, unbinned)
-/// do not apply. No inverse.
-template <typename Sample>
-std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, Sample sample) {
-    return std::make_unique<detail::LambdaWarpCase<Sample, detail::NoPdf, detail::NoInverse>>(
-        std::move(info), std::move(sample), detail::NoPdf{}, detail::NoInverse{});
-}
-
-/// Makes a weighted sampler's case, as a BSDF's: sample: In -> WeightedSample<Out>
-/// returns a point and its weight eval(x) / pdf(x); eval: Out -> float is the
-/// integrand (a BSDF value times the cosine) and pdf: Out -> float the density
-/// sample draws from. No inverse.
-template <typename Sample, typename Eval, typename Pdf>
-std::unique_ptr<WarpCase> make_weighted_case(WarpCaseInfo info, Sample sample, Eval eval, Pdf pdf) {
-    return std::make_unique<detail::LambdaWarpCase<Sample, Pdf, detail::NoInverse, Eval>>(
-        std::move(info), std::move(sample), std::move(pdf), detail::NoInverse{}, std::move(eval));
-}
-
-/// A warp object: a class with `sample(In)` and `pdf(Out)` const members, and
-/// usually `invert(Out)`, that are not overloaded or templates (sampling/README.md).
-template <typename W>
-concept WarpObject = requires {
-    typename detail::FirstArg<decltype(&W::sample)>::type;
-    typename detail::FirstArg<decltype(&W::pdf)>::type;
+    /// This warp with `f` as its pdf: the density of the point sample returns (the pmf of an index).
+    template <typename F>
+    CallableWarp<Sample, F, Invert, Eval> with_pdf(F f) const {
+        static_assert(std::is_same_v<Pdf, detail::NotGiven>, "the pdf is given twice");
+        return {sample, std::move(f), invert, eval};
+    }
+    /// This warp with `f` as its inverse: the input that sample maps to a point.
+    template <typename F>
+    CallableWarp<Sample, Pdf, F, Eval> with_invert(F f) const {
+        static_assert(std::is_same_v<Invert, detail::NotGiven>, "the inverse is given twice");
+        return {sample, pdf, std::move(f), eval};
+    }
+    /// This warp with `f` as its eval: the integrand whose estimate a weighted sampler's weight is.
+    template <typename F>
+    CallableWarp<Sample, Pdf, Invert, F> with_eval(F f) const {
+        static_assert(std::is_same_v<Eval, detail::NotGiven>, "the eval is given twice");
+        return {sample, pdf, invert, std::move(f)};
+    }
 };
 
-/// Makes a warp case from a warp object, e.g. make_warp_case(info, UniformCone(0.3f)):
-/// In and Out are read off the member signatures; a warp without an `invert`
-/// member has no inverse. The object is held by value; the members are called
-/// directly, so they inline into the batch loops.
+/// A warp of callables whose sample is `sample` (CallableWarp): add its other
+/// parts by name, warp_of(sample).with_pdf(pdf).with_invert(invert).
+template <typename Sample>
+CallableWarp<Sample> warp_of(Sample sample) {
+    return {std::move(sample)};
+}
+
+/// A warp object: a class with a `sample(In)` const member and, as it has
+/// them, `pdf(Out)`, `invert(Out)` and `eval(Out)` (sampling/README.md), none
+/// overloaded or a template; or a CallableWarp (warp_of).
+template <typename W>
+concept WarpObject = requires { &W::sample; };
+
+/// Makes a warp case from its description and a warp object, e.g.
+/// make_warp_case(info, UniformCone(0.3f)), or from named callables,
+/// make_warp_case(info, warp_of(sample).with_pdf(pdf)). Everything else is
+/// read off the types of its members:
+///  - sample takes the input: float or Point2f (uniform floats in [0,1)),
+///    uint32_t or uint64_t (raw random bits);
+///  - sample returns the point (float, Point2f or Vector3f), or PdfSample<X>
+///    (with its pdf), WeightedSample<X> (with its weight eval / pdf: give
+///    eval), an integer index or DiscreteSample (a discrete choice among
+///    .categories; pdf is then the pmf);
+///  - pdf(Out) is the density, invert(Out) -> In the inverse, eval(Out) the
+///    integrand of a weighted sampler; each may be missing, and the checks
+///    that need it then do not apply.
+/// A declaration that contradicts itself is refused (validate_case).
 template <WarpObject W>
 std::unique_ptr<WarpCase> make_warp_case(WarpCaseInfo info, W warp) {
-    using In = typename detail::FirstArg<decltype(&W::sample)>::type;
-    using Out = typename detail::FirstArg<decltype(&W::pdf)>::type;
-    auto sample = [warp](In u) { return warp.sample(u); };
-    auto pdf = [warp](Out x) { return warp.pdf(x); };
-    if constexpr (requires { &W::invert; })
-        return make_warp_case(std::move(info), sample, pdf, [warp](Out x) { return warp.invert(x); });
-    else
-        return make_warp_case(std::move(info), sample, pdf);
+    using Types = detail::WarpTypesOf<W>;
+    static_assert(detail::CallOf<decltype(&W::sample)>::given, "a warp needs a sample");
+    static_assert(detail::is_input<typename Types::In>,
+                  "sample must take float or Point2f (uniform input) or uint32_t or uint64_t (raw bits)");
+    static_assert(detail::WarpType<typename Types::Result>::known && detail::is_point<typename Types::Out>,
+                  "sample must return float, Point2f, Vector3f, an integer index, PdfSample<X>, WeightedSample<X> "
+                  "or DiscreteSample");
+    using Out = typename Types::Out;
+    if constexpr (detail::warp_has_pdf<W>)
+        static_assert(requires(const W& w, Out x) { static_cast<double>(w.pdf(x)); },
+                      "pdf must take the point that sample returns and return a number");
+    if constexpr (detail::warp_has_eval<W>)
+        static_assert(requires(const W& w, Out x) { static_cast<double>(w.eval(x)); },
+                      "eval must take the point that sample returns and return a number");
+    if constexpr (detail::warp_has_invert<W>)
+        static_assert(requires(const W& w, Out x) { static_cast<typename Types::In>(w.invert(x)); },
+                      "invert must take the point that sample returns and return sample's input");
+    auto warp_case = std::make_unique<detail::ObjectWarpCase<W>>(std::move(info), std::move(warp));
+    validate_case(*warp_case);
+    return warp_case;
 }
 
 }  // namespace warpcheck

@@ -1,7 +1,7 @@
 // Known-bad BSDFs: the bugs renderers ship, each a built-in of
 // sampling/bsdf_*.h with one thing wrong, marked as a known flaw (they run
 // with --include-flawed or when named) and each caught by the check named in
-// bsdf_flawed_catalogue(); tests/validate/test_bsdf.cpp holds each to that
+// bsdf_flawed_catalogue(); tests/validate/checks/bsdf/test_bsdf.cpp holds each to that
 // check and to passing the checks its bug does not touch.
 #include <algorithm>
 #include <cmath>
@@ -32,12 +32,13 @@ std::unique_ptr<WarpCase> weight_without_cosine() {
         flawed_info("rough_conductor_weight_no_cos", {{"alpha", 0.3}, {"theta_o", 60}},
                     "rough conductor whose sampled weight misses |cos theta_i|"),
         {.wo = bsdf_direction(60), .lobes = c.flags()},
-        [c](Vector3f wo, float uc, Point2f u) {
-            BsdfSample s = c.sample(wo, uc, u);
-            if (s.pdf > 0.0f) s.f /= std::abs(s.wi.z);
-            return s;
-        },
-        [c](Vector3f wo, Vector3f wi) { return c.f(wo, wi); }, [c](Vector3f wo, Vector3f wi) { return c.pdf(wo, wi); });
+        bsdf_of([c](Vector3f wo, float uc, Point2f u) {
+                    BsdfSample s = c.sample(wo, uc, u);
+                    if (s.pdf > 0.0f) s.f /= std::abs(s.wi.z);
+                    return s;
+                })
+            .with_f([c](Vector3f wo, Vector3f wi) { return c.f(wo, wi); })
+            .with_pdf([c](Vector3f wo, Vector3f wi) { return c.pdf(wo, wi); }));
 }
 
 /// Refraction by 1 / eta instead of eta (the sample still reports eta).
@@ -47,15 +48,16 @@ std::unique_ptr<WarpCase> eta_swapped() {
         flawed_info("smooth_dielectric_eta_swapped", {{"eta", 1.5}, {"theta_o", 30}},
                     "smooth dielectric refracting with 1 / eta in place of eta"),
         {.wo = bsdf_direction(30), .lobes = d.flags(), .eta = kGlass},
-        [d](Vector3f wo, float uc, Point2f u) {
+        bsdf_of([d](Vector3f wo, float uc, Point2f u) {
             BsdfSample s = d.sample(wo, uc, u);
             float etap = 1.0f;
             Vector3f wt;
             if (has(s.flags, BsdfFlags::Transmission) && refract(wo, {0.0f, 0.0f, 1.0f}, 1.0f / kGlass, etap, wt))
                 s.wi = wt;
             return s;
-        },
-        [d](Vector3f wo, Vector3f wi) { return d.f(wo, wi); }, [d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); });
+        })
+            .with_f([d](Vector3f wo, Vector3f wi) { return d.f(wo, wi); })
+            .with_pdf([d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); }));
 }
 
 /// A diffuse + glossy mixture whose pdf() gives each lobe the other's
@@ -79,12 +81,13 @@ std::unique_ptr<WarpCase> mixture_wrong_lobe_pdf() {
         flawed_info("plastic_wrong_lobe_pdf", {{"alpha", 0.2}, {"theta_o", 60}},
                     "diffuse + glossy mixture whose pdf weights each lobe by the other's probability"),
         {.wo = bsdf_direction(60), .lobes = p.flags()},
-        [p, pdf](Vector3f wo, float uc, Point2f u) {
-            BsdfSample s = p.sample(wo, uc, u);
-            if (s.pdf > 0.0f) s.pdf = pdf(wo, s.wi);
-            return s;
-        },
-        [p](Vector3f wo, Vector3f wi) { return p.f(wo, wi); }, pdf);
+        bsdf_of([p, pdf](Vector3f wo, float uc, Point2f u) {
+                    BsdfSample s = p.sample(wo, uc, u);
+                    if (s.pdf > 0.0f) s.pdf = pdf(wo, s.wi);
+                    return s;
+                })
+            .with_f([p](Vector3f wo, Vector3f wi) { return p.f(wo, wi); })
+            .with_pdf(pdf));
 }
 
 /// The delta reflection chosen with probability F but claiming 1 - F (and
@@ -95,16 +98,17 @@ std::unique_ptr<WarpCase> lobe_probability_swapped() {
         flawed_info("smooth_dielectric_lobe_swapped", {{"eta", 1.5}, {"theta_o", 60}},
                     "smooth dielectric choosing reflection with probability F but weighting it as if 1 - F"),
         {.wo = bsdf_direction(60), .lobes = d.flags(), .eta = kGlass},
-        [d](Vector3f wo, float uc, Point2f u) {
-            BsdfSample s = d.sample(wo, uc, u);
-            if (s.pdf > 0.0f) {
-                const float claimed = 1.0f - s.pdf;
-                s.f *= claimed / s.pdf;
-                s.pdf = claimed;
-            }
-            return s;
-        },
-        [d](Vector3f wo, Vector3f wi) { return d.f(wo, wi); }, [d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); });
+        bsdf_of([d](Vector3f wo, float uc, Point2f u) {
+                    BsdfSample s = d.sample(wo, uc, u);
+                    if (s.pdf > 0.0f) {
+                        const float claimed = 1.0f - s.pdf;
+                        s.f *= claimed / s.pdf;
+                        s.pdf = claimed;
+                    }
+                    return s;
+                })
+            .with_f([d](Vector3f wo, Vector3f wi) { return d.f(wo, wi); })
+            .with_pdf([d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); }));
 }
 
 /// A Lambertian-like f that is brighter towards the normal on the wi side
@@ -118,12 +122,13 @@ std::unique_ptr<WarpCase> not_reciprocal() {
         flawed_info("lambertian_not_reciprocal", {{"R", 0.5}, {"theta_o", 60}},
                     "diffuse f = R / pi (0.7 + 0.6 |cos theta_i|): not symmetric in wo and wi"),
         {.wo = bsdf_direction(60), .lobes = l.flags()},
-        [l, f](Vector3f wo, float uc, Point2f u) {
-            BsdfSample s = l.sample(wo, uc, u);
-            if (s.pdf > 0.0f) s.f = f(wo, s.wi);
-            return s;
-        },
-        f, [l](Vector3f wo, Vector3f wi) { return l.pdf(wo, wi); });
+        bsdf_of([l, f](Vector3f wo, float uc, Point2f u) {
+                    BsdfSample s = l.sample(wo, uc, u);
+                    if (s.pdf > 0.0f) s.f = f(wo, s.wi);
+                    return s;
+                })
+            .with_f(f)
+            .with_pdf([l](Vector3f wo, Vector3f wi) { return l.pdf(wo, wi); }));
 }
 
 /// A white Lambertian 2% brighter where wo or wi is within 10 degrees of the
@@ -140,12 +145,13 @@ std::unique_ptr<WarpCase> energy_gain_at_grazing() {
         flawed_info("lambertian_energy_gain", {{"R", 1}, {"theta_o", 85}},
                     "white diffuse 2% brighter within 10 degrees of the horizon: albedo 1.02 at grazing"),
         {.wo = bsdf_direction(85), .lobes = l.flags()},
-        [l, f](Vector3f wo, float uc, Point2f u) {
-            BsdfSample s = l.sample(wo, uc, u);
-            if (s.pdf > 0.0f) s.f = f(wo, s.wi);
-            return s;
-        },
-        f, [l](Vector3f wo, Vector3f wi) { return l.pdf(wo, wi); });
+        bsdf_of([l, f](Vector3f wo, float uc, Point2f u) {
+                    BsdfSample s = l.sample(wo, uc, u);
+                    if (s.pdf > 0.0f) s.f = f(wo, s.wi);
+                    return s;
+                })
+            .with_f(f)
+            .with_pdf([l](Vector3f wo, Vector3f wi) { return l.pdf(wo, wi); }));
 }
 
 /// Visible normals sampled as seen from wo mirrored about the normal
@@ -157,15 +163,16 @@ std::unique_ptr<WarpCase> visible_normals_wrong_side() {
         flawed_info("rough_conductor_vndf_wrong_side", {{"alpha", 0.3}, {"theta_o", 60}},
                     "rough conductor sampling the normals visible from the mirror of wo"),
         {.wo = bsdf_direction(60), .lobes = c.flags()},
-        [c, tr](Vector3f wo, float, Point2f u) -> BsdfSample {
-            const Vector3f wm = tr.visible_normals({-wo.x, -wo.y, wo.z}).sample(u);
-            if (!has_side(wm)) return {};
-            const Vector3f wi = reflect(wo, wm);
-            const float pdf = c.pdf(wo, wi);
-            if (!(wi.z > 0.0f) || !(pdf > 0.0f)) return {};
-            return {wi, c.f(wo, wi), pdf, c.flags()};
-        },
-        [c](Vector3f wo, Vector3f wi) { return c.f(wo, wi); }, [c](Vector3f wo, Vector3f wi) { return c.pdf(wo, wi); });
+        bsdf_of([c, tr](Vector3f wo, float, Point2f u) -> BsdfSample {
+                    const Vector3f wm = tr.visible_normals({-wo.x, -wo.y, wo.z}).sample(u);
+                    if (!has_side(wm)) return {};
+                    const Vector3f wi = reflect(wo, wm);
+                    const float pdf = c.pdf(wo, wi);
+                    if (!(wi.z > 0.0f) || !(pdf > 0.0f)) return {};
+                    return {wi, c.f(wo, wi), pdf, c.flags()};
+                })
+            .with_f([c](Vector3f wo, Vector3f wi) { return c.f(wo, wi); })
+            .with_pdf([c](Vector3f wo, Vector3f wi) { return c.pdf(wo, wi); }));
 }
 
 /// A sharp conductor seen at 85 degrees whose visible normals are sampled

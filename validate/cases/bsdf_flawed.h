@@ -15,17 +15,18 @@ namespace warpcheck {
 /// roughness than its pdf). The lobes are `bsdf`'s.
 template <BsdfObject Bsdf, BsdfObject Sampler>
 std::unique_ptr<WarpCase> sampled_by(WarpCaseInfo info, Vector3f wo, Bsdf bsdf, Sampler sampler) {
-    return make_bsdf_case(
-        std::move(info), {.wo = wo, .lobes = bsdf.flags()},
-        [bsdf, sampler](Vector3f w, float uc, Point2f u) {
-            BsdfSample s = sampler.sample(w, uc, u);
-            if (s.pdf > 0.0f) {
-                s.f = bsdf.f(w, s.wi);
-                s.pdf = bsdf.pdf(w, s.wi);
-            }
-            return s;
-        },
-        [bsdf](Vector3f a, Vector3f b) { return bsdf.f(a, b); }, [bsdf](Vector3f a, Vector3f b) { return bsdf.pdf(a, b); });
+    const auto sample = [bsdf, sampler](Vector3f w, float uc, Point2f u) {
+        BsdfSample s = sampler.sample(w, uc, u);
+        if (s.pdf > 0.0f) {
+            s.f = bsdf.f(w, s.wi);
+            s.pdf = bsdf.pdf(w, s.wi);
+        }
+        return s;
+    };
+    return make_bsdf_case(std::move(info), {.wo = wo, .lobes = bsdf.flags()},
+                          bsdf_of(sample)
+                              .with_f([bsdf](Vector3f a, Vector3f b) { return bsdf.f(a, b); })
+                              .with_pdf([bsdf](Vector3f a, Vector3f b) { return bsdf.pdf(a, b); }));
 }
 
 }  // namespace warpcheck

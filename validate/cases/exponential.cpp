@@ -16,7 +16,6 @@ void register_exponential_cases(Registry& registry) {
         WarpCaseInfo info{.family = "exponential",
                           .params = {{"a", a}},
                           .description = "exponential with rate a on [0, inf): pdf a exp(-a x), x = -log1p(-u) / a",
-                          .input = InputKind::Uniform1D,
                           .domain = Domain::half_line(0.0)};
         // The tabulated check truncates the half-line where the tail holds 1e-3 of
         // the mass (so that ~1000 of 1e6 samples test the tail explicitly); the tail
@@ -37,7 +36,6 @@ void register_exponential_cases(Registry& registry) {
             .family = "trimmed_exponential",
             .params = {{"c", c}, {"x_max", x_max}},
             .description = "exponential with rate c trimmed to [0, x_max]: pdf c exp(-c x) / (1 - exp(-c x_max))",
-            .input = InputKind::Uniform1D,
             .domain = Domain::interval(0.0, x_max)};
         // Uniform chi-square cells over [0, x_max] put c = 100's mass (scale 0.01)
         // into a handful of cells; 20 cells per 1/c keep ~150 cells with counts.

@@ -18,32 +18,27 @@
 #include "sampling/pcg32.h"
 #include "sampling/unit_float.h"
 #include "validate/api/exhaustive_sweep.h"
+#include "validate/api/external.h"
 #include "validate/api/registry.h"
 
 namespace warpcheck {
 namespace {
 
-// A [0,1) sampler of 32 bits with its first-preimage inverse, sweepable. The
-// sweep gets a lambda, not a member pointer, so that the call is inlined into
-// its vectorised loop.
+// A [0,1) sampler of 32 bits with its first-preimage inverse, on the
+// exhaustive check's fast path (validate/api/external.h).
 template <typename UnitFloat>
 std::unique_ptr<WarpCase> unit_float_32_case(std::string family, std::string description, UnitFloat warp) {
-    auto inner = make_warp_case({.family = std::move(family),
-                                 .description = std::move(description),
-                                 .input = InputKind::Bits32,
-                                 .domain = chi2::Domain::interval(0.0, 1.0),
-                                 .exact_inverse = true},
-                                warp);
-    const auto sample = [warp](uint32_t u) { return warp.sample(u); };
-    return std::make_unique<SweepableWarpCase>(std::move(inner), u32_block_fn(sample), uint64_t{1} << 32,
-                                               "all 2^32 inputs", true, u32_borders_fn(sample));
+    return make_u32_float_case({.family = std::move(family),
+                                .description = std::move(description),
+                                .domain = chi2::Domain::interval(0.0, 1.0),
+                                .exact_inverse = true},
+                               Monotone::Claimed, warp);
 }
 
 // A [0,1) sampler of 64 bits, whose inverse returns the first input exactly.
 WarpCaseInfo unit_float_64_info(std::string family, std::string description) {
     return {.family = std::move(family),
             .description = std::move(description),
-            .input = InputKind::Bits64,
             .domain = chi2::Domain::interval(0.0, 1.0),
             .exact_inverse = true};
 }
@@ -84,7 +79,6 @@ std::unique_ptr<WarpCase> lerp_case(LerpInterval::Form form, double a, double b)
          .params = {{"a", a}, {"b", b}},
          .description = fmt::format("{} over {}; pdf 1/(b - a)", offset ? "a + t (b - a)" : "(1 - t) a + t b",
                                     interval_text(a, b, ')')),
-         .input = InputKind::Uniform1D,
          .domain = chi2::Domain::interval(lerp.a, lerp.b)},
         lerp);
     FloatBlockFn fn = [lerp](uint64_t first, std::size_t n, float* out) {
@@ -116,11 +110,12 @@ void register_interval_cases(Registry& registry) {
     registry.add_case(make_warp_case(
         unit_float_64_info("unit_float_walker",
                            "Walker: exponent from leading zeros of as many words as needed, down to the denormals"),
-        [walker](uint64_t bits) {
-            FirstThenStream rng(bits);
-            return walker.sample(rng);
-        },
-        [walker](float x) { return walker.pdf(x); }, [walker](float x) { return walker.invert(x); }));
+        warp_of([walker](uint64_t bits) {
+                    FirstThenStream rng(bits);
+                    return walker.sample(rng);
+                })
+            .with_pdf([walker](float x) { return walker.pdf(x); })
+            .with_invert([walker](float x) { return walker.invert(x); })));
 
     // --- every float of [a,b), exactly ----------------------------------------
     // Wide ([0,1), [-3,5), [0.001, 1000)), straddling a binade ([0.999, 1.001)),
@@ -134,14 +129,14 @@ void register_interval_cases(Registry& registry) {
              .params = {{"a", a}, {"b", b}},
              .description =
                  fmt::format("every float of {} with probability (next float - x)/(b - a)", interval_text(a, b, ')')),
-             .input = InputKind::Bits64,
              .domain = Domain::interval(sampler.a(), sampler.b()),
              .exact_inverse = true},
-            [sampler](uint64_t bits) {
-                FirstThenStream rng(bits);
-                return sampler.sample(rng);
-            },
-            [sampler](float x) { return sampler.pdf(x); }, [sampler](float x) { return sampler.invert(x); }));
+            warp_of([sampler](uint64_t bits) {
+                        FirstThenStream rng(bits);
+                        return sampler.sample(rng);
+                    })
+                .with_pdf([sampler](float x) { return sampler.pdf(x); })
+                .with_invert([sampler](float x) { return sampler.invert(x); })));
     }
 
     // Lerps that pass by the rules: monotone on the t grid, b never reached.

@@ -12,7 +12,6 @@ void register_linear_cases(Registry& registry) {
         registry.add_case(make_warp_case({.family = "linear",
                                           .params = {{"a", a}, {"b", b}},
                                           .description = "density proportional to (1-x) a + x b on [0,1]",
-                                          .input = InputKind::Uniform1D,
                                           .domain = chi2::Domain::interval(0.0, 1.0)},
                                          Linear(static_cast<float>(a), static_cast<float>(b))));
     }
@@ -20,7 +19,6 @@ void register_linear_cases(Registry& registry) {
         make_warp_case({.family = "bilinear",
                         .params = {{"w00", 1}, {"w10", 4}, {"w01", 0.5}, {"w11", 2}},
                         .description = "density proportional to the bilinear interpolation of corner weights",
-                        .input = InputKind::Uniform2D,
                         .domain = chi2::Domain::unit_square()},
                        Bilinear(1.0f, 4.0f, 0.5f, 2.0f)));
 }

@@ -19,10 +19,10 @@ void add_1d(Registry& registry, const std::string& family, const std::string& wh
         {.family = family,
          .params = {{"n", static_cast<double>(f.size())}},
          .description = what,
-         .input = InputKind::Uniform1D,
          .domain = chi2::Domain::interval(lo, hi)},
-        [d](float u) { return d->sample(u).x; }, [d](float x) { return d->pdf(x); },
-        [d](float x) { return d->invert(x); }));
+        warp_of([d](float u) { return d->sample(u).x; })
+            .with_pdf([d](float x) { return d->pdf(x); })
+            .with_invert([d](float x) { return d->invert(x); })));
 }
 
 void add_2d(Registry& registry, const std::string& family, const std::string& what, std::vector<float> f, int nu,
@@ -39,11 +39,12 @@ void add_2d(Registry& registry, const std::string& family, const std::string& wh
     WarpCaseInfo info{.family = family,
                       .params = {{"nu", static_cast<double>(nu)}, {"nv", static_cast<double>(nv)}},
                       .description = what,
-                      .input = InputKind::Uniform2D,
                       .domain = chi2::Domain::box(x0, x1, y0, y1),
                       .views = {std::move(m)}};
-    registry.add_case(make_warp_case(info, [d](Point2f u) { return d->sample(u).p; },
-                                     [d](Point2f p) { return d->pdf(p); }, [d](Point2f p) { return d->invert(p); }));
+    registry.add_case(make_warp_case(info,
+        warp_of([d](Point2f u) { return d->sample(u).p; })
+            .with_pdf([d](Point2f p) { return d->pdf(p); })
+            .with_invert([d](Point2f p) { return d->invert(p); })));
 }
 
 void register_piecewise_constant_cases(Registry& registry) {

@@ -384,8 +384,8 @@ public:
         return "64-bit float samplers: chi-square of the mass per binade, of the significand parity within "
                "binades and of the binary digits down to 2^-20 (at least 2^24 samples)";
     }
-    bool applies_to(const WarpCase& warp) const override {
-        return warp.input_kind() == InputKind::Bits64 && warp.domain().is<chi2::Interval>();
+    Applicability applicability(const WarpCase& warp) const override {
+        return Applicability::when(warp.input_kind() == InputKind::Bits64 && warp.domain().is<chi2::Interval>());
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {

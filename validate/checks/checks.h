@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "chi2/chi2_test.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 
 namespace warpcheck {
 

@@ -276,7 +276,9 @@ public:
     std::string description() const override {
         return "Pearson chi-square test of the samples against the pdf integrated over cells (pooled, Sidak-corrected)";
     }
-    bool applies_to(const WarpCase& warp) const override { return warp.has_pdf() && !warp.is_discrete(); }
+    Applicability applicability(const WarpCase& warp) const override {
+        return Applicability::when(warp.has_pdf() && !warp.is_discrete());
+    }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const chi2::Binning binning(warp.domain(), chi2::float_aware_resolution(warp.domain(), line_resolution(warp),

@@ -316,7 +316,9 @@ public:
     std::string description() const override {
         return "every sample lies in the domain and has a finite, positive pdf (edge inputs included)";
     }
-    bool applies_to(const WarpCase& warp) const override { return !warp.is_discrete(); }
+    Applicability applicability(const WarpCase& warp) const override {
+        return Applicability::when(!warp.is_discrete());
+    }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const Stats stats = compute(warp, ctx);

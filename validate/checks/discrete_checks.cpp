@@ -55,7 +55,9 @@ public:
     std::string description() const override {
         return "discrete cases: the pmf is finite, non-negative and sums to 1 over the categories";
     }
-    bool applies_to(const WarpCase& warp) const override { return is_discrete_case(warp); }
+    Applicability applicability(const WarpCase& warp) const override {
+        return Applicability::when(is_discrete_case(warp));
+    }
     bool uses_seed() const override { return false; }
 
     CheckResult run(const WarpCase& warp, const CheckContext&) const override {
@@ -158,7 +160,9 @@ public:
         return "discrete cases: indices are categories, none of pmf 0 is chosen, and the counts fit the pmf "
                "(Pearson, pooled, Sidak-corrected)";
     }
-    bool applies_to(const WarpCase& warp) const override { return is_discrete_case(warp); }
+    Applicability applicability(const WarpCase& warp) const override {
+        return Applicability::when(is_discrete_case(warp));
+    }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const std::vector<double> pmf = pmf_of(warp);
@@ -316,8 +320,9 @@ public:
         return "discrete cases returning a remapped u: it lies in [0,1) and is uniform, overall (KS), within each "
                "category (chi-square) and down to 2^-20 (binary digits), Sidak-corrected";
     }
-    bool applies_to(const WarpCase& warp) const override {
-        return is_discrete_case(warp) && warp.sample_returns() == SampleReturns::IndexAndRemappedU;
+    Applicability applicability(const WarpCase& warp) const override {
+        return Applicability::when(is_discrete_case(warp) &&
+                                   warp.sample_returns() == SampleReturns::IndexAndRemappedU);
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {

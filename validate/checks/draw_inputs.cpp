@@ -1,6 +1,6 @@
 #include <bit>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 
 namespace warpcheck {
 

@@ -338,9 +338,10 @@ public:
         return "every input of a float sampler (all 2^32 for 32 bits; t = k 2^-24 for lerps), exact counts per "
                "output float against the uniform measure";
     }
-    bool applies_to(const WarpCase& warp) const override {
-        if (!warp.domain().is<chi2::Interval>()) return false;
-        return dynamic_cast<const SweepableCase*>(&warp) != nullptr || warp.input_kind() == InputKind::Bits32;
+    Applicability applicability(const WarpCase& warp) const override {
+        return Applicability::when(warp.domain().is<chi2::Interval>() &&
+                                   (dynamic_cast<const SweepableCase*>(&warp) != nullptr ||
+                                    warp.input_kind() == InputKind::Bits32));
     }
 
     double time_budget(const RunOptions& options) const override {

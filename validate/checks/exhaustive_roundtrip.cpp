@@ -248,11 +248,9 @@ public:
         return "1D warps, every float u of [0,1): invert(sample(u)) vs u, monotone sample, finite positive pdf "
                "(--exhaustive)";
     }
-    bool applies_to(const WarpCase& warp) const override {
-        return warp.input_kind() == InputKind::Uniform1D && warp.has_inverse();
-    }
-    std::string not_applicable_because(const WarpCase& warp) const override {
-        return warp.input_kind() == InputKind::Uniform1D && !warp.has_inverse() ? "the warp has no inverse" : "";
+    Applicability applicability(const WarpCase& warp) const override {
+        if (warp.input_kind() != InputKind::Uniform1D) return Applicability::not_about_such_cases();
+        return warp.has_inverse() ? Applicability::runs() : Applicability::lacks("the warp has no inverse");
     }
     bool runs_by_default(const RunOptions& options) const override { return options.exhaustive; }
     double time_budget(const RunOptions& options) const override { return sweep_time_budget(options, kUnitFloats); }

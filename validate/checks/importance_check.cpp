@@ -139,11 +139,13 @@ public:
                    : "without a pdf function: the mean of 1/pdf (returned) against the declared support's measure, "
                      "or one-sided against the domain's (t-test)";
     }
-    bool applies_to(const WarpCase& warp) const override {
-        if (warp.is_discrete()) return false;
-        if (!std::isfinite(warp.domain().measure()) && !(warp.info().support_measure > 0.0)) return false;
-        if (which_ == Estimator::Weight) return warp.sample_returns() == SampleReturns::PointAndWeight;
-        return warp.sample_returns() == SampleReturns::PointAndPdf && !warp.has_pdf();
+    Applicability applicability(const WarpCase& warp) const override {
+        if (warp.is_discrete()) return Applicability::not_about_such_cases();
+        if (!std::isfinite(warp.domain().measure()) && !(warp.info().support_measure > 0.0))
+            return Applicability::not_about_such_cases();
+        if (which_ == Estimator::Weight)
+            return Applicability::when(warp.sample_returns() == SampleReturns::PointAndWeight);
+        return Applicability::when(warp.sample_returns() == SampleReturns::PointAndPdf && !warp.has_pdf());
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 
 namespace warpcheck {
 

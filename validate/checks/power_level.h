@@ -7,7 +7,7 @@
 #pragma once
 
 #include "chi2/multiple_testing.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 
 namespace warpcheck {
 

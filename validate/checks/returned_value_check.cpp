@@ -139,9 +139,10 @@ public:
                                   : "the weight that sample returns equals eval(x) / pdf(x) at every sample "
                                     "(float-rounding tolerance)";
     }
-    bool applies_to(const WarpCase& warp) const override {
-        if (what_ == What::Pdf) return warp.sample_returns() == SampleReturns::PointAndPdf && warp.has_pdf();
-        return warp.sample_returns() == SampleReturns::PointAndWeight;
+    Applicability applicability(const WarpCase& warp) const override {
+        if (what_ == What::Pdf)
+            return Applicability::when(warp.sample_returns() == SampleReturns::PointAndPdf && warp.has_pdf());
+        return Applicability::when(warp.sample_returns() == SampleReturns::PointAndWeight);
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {

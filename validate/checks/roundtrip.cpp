@@ -571,9 +571,8 @@ public:
     std::string description() const override {
         return "invert(sample(u)) == u over a seeded stream plus edge inputs (exact for raw-bit inputs)";
     }
-    bool applies_to(const WarpCase& warp) const override { return warp.has_inverse(); }
-    std::string not_applicable_because(const WarpCase& warp) const override {
-        return warp.has_inverse() ? "" : "the warp has no inverse";
+    Applicability applicability(const WarpCase& warp) const override {
+        return warp.has_inverse() ? Applicability::runs() : Applicability::lacks("the warp has no inverse");
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {

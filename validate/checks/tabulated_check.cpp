@@ -608,12 +608,12 @@ public:
         return "sample(u) and pdf against the inversion method on a 65536-bucket table of the density "
                "(1D warps and monotone 1D marginals)";
     }
-    bool applies_to(const WarpCase& warp) const override {
-        return would_apply(warp) && warp.info().inversion != Inversion::NotInversion;
-    }
-    std::string not_applicable_because(const WarpCase& warp) const override {
-        if (!would_apply(warp) || warp.info().inversion != Inversion::NotInversion) return {};
-        return "the case declares that sample is not the inversion method (chi2 and unbinned test its distribution)";
+    Applicability applicability(const WarpCase& warp) const override {
+        if (!would_apply(warp)) return Applicability::not_about_such_cases();
+        if (warp.info().inversion == Inversion::NotInversion)
+            return Applicability::lacks(
+                "the case declares that sample is not the inversion method (chi2 and unbinned test its distribution)");
+        return Applicability::runs();
     }
 
     /// One result per view, merged: a single view's result as it is; several

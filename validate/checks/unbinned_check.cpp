@@ -135,11 +135,11 @@ bool is_azimuth(const chi2::Domain& domain, int axis) {
 /// cut (a deviation that straddles phi = 0 is one deviation to it). Kuiper
 /// alone there missed a missing sliver of 0.1% of the azimuth next to the cut,
 /// which A^2 saw at p 2e-5: the sliver is in A^2's weighted tail.
-/// (tests/validate/test_unbinned_resolution.cpp: at 2 10^6 samples the check
+/// (tests/validate/checks/unbinned/test_unbinned_resolution.cpp: at 2 10^6 samples the check
 /// rejects it on 5 of 5 seeds, Kuiper alone on 1.) KS is computed and
 /// reported but not judged: every judged test costs all the others power
 /// through the correction (with 6 tests instead of 2, the cos^(1 + 0.01) claim
-/// of tests/validate/test_unbinned_check.cpp is caught in 7 of 10 seeds
+/// of tests/validate/checks/unbinned/test_unbinned_check.cpp is caught in 7 of 10 seeds
 /// instead of 9; with 3, A^2 judging the azimuth too, still in 9).
 std::vector<chi2::UnbinnedTest> judging_tests(const chi2::Domain& domain, int axis) {
     if (is_azimuth(domain, axis)) return {chi2::UnbinnedTest::Kuiper, chi2::UnbinnedTest::AndersonDarling};
@@ -705,7 +705,9 @@ public:
         return "KS, Kuiper and Anderson-Darling tests of each marginal against its CDF from the pdf, allowing for "
                "float resolution and the CDF's error (Sidak over the tests)";
     }
-    bool applies_to(const WarpCase& warp) const override { return warp.has_pdf() && !warp.is_discrete(); }
+    Applicability applicability(const WarpCase& warp) const override {
+        return Applicability::when(warp.has_pdf() && !warp.is_discrete());
+    }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const auto samples = [&warp](std::span<const WarpInput> in, std::vector<WarpOutput>& out) {

@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 
 namespace warpcheck {
 namespace {

@@ -17,6 +17,8 @@
 #include "reports/terminal_table.h"
 #include "sampling/hash.h"
 #include "validate/cli/cli_input.h"
+#include "validate/gtest/job_tests.h"
+#include "validate/run/runner.h"
 #include "warpcheck/version.h"
 
 namespace warpcheck::gtest {
@@ -217,9 +219,12 @@ Settings settings_from_environment() {
     } catch (const std::exception& e) {
         return ::testing::AssertionFailure() << "warpcheck: " << e.what() << "; no check ran";
     }
+    if (const std::vector<std::string> problems = case_problems(warp); !problems.empty())
+        return ::testing::AssertionFailure() << "warpcheck: " << expression << ": "
+                                             << declaration_error("warp case " + warp.name(), problems).what();
     std::vector<Job> jobs;
     for (const auto& check : builtin_checks().checks())
-        if (check->runs_by_default(settings.run) && check_is_for(*check, warp) && check->applies_to(warp))
+        if (check->runs_by_default(settings.run) && check_is_for(*check, warp) && check->applicability(warp).applies())
             jobs.push_back({&warp, check.get()});
     const ::testing::AssertionResult verdict =
         judge(run_part(jobs, statistical_tests(jobs), settings), settings, identifier(warp.name()) + ".html");

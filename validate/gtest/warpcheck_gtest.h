@@ -38,7 +38,6 @@
 // reason, no test at all is selected).
 #pragma once
 
-#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,23 +45,13 @@
 #include <gtest/gtest.h>
 
 #include "validate/api/registry.h"
-#include "validate/run/runner.h"
+#include "validate/api/warp_case.h"
 
 namespace warpcheck::gtest {
 
-/// How the checks run inside a test.
-struct Settings {
-    RunOptions run;                                 ///< seed, samples, alpha, as in `validate`
-    std::string evidence_dir = "warpcheck-evidence";  ///< where failing cases' HTML goes
-};
-
-/// The defaults with the WARPCHECK_* variables applied; throws
-/// std::invalid_argument naming a variable whose value is not valid.
-Settings settings_from_environment();
-
 /// Success when every default check that applies to `warp` passes (the BSDF
-/// checks for a BSDF case), judged as one run (the Šidák family: those checks). Otherwise the failure lines and
-/// the path of the evidence. For EXPECT_PRED_FORMAT1; see EXPECT_WARP_PASSES.
+/// checks for a BSDF case), judged as one run (the Šidák family: those
+/// checks). Otherwise the failure lines and the path of the evidence. For EXPECT_PRED_FORMAT1; see EXPECT_WARP_PASSES.
 ::testing::AssertionResult WarpCasePasses(const char* expression, const WarpCase& warp);
 ::testing::AssertionResult WarpCasePasses(const char* expression, const std::unique_ptr<WarpCase>& warp);
 
@@ -72,15 +61,6 @@ Settings settings_from_environment();
 /// For EXPECT_PRED_FORMAT1; see EXPECT_BSDF_PASSES.
 ::testing::AssertionResult BsdfCasePasses(const char* expression, const WarpCase& bsdf);
 ::testing::AssertionResult BsdfCasePasses(const char* expression, const std::unique_ptr<WarpCase>& bsdf);
-
-/// The test names of a suite's jobs, in order: "<case>__<check>", each name
-/// with its letters and digits kept and every other character '_' (trailing
-/// ones dropped): power[n=4] and chi2 give power_n_4__chi2. Cases whose names
-/// differ only in other characters (a[x=1.5] and a[x=1_5]) would share a test
-/// name: each of them then carries 8 hex digits of a hash of its full name,
-/// a_x_1_5_<8 hex digits>__chi2, so names stay unique, and a case without such
-/// a twin keeps its plain name.
-std::vector<std::string> job_test_names(const std::vector<Job>& jobs);
 
 /// Registers one GoogleTest test per (case, check) job of `register_cases`
 /// (called with a registry that has the built-in checks), in suite

@@ -9,7 +9,6 @@
 #include <stdexcept>
 
 #include "chi2/chi2_test.h"
-#include "validate/api/check.h"
 #include "validate/lanes/lane_kernels.h"
 
 // Lane vectors pass only between always_inline functions (sampling/lanes.h).

@@ -1,7 +1,7 @@
 // The vectorised chi-square path: draw, warp and bin 24 samples at once (three sets of 8 lanes).
 //
 // The chi-square check draws its samples in chunks of 4,096, chunk c from its
-// own stream ctx.chunk_rng(c) (validate/api/check.h). Here 24 consecutive
+// own stream ctx.chunk_rng(c) (validate/checks/check.h). Here 24 consecutive
 // chunks run in lockstep, one per lane: lane l is a copy of chunk 24 g + l's
 // Pcg32, its inputs are drawn as draw_inputs draws them, warped by the lane
 // form of the warp (sampling/lane_warps.h) and binned by lane_cells (validate/lanes/lane_cells.h). The
@@ -13,7 +13,7 @@
 //     has it (elsewhere it keeps its scalar chunk path, the faster there);
 //   - portable: the same source compiled for the baseline target, which the
 //     tests hold to the same bits (LanePath::Portable).
-// tests/validate/test_lane_sampling.cpp holds both paths to the scalar one.
+// tests/validate/lanes/test_lane_sampling.cpp holds both paths to the scalar one.
 #pragma once
 
 #include <cstdint>

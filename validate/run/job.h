@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {

@@ -22,6 +22,7 @@
 #include "chi2/multiple_testing.h"
 #include "reports/terminal_table.h"
 #include "reports/text.h"
+#include "validate/run/thread_pool.h"
 #include "warpcheck/version.h"
 
 namespace warpcheck {
@@ -52,11 +53,12 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
             const bool wanted = check_names.empty() ? check->runs_by_default(options)
                                                     : std::find(check_names.begin(), check_names.end(),
                                                                 check->name()) != check_names.end();
-            if (!wanted || (!registry.known_flaw(*warp, *check).empty() && !run_flawed)) continue;
+            if (!wanted || (!registry.known_flaw(*warp, check->name()).empty() && !run_flawed)) continue;
             if (!check_is_for(*check, *warp)) continue;
-            if (check->applies_to(*warp)) jobs.push_back({warp.get(), check.get()});
-            else if (std::string why = check->not_applicable_because(*warp); !why.empty())
-                jobs.push_back({warp.get(), check.get(), std::move(why)});
+            const Applicability applicability = check->applicability(*warp);
+            if (applicability.applies()) jobs.push_back({warp.get(), check.get()});
+            else if (!applicability.not_applicable_because().empty())
+                jobs.push_back({warp.get(), check.get(), applicability.not_applicable_because()});
         }
     }
     return jobs;
@@ -238,7 +240,8 @@ std::vector<CheckResult> run_jobs_in_process(const std::vector<Job>& jobs, const
                 i = next++;
                 running[i] = Clock::now();
             }
-            const CheckContext ctx(options, pool, job_stream(*jobs[i].warp, *jobs[i].check, options.seed), &cancel[i]);
+            const CheckContext ctx(options, pool.executor(), job_stream(*jobs[i].warp, *jobs[i].check, options.seed),
+                                   &cancel[i]);
             active[i] = true;
             ThreadPool::set_current_tag(&jobs[i]);
             CheckResult r = run_job_here(jobs[i], ctx);

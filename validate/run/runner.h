@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/api/registry.h"
 #include "reports/progress_callback.h"
 #include "reports/result.h"

@@ -14,7 +14,7 @@
 
 #include "reports/progress_callback.h"
 #include "reports/result.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/run/job.h"
 
 namespace warpcheck {

@@ -25,6 +25,7 @@
 
 #include "validate/run/result_codec.h"
 #include "validate/run/runner.h"
+#include "validate/run/thread_pool.h"
 #include "validate/run/worker.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -139,7 +140,7 @@ bool enter_worker(pid_t supervisor, const int (&fds)[3], std::initializer_list<i
     try {
         ThreadPool pool(setup.threads_per_worker);
         const auto start = Clock::now();
-        const CheckContext ctx(options, pool, job_stream(*job.warp, *job.check, options.seed));
+        const CheckContext ctx(options, pool.executor(), job_stream(*job.warp, *job.check, options.seed));
         CheckResult r = run_job_here(job, ctx, setup.memory_note);
         r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
         const std::string bytes = encode_result(r);

@@ -32,7 +32,7 @@
 #include <string>
 #include <vector>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 
 namespace warpcheck {
 

@@ -9,7 +9,7 @@
 #include "chi2/multiple_testing.h"
 #include "validate/checks/power_level.h"
 #include "validate/run/runner.h"
-#include "validate/api/thread_pool.h"
+#include "validate/run/thread_pool.h"
 
 namespace warpcheck {
 
@@ -20,10 +20,20 @@ double inverse_tilt(double u, double eps) {
 
 namespace {
 
+/// What a tilted case is: the base's input, points, pdf and inverse; sample
+/// returns the point alone.
+WarpSignature tilted_signature(const WarpCase& base) {
+    WarpSignature s = base.signature();
+    s.returns = SampleReturns::Point;
+    s.has_eval = false;
+    return s;
+}
+
 class TiltedCase final : public WarpCase {
 public:
     TiltedCase(const WarpCase& base, WarpCaseInfo info, int coordinate, double eps)
-        : WarpCase(std::move(info)), base_(base), coordinate_(static_cast<std::size_t>(coordinate)), eps_(eps) {}
+        : WarpCase(std::move(info), tilted_signature(base)), base_(base),
+          coordinate_(static_cast<std::size_t>(coordinate)), eps_(eps) {}
 
     void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override {
         std::vector<WarpInput> tilted(in.begin(), in.end());
@@ -39,7 +49,6 @@ public:
     }
     void pdf(std::span<const WarpOutput> x, std::span<double> out) const override { base_.pdf(x, out); }
     void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override { base_.invert(x, out); }
-    bool has_inverse() const override { return base_.has_inverse(); }
 
 private:
     const WarpCase& base_;
@@ -48,7 +57,7 @@ private:
 };
 
 CheckResult run_once(const WarpCase& warp, const Check& check, const RunOptions& options, ThreadPool& pool) {
-    const CheckContext ctx(options, pool, job_stream(warp, check, options.seed));
+    const CheckContext ctx(options, pool.executor(), job_stream(warp, check, options.seed));
     return check.run(warp, ctx);
 }
 

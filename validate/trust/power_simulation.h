@@ -16,7 +16,7 @@
 #include <memory>
 #include <string>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {

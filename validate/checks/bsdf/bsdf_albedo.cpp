@@ -199,7 +199,7 @@ public:
     }
 
 protected:
-    bool applies_to_bsdf(const BsdfCase&) const override { return true; }
+    Applicability bsdf_applicability(const BsdfCase&) const override { return Applicability::runs(); }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
         const Draws d = draw(bsdf, ctx);

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 
 namespace warpcheck::bsdf {
 

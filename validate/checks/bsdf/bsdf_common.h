@@ -15,36 +15,27 @@
 #include "chi2/binning.h"
 #include "chi2/quadrature.h"
 #include "validate/api/bsdf_case.h"
-#include "validate/api/check.h"
+#include "validate/checks/check.h"
 #include "validate/checks/input_chunks.h"
 
 namespace warpcheck::bsdf {
 
 /// The base of every BSDF check: it takes BSDF cases only (the runner gives it
-/// no others), and applies where `applies_to_bsdf` says.
+/// no others), and applies where `bsdf_applicability` says.
 class BsdfCheck : public Check {
 public:
     bool about_bsdfs() const override { return true; }
-    bool applies_to(const WarpCase& warp) const override {
+    Applicability applicability(const WarpCase& warp) const override {
         const BsdfCase* b = as_bsdf(warp);
-        return b && applies_to_bsdf(*b);
-    }
-    std::string not_applicable_because(const WarpCase& warp) const override {
-        const BsdfCase* b = as_bsdf(warp);
-        return b ? not_applicable_to_bsdf(*b) : std::string{};
+        return b ? bsdf_applicability(*b) : Applicability::not_about_such_cases();
     }
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         return run_bsdf(*as_bsdf(warp), ctx);
     }
 
 protected:
-    virtual bool applies_to_bsdf(const BsdfCase& bsdf) const = 0;
-    /// Why a case lacks the part this check tests ("" for none: the check is
-    /// not about such cases, and no n/a row is shown).
-    virtual std::string not_applicable_to_bsdf(const BsdfCase& bsdf) const {
-        (void)bsdf;
-        return {};
-    }
+    /// Whether the check runs on a BSDF case (Applicability).
+    virtual Applicability bsdf_applicability(const BsdfCase& bsdf) const = 0;
     virtual CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const = 0;
 };
 

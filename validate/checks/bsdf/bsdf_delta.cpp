@@ -220,7 +220,9 @@ public:
     }
 
 protected:
-    bool applies_to_bsdf(const BsdfCase& b) const override { return has(b.claims().lobes, BsdfFlags::Delta); }
+    Applicability bsdf_applicability(const BsdfCase& b) const override {
+        return Applicability::when(has(b.claims().lobes, BsdfFlags::Delta));
+    }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
         const Stats s = compute(bsdf, ctx);

@@ -184,12 +184,11 @@ public:
     }
 
 protected:
-    bool applies_to_bsdf(const BsdfCase& b) const override {
-        return b.claims().reciprocal && has(b.claims().lobes, BsdfFlags::Continuous);
-    }
-    std::string not_applicable_to_bsdf(const BsdfCase& b) const override {
-        if (!b.claims().reciprocal) return "the case does not claim reciprocity";
-        return "only delta lobes: f is 0 everywhere";
+    Applicability bsdf_applicability(const BsdfCase& b) const override {
+        if (!b.claims().reciprocal) return Applicability::lacks("the case does not claim reciprocity");
+        if (!has(b.claims().lobes, BsdfFlags::Continuous))
+            return Applicability::lacks("only delta lobes: f is 0 everywhere");
+        return Applicability::runs();
     }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {

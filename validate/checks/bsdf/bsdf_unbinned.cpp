@@ -66,7 +66,9 @@ public:
     }
 
 protected:
-    bool applies_to_bsdf(const BsdfCase& b) const override { return has(b.claims().lobes, BsdfFlags::Continuous); }
+    Applicability bsdf_applicability(const BsdfCase& b) const override {
+        return Applicability::when(has(b.claims().lobes, BsdfFlags::Continuous));
+    }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
         UnbinnedSource source;

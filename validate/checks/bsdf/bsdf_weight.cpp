@@ -259,7 +259,7 @@ public:
     }
 
 protected:
-    bool applies_to_bsdf(const BsdfCase&) const override { return true; }
+    Applicability bsdf_applicability(const BsdfCase&) const override { return Applicability::runs(); }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
         const Stats s = compute(bsdf, ctx);

@@ -1,0 +1,391 @@
+// The HTML report of issue 25: rows grouped by family with failures and the
+// weakest first, packed details, the Judged table of each row (its p-value's
+// parts and every limit), the limits and deciding points drawn into the
+// checks' plots, and the legend of each check's p-value.
+#include <cmath>
+#include <limits>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "reports/html_report_parts.h"
+#include "reports/render.h"
+#include "tests/reports/html_unpack.h"
+#include "tests/reports/sample_run.h"
+#include "support/temp_dir.h"
+#include "tests/reports/xml_check.h"
+
+namespace warpcheck {
+namespace {
+
+using ::testing::ContainsRegex;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using ::testing::IsEmpty;
+using ::testing::Not;
+using namespace warpcheck::testing;
+
+constexpr double kLevel = 7.28e-05;
+
+CheckResult row(std::string case_name, std::string check, Verdict v) {
+    CheckResult r;
+    r.case_name = std::move(case_name);
+    r.check_name = std::move(check);
+    r.verdict = v;
+    r.summary = "key figure";
+    return r;
+}
+
+CheckResult roundtrip_row(std::string case_name, double max_error, Verdict v = Verdict::Pass) {
+    CheckResult r = row(std::move(case_name), "roundtrip", v);
+    r.figures = {{"max_error", max_error}, {"tolerance", 1e-5}, {"failures", v == Verdict::Pass ? 0.0 : 3.0},
+                 {"resolution_limited", 7}};
+    return r;
+}
+
+CheckResult p_row(std::string case_name, std::string check, double p) {
+    CheckResult r = row(std::move(case_name), std::move(check), Verdict::Pass);
+    r.p_value = p;
+    r.level = kLevel;
+    return r;
+}
+
+/// A chi-square row as the chi2 check writes it: Pearson's p and the largest
+/// residual's, combined as min(P / 0.8, L / 0.2).
+CheckResult chi2_row(double pearson, double local) {
+    CheckResult r = p_row("uniform_disk_concentric", "chi2", std::min({1.0, pearson / 0.8, local / 0.2}));
+    r.figures = {{"statistic", 968.5709}, {"dof", 1023},         {"p_value", pearson},          {"integral", 0.99999996},
+                 {"integral_tolerance", 9.5e-07}, {"cells", 1024}, {"zero_expected_cells", 0}, {"outside", 0},
+                 {"local_max_residual", -3.73},   {"local_cell", 713}, {"local_p_value", local}};
+    if (!(*r.p_value >= kLevel)) r.verdict = Verdict::Fail;
+    Heatmap residual{"residual (obs - exp) / sqrt(exp)", 32, 32, 0.0, 6.283185307179586, 0.0, 1.0, std::vector<double>(1024, 0.5)};
+    residual.color_scale = Heatmap::ColorScale::Diverging;
+    residual.min_color_limit = 4.0;
+    Plot maps;
+    maps.kind = Plot::Kind::Heatmaps;
+    maps.heatmaps = {Heatmap{"observed", 32, 32, 0.0, 6.283185307179586, 0.0, 1.0, std::vector<double>(1024, 976.0)}, residual};
+    r.plots = {maps};
+    return r;
+}
+
+/// An unbinned row: Kuiper judges phi, Anderson-Darling cos theta.
+CheckResult unbinned_row() {
+    CheckResult r = p_row("cosine_hemisphere", "unbinned", -std::expm1(2.0 * std::log1p(-0.01)));
+    r.figures = {{"p_value", *r.p_value},          {"tests", 2},
+                 {"phi_kuiper_statistic", 0.0012}, {"phi_kuiper_p_value", 0.53},
+                 {"phi_ad_statistic", 0.97},       {"phi_ad_p_value", 0.37},
+                 {"cos_theta_ad_statistic", 6.65}, {"cos_theta_ad_p_value", 0.01}};
+    r.tables = {{"Unbinned tests per marginal", {"marginal", "test", "judged", "statistic", "p-value"},
+                 {{"phi", "kuiper", "yes", "0.0012", "0.53"}, {"phi", "ad", "no", "0.97", "0.37"},
+                  {"cos theta", "ad", "yes", "6.65", "0.01"}}}};
+    Plot curves;
+    curves.kind = Plot::Kind::Lines;
+    Series phi{"phi", {}, {}}, cos_theta{"cos theta", {}, {}};
+    for (int i = 1; i < 100; ++i) {
+        const double f = i / 100.0;
+        phi.x.push_back(f), cos_theta.x.push_back(f);
+        phi.y.push_back(i == 30 ? 1.5 : i == 70 ? -1.1 : 0.1 * std::sin(i));
+        cos_theta.y.push_back(i == 2 ? 0.4 : i == 50 ? 0.9 : 0.05);  // 0.4 at F = 0.02 weighs 8x more than 0.9 at 0.5
+    }
+    curves.series = {phi, cos_theta, {"KS critical", {0.0, 1.0}, {2.3, 2.3}}};
+    r.plots = {curves};
+    return r;
+}
+
+std::vector<std::string> quantities(const std::vector<html::JudgedLine>& lines) {
+    std::vector<std::string> out;
+    for (const auto& l : lines) out.push_back(l.quantity);
+    return out;
+}
+
+const html::JudgedLine* line_starting(const std::vector<html::JudgedLine>& lines, std::string_view start) {
+    for (const auto& l : lines)
+        if (l.quantity.starts_with(start)) return &l;
+    return nullptr;
+}
+// A pointer into a temporary vector would dangle (AddressSanitizer caught it).
+const html::JudgedLine* line_starting(std::vector<html::JudgedLine>&& lines, std::string_view start) = delete;
+
+// ---- order ------------------------------------------------------------------
+
+RunResult families_run() {
+    RunResult run;
+    run.info = sample_info();
+    run.results = {roundtrip_row("a[x=1]", 1e-7),                       // 0: 0.01 of tol
+                   p_row("a[x=1]", "chi2", 0.5),                        // 1: 6868x level
+                   roundtrip_row("a[x=2]", 9e-6),                       // 2: 0.9 of tol, a's weakest
+                   p_row("b[y=1]", "chi2", 0.5),                        // 3
+                   roundtrip_row("b[y=1]", 2e-5, Verdict::Fail),        // 4: b's failure
+                   row("c", "consistency", Verdict::Error),             // 5: an error
+                   row("a[x=3]", "roundtrip", Verdict::NotApplicable)};  // 6
+    return run;
+}
+
+TEST(HtmlReport, FamiliesWithFailuresComeFirstThenRowsByHowCloseToTheirLimit) {
+    const RunResult run = families_run();
+    const auto groups = html::family_groups(run);
+    ASSERT_EQ(groups.size(), 3u);
+    EXPECT_EQ(groups[0].family, "b");
+    EXPECT_THAT(groups[0].rows, ElementsAre(4, 3));
+    EXPECT_EQ(groups[1].family, "c");
+    EXPECT_EQ(groups[2].family, "a");
+    EXPECT_THAT(groups[2].rows, ElementsAre(2, 0, 1, 6));  // 0.9 of tol, 0.01 of tol, 6868x level, n/a
+    // The page lists them in that order, each family under its heading.
+    const std::string html = render_html(run);
+    std::vector<std::size_t> at;
+    for (int i : {4, 3, 5, 2, 0, 1, 6}) at.push_back(html.find(fmt::format("id=\"r-{}\"", i)));
+    EXPECT_TRUE(std::is_sorted(at.begin(), at.end())) << "rows out of order";
+    EXPECT_LT(html.find("data-f=\"b\""), html.find("data-f=\"a\""));
+    EXPECT_THAT(html, HasSubstr("<span class=\"fc\">1 case \u00b7 2 checks \u00b7 <span class=\"bad\">1 failed</span></span>"));
+}
+
+TEST(HtmlReport, MarginColumnReadsAsTheTerminalsWithAGauge) {
+    RunResult run = families_run();
+    run.results[3].p_value = 13 * kLevel;
+    const std::string html = render_html(run);
+    EXPECT_THAT(html, ContainsRegex("<i style=\"width:6[0-9]%\"></i></span>13x level</span>"));  // 1/13 of the way, on a log scale
+    EXPECT_THAT(html, ContainsRegex("gauge near\"><i style=\"width:98%\"></i></span>0.9 of tol"));
+    // The failed round trip failed on its tolerance: its margin shows, past the limit.
+    EXPECT_THAT(html, HasSubstr("gauge over\"><i style=\"width:100%\"></i></span>2 of tol"));
+}
+
+TEST(HtmlReport, OpenRowsAreTheFailuresAndTheRestArePacked) {
+    const RunResult run = families_run();
+    const std::string html = render_html(run);
+    EXPECT_THAT(xml_problem(html), IsEmpty());
+    EXPECT_THAT(html, ContainsRegex("id=\"r-4\"[^>]* open=\"open\">"));
+    EXPECT_THAT(html, ContainsRegex("id=\"r-5\"[^>]* open=\"open\">"));
+    for (int i : {0, 1, 2, 3, 6}) EXPECT_THAT(html, ContainsRegex(fmt::format("id=\"r-{}\"[^>]* data-p=\"[0-9]+\">", i)));
+    // One pack per check of the packed rows, each holding its rows' details.
+    const auto packs = report_packs(html);
+    ASSERT_EQ(packs.size(), 2u);  // roundtrip (0, 2, 6), chi2 (1, 3)
+    std::set<std::string> rows;
+    for (const auto& [id, bodies] : packs)
+        for (const auto& [index, body] : bodies.items()) {
+            rows.insert(index);
+            EXPECT_THAT(body.get<std::string>(), HasSubstr("class=\"facts\""));
+        }
+    EXPECT_THAT(rows, ElementsAre("0", "1", "2", "3", "6"));
+    const std::string opened = unpacked_html(html);
+    EXPECT_THAT(xml_problem(opened), IsEmpty());
+    EXPECT_THAT(opened, HasSubstr("<dt>resolution_limited</dt>"));
+}
+
+TEST(HtmlReport, ARunOfManyFailuresOpensOnlyTheFirstTwenty) {
+    RunResult run;
+    run.info = sample_info();
+    for (int i = 0; i < 50; ++i) run.results.push_back(sample_chi2_fail(8, 16));
+    const std::string html = render_html(run);
+    EXPECT_EQ(count_of(html, "open=\"open\""), 20u);
+    EXPECT_EQ(count_of(html, " data-p=\""), 30u);
+    EXPECT_THAT(html, HasSubstr("The first 20 are open below; the others open with a click."));
+    // Thirty packed failures of the same shape compress: together they take less room than two open ones.
+    const std::size_t packed = html.size() - html.find("<script type=\"application/x-warpcheck-pack\"");
+    const std::size_t first_open = html.find("id=\"r-1\"") - html.find("id=\"r-0\"");
+    EXPECT_LT(packed, 2 * first_open);
+    EXPECT_THAT(xml_problem(unpacked_html(html)), IsEmpty());
+}
+
+TEST(HtmlReport, TheSearchReadsTheMessageOfRowsThatAreNotOpen) {
+    RunResult run = families_run();
+    run.results[0].message = "bias reported: 12 floats never produced";
+    const std::string html = render_html(run);
+    EXPECT_THAT(html, ContainsRegex("id=\"r-0\"[^>]* data-s=\"bias reported: 12 floats never produced\""));
+    EXPECT_THAT(html, HasSubstr("id=\"q\""));
+    EXPECT_THAT(html, HasSubstr("id=\"f-check\""));
+    EXPECT_THAT(html, HasSubstr("<option value=\"b\">b</option>"));  // a family to filter by
+    EXPECT_THAT(html, HasSubstr("data-verdict=\"fail\" aria-pressed=\"false\">failed 1</button>"));
+}
+
+// ---- the Judged table ---------------------------------------------------------
+
+TEST(JudgedLines, Chi2SplitsItsPValueIntoPearsonAndTheLargestResidual) {
+    const auto lines = html::judged_lines(chi2_row(0.887, 0.144));
+    const auto* pearson = line_starting(lines, "Pearson X\u00b2 = 968.6 on 1023 dof");
+    const auto* local = line_starting(lines, "largest cell residual -3.73 (cell 713)");
+    const auto* combined = line_starting(lines, "p-value: min(Pearson / 0.8, residual / 0.2)");
+    ASSERT_TRUE(pearson && local && combined);
+    EXPECT_EQ(pearson->value, "0.887");
+    EXPECT_EQ(pearson->limit, "\u2265 5.82e-05 (0.8 \u00d7 level)");
+    EXPECT_EQ(local->limit, "\u2265 1.46e-05 (0.2 \u00d7 level)");
+    EXPECT_EQ(combined->value, "0.72");
+    EXPECT_EQ(combined->state, html::JudgedLine::State::Within);
+    const auto* integral = line_starting(lines, "integral of the density");
+    ASSERT_TRUE(integral);
+    EXPECT_EQ(integral->limit, "|x \u2212 1| \u2264 9.5e-07");
+}
+
+TEST(JudgedLines, ALargeResidualFailsItsShareWhilePearsonPasses) {
+    const auto lines = html::judged_lines(chi2_row(0.5, 1e-7));
+    EXPECT_EQ(line_starting(lines, "Pearson")->state, html::JudgedLine::State::Within);
+    EXPECT_EQ(line_starting(lines, "largest cell residual")->state, html::JudgedLine::State::Beyond);
+    EXPECT_EQ(line_starting(lines, "p-value: min")->state, html::JudgedLine::State::Beyond);
+}
+
+TEST(JudgedLines, APValueOfAnotherRuleIsShownWholeAndNaNIsNeverWithin) {
+    CheckResult r = chi2_row(0.887, 0.144);
+    r.p_value = 0.3;  // not min(P / 0.8, L / 0.2): this file does not know the rule, so it does not split it
+    const auto other_rule = html::judged_lines(r);
+    EXPECT_EQ(line_starting(other_rule, "Pearson"), nullptr);
+    r.p_value = std::numeric_limits<double>::quiet_NaN();
+    const auto lines = html::judged_lines(r);
+    const auto* combined = line_starting(lines, "p-value");
+    ASSERT_TRUE(combined);
+    EXPECT_EQ(combined->value, "NaN");
+    EXPECT_EQ(combined->state, html::JudgedLine::State::Beyond);
+}
+
+TEST(JudgedLines, UnbinnedJudgesEachMarginalAtItsSidakShareOfTheLevel) {
+    const auto lines = html::judged_lines(unbinned_row());
+    EXPECT_THAT(quantities(lines), ElementsAre("phi: Kuiper V = 0.0012, p-value", "cos theta: Anderson\u2013Darling A\u00b2 = 6.65, p-value",
+                                               "p-value: smallest judged p, \u0160id\u00e1k-corrected over the judged tests"));
+    EXPECT_EQ(lines[0].limit, "\u2265 3.64e-05 (level, \u0160id\u00e1k over 2)");
+    EXPECT_EQ(lines[1].value, "0.01");
+}
+
+TEST(JudgedLines, ToleranceRulesCountsAndExcusesOfARoundTrip) {
+    const auto lines = html::judged_lines(roundtrip_row("a", 2e-5, Verdict::Fail));
+    const auto* error = line_starting(lines, "largest |invert(sample(u)) \u2212 u|");
+    ASSERT_TRUE(error);
+    EXPECT_EQ(error->limit, "\u2264 1e-05");
+    EXPECT_EQ(error->state, html::JudgedLine::State::Beyond);
+    EXPECT_EQ(line_starting(lines, "inputs beyond the tolerance")->state, html::JudgedLine::State::Beyond);
+    const auto* excused = line_starting(lines, "resolution-limited");
+    ASSERT_TRUE(excused);
+    EXPECT_EQ(excused->limit, "counted");
+    EXPECT_EQ(excused->state, html::JudgedLine::State::Reported);
+}
+
+TEST(JudgedLines, ConsistencyBoundsTheZeroPdfsOfFloatRoundingByTheirPoissonBound) {
+    CheckResult r = row("triangle", "consistency", Verdict::Pass);
+    r.figures = {{"zero_pdf", 0}, {"zero_pdf_rounded_random", 12}, {"zero_pdf_rounded_edge_inputs", 3}, {"zero_pdf_rounded_bound", 44}};
+    const auto lines = html::judged_lines(r);
+    const auto* rounded = line_starting(lines, "random samples with pdf 0 beside a positive pdf");
+    ASSERT_TRUE(rounded);
+    EXPECT_EQ(rounded->limit, "\u2264 44");
+    EXPECT_EQ(rounded->state, html::JudgedLine::State::Within);
+    r.figures[1].value = 45;  // one past the bound: the check fails, and so does the line
+    const auto beyond = html::judged_lines(r);
+    EXPECT_EQ(line_starting(beyond, "random samples with pdf 0")->state, html::JudgedLine::State::Beyond);
+    EXPECT_EQ(line_starting(beyond, "edge inputs with pdf 0")->state, html::JudgedLine::State::Reported);
+}
+
+TEST(JudgedLines, BinadeSharesTheLevelOverTheTestsItMade) {
+    CheckResult r = p_row("unit_double", "binade", std::min(1.0, 3 * 1e-5));
+    r.figures = {{"mass_p_value", 0.4}, {"parity_p_value", 0.2}, {"resolution_p_value", 1e-5}};
+    auto lines = html::judged_lines(r);
+    const auto* digits = line_starting(lines, "binary digits");
+    ASSERT_TRUE(digits);
+    EXPECT_EQ(digits->limit, "\u2265 2.43e-05 (level / 3)");
+    EXPECT_EQ(digits->state, html::JudgedLine::State::Beyond);
+    r.figures[2].value = std::numeric_limits<double>::quiet_NaN();  // the digits not tested: two tests share the level
+    r.p_value = 0.4;
+    lines = html::judged_lines(r);
+    EXPECT_EQ(line_starting(lines, "binary digits"), nullptr);
+    EXPECT_EQ(line_starting(lines, "mass per binade")->limit, "\u2265 3.64e-05 (level / 2)");
+}
+
+TEST(JudgedLines, UnknownChecksGetTheGenericToleranceRules) {
+    CheckResult r = row("x", "someday", Verdict::Pass);
+    r.figures = {{"max_x_error_over_tolerance", 1.2}, {"integral", 1.01}, {"integral_tolerance", 0.001}, {"other", 5}};
+    const auto lines = html::judged_lines(r);
+    EXPECT_THAT(quantities(lines), ElementsAre("max_x_error_over_tolerance", "integral"));
+    EXPECT_EQ(lines[0].state, html::JudgedLine::State::Beyond);
+    EXPECT_EQ(lines[1].state, html::JudgedLine::State::Beyond);  // |1.01 - 1| > 0.001
+}
+
+TEST(HtmlReport, EveryRowHasItsJudgedTableAndTheLegendExplainsEachPValue) {
+    RunResult run;
+    run.info = sample_info();
+    run.results = {chi2_row(1e-9, 0.5), unbinned_row()};
+    const std::string html = unpacked_html(render_html(run));
+    EXPECT_EQ(count_of(html, "<table class=\"judged\">"), 2u);
+    EXPECT_THAT(html, ContainsRegex("<tr class=\"beyond\"><td>Pearson X\u00b2 = 968.6 on 1023 dof: p-value</td><td class=\"val\">1.00e-09</td>"));
+    EXPECT_THAT(html, HasSubstr("min(p_X\u00b2 / 0.8, p_cell / 0.2)"));
+    EXPECT_THAT(html, HasSubstr("The summary&#39;s p is Pearson&#39;s alone."));
+    EXPECT_THAT(html, HasSubstr("1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged tests"));
+    EXPECT_THAT(xml_problem(html), IsEmpty());
+}
+
+// ---- what the plots show ----------------------------------------------------------
+
+TEST(PlotAnnotations, UnbinnedRingsKuipersExcursionsAndTheLargestAndersonDarlingTerm) {
+    const CheckResult r = unbinned_row();
+    SvgOptions options;
+    html::annotate_plot(r, 0, options);
+    ASSERT_EQ(options.highlights.size(), 3u);
+    EXPECT_EQ(options.highlights[0].label, "phi: D\u207a");
+    EXPECT_DOUBLE_EQ(options.highlights[0].x, 0.30);
+    EXPECT_EQ(options.highlights[1].label, "phi: D\u207b");
+    EXPECT_DOUBLE_EQ(options.highlights[1].x, 0.70);
+    // The tail point, not the curve's highest: 0.4^2 / (0.02 * 0.98) > 0.9^2 / 0.25.
+    EXPECT_EQ(options.highlights[2].label, "cos theta: largest A\u00b2 term");
+    EXPECT_DOUBLE_EQ(options.highlights[2].x, 0.02);
+    const std::string svg = render_svg(r.plots[0], options);
+    EXPECT_THAT(svg, HasSubstr(">phi: D\u207a</text>"));
+    EXPECT_EQ(count_of(svg, "<circle "), 3u);
+    EXPECT_THAT(html::plot_note(r, 0), HasSubstr("KS is not judged"));
+}
+
+TEST(PlotAnnotations, Chi2MapRingsTheLargestResidualAndMarksWhereOneCellAloneFails) {
+    const CheckResult r = chi2_row(0.887, 0.144);
+    SvgOptions options;
+    html::annotate_plot(r, 0, options);
+    ASSERT_EQ(options.cells.size(), 1u);
+    EXPECT_EQ(options.cells[0].heatmap, 1u);
+    EXPECT_EQ(options.cells[0].row, 713 / 32);
+    EXPECT_EQ(options.cells[0].col, 713 % 32);
+    ASSERT_EQ(options.scale_marks.size(), 1u);
+    // Two-sided normal tail at 1 - (1 - 0.2 level)^(1/1024) = 1.42e-08.
+    EXPECT_NEAR(options.scale_marks[0].value, 5.6707, 1e-3);
+    const std::string svg = render_svg(r.plots[0], options);
+    EXPECT_THAT(svg, HasSubstr("|r| = 5.7: one cell alone fails"));
+    EXPECT_THAT(svg, HasSubstr(">largest |r|: -3.73</text>"));
+    EXPECT_EQ(count_of(svg, "v16\" stroke=\"#c62828\""), 2u);  // at -5.67 and +5.67: the scale widened from the check's +-4
+    EXPECT_THAT(xml_problem(svg), IsEmpty());
+}
+
+TEST(PlotAnnotations, RoundTripHistogramShowsItsToleranceEvenBeyondEveryError) {
+    CheckResult r = sample_roundtrip_pass();  // errors 1e-12 .. 1e-7 by decade
+    r.plots[0].log_x = false;
+    r.plots[0].series[0].x = {-12, -11, -10, -9, -8, -7};
+    r.figures = {{"tolerance", 1e-3}};
+    SvgOptions options;
+    html::annotate_plot(r, 0, options);
+    ASSERT_EQ(options.limits.size(), 1u);
+    EXPECT_NEAR(options.limits[0].value, -3.5, 1e-12);  // log10(1e-3) - 1/2: in the slot of decade -3
+    const std::string svg = render_svg(r.plots[0], options);
+    EXPECT_THAT(svg, HasSubstr(">tolerance 0.001</text>"));
+    // The axis widened to take the line in: it is drawn inside the frame.
+    const std::smatch line = [&] {
+        std::smatch m;
+        std::regex_search(svg, m, std::regex("<path d=\"M([0-9.]+) [0-9.]+V[0-9.]+\" stroke=\"#c62828\""));
+        return m;
+    }();
+    ASSERT_FALSE(line.empty());
+    EXPECT_LT(std::stod(line[1]), 560.0 - 16.0);
+}
+
+TEST(PlotAnnotations, ExhaustivePlotRingsTheMostBiasedFloatAndOutputsOutsideTheInterval) {
+    CheckResult r = sample_exhaustive_pass();
+    r.check_name = "exhaustive";
+    r.figures = {{"most_biased_float", 0.99999994}, {"most_biased_count", 383}, {"most_biased_ideal", 256}};
+    r.tables = {{"Outputs outside [a, b)", {"value", "inputs"}, {{"1 (0x1p+0)", "256"}}}};
+    SvgOptions options;
+    html::annotate_plot(r, 0, options);
+    ASSERT_EQ(options.highlights.size(), 2u);
+    EXPECT_EQ(options.highlights[0].x, -1.0);  // 0.99999994 is in [2^-1, 2^0)
+    EXPECT_EQ(options.highlights[0].y, 383.0);
+    EXPECT_EQ(options.highlights[1].x, 0.0);  // 1.0 is in [2^0, 2^1)
+    EXPECT_EQ(options.highlights[1].label, "outside [a, b): 1 \u00d7256");
+    EXPECT_THAT(render_svg(r.plots[0], options), HasSubstr(">most biased: 0.99999994 \u00d7383 (ideal 256)</text>"));
+}
+
+}  // namespace
+}  // namespace warpcheck

@@ -1,0 +1,34 @@
+// The GoogleTest adapter's private parts (warpcheck_gtest.h is what a test
+// includes): the settings a test runs with and the test names of a suite's
+// jobs. Private, so that the installed adapter header needs none of the
+// runner's headers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "validate/checks/check.h"
+#include "validate/run/job.h"
+
+namespace warpcheck::gtest {
+
+/// How the checks run inside a test.
+struct Settings {
+    RunOptions run;                                 ///< seed, samples, alpha, as in `validate`
+    std::string evidence_dir = "warpcheck-evidence";  ///< where failing cases' HTML goes
+};
+
+/// The defaults with the WARPCHECK_* variables applied; throws
+/// std::invalid_argument naming a variable whose value is not valid.
+Settings settings_from_environment();
+
+/// The test names of a suite's jobs, in order: "<case>__<check>", each name
+/// with its letters and digits kept and every other character '_' (trailing
+/// ones dropped): power[n=4] and chi2 give power_n_4__chi2. Cases whose names
+/// differ only in other characters (a[x=1.5] and a[x=1_5]) would share a test
+/// name: each of them then carries 8 hex digits of a hash of its full name,
+/// a_x_1_5_<8 hex digits>__chi2, so names stay unique, and a case without such
+/// a twin keeps its plain name.
+std::vector<std::string> job_test_names(const std::vector<Job>& jobs);
+
+}  // namespace warpcheck::gtest
