@@ -232,11 +232,6 @@ Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const Sample
     return run_chi2_test(binning, samples, histogram, pdf, options, parallel_for);
 }
 
-namespace {
-
-/// The cells integrated as zero where samples landed and the density is
-/// positive at some of them, integrated again around those samples
-/// (integrate_around); returns how many.
 std::size_t reintegrate_missed_support(const Binning& binning, const Histogram& hist, const BatchPdf& pdf,
                                        const QuadratureOptions& qo, CellIntegrals& q) {
     if (hist.zero_cell_points.empty()) return 0;
@@ -274,8 +269,6 @@ std::size_t reintegrate_missed_support(const Binning& binning, const Histogram& 
     }
     return redone;
 }
-
-}  // namespace
 
 Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const SampleHistogram& histogram,
                           const BatchPdf& pdf, const Chi2Options& options, const ParallelFor& parallel_for) {

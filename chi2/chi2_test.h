@@ -129,6 +129,15 @@ struct Chi2Outcome {
 /// Per-cell zero flags: 1 where the probability is not positive.
 std::vector<unsigned char> zero_cells_of(const CellIntegrals& integrals);
 
+/// The cells of `q` integrated as zero where samples of `hist` landed and
+/// `pdf` is positive at some of them (Histogram::zero_cell_points: a sliver
+/// of support between the cubature's nodes), integrated again around those
+/// samples (integrate_around) and updated in `q`, totals included; returns
+/// how many. The histogram was binned with those cells flagged as zero: bin
+/// again with zero_cells_of(q) when any was redone.
+std::size_t reintegrate_missed_support(const Binning& binning, const Histogram& hist, const BatchPdf& pdf,
+                                       const QuadratureOptions& options, CellIntegrals& q);
+
 /// Everything after sampling: expected counts, failures, pooling, statistic.
 Chi2Outcome evaluate_chi2(const Binning& binning, Histogram histogram, CellIntegrals integrals, uint64_t samples,
                           const Chi2Options& options);

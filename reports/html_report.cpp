@@ -2,7 +2,9 @@
 // network) that shows a run at a glance and the evidence of every check.
 //
 // The results are one list, grouped by family, each row a <details> whose
-// summary is the table row and whose body is the evidence. Failures and errors
+// summary is the table row and whose body is the evidence; a family whose
+// rows carry points across its cases (a BSDF's albedo against theta_o) shows
+// those plots above its rows. Failures and errors
 // (the first kMaxOpenRows of them) are open, their evidence inline, so the page
 // shows them whole without script and in print. Every other row's evidence is
 // packed with its check's (pack_details) and inflated by the script when the
@@ -20,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "reports/atomic_file.h"
+#include "reports/family_plots.h"
 #include "reports/html_report_parts.h"
 #include "reports/outputs.h"
 #include "reports/png.h"
@@ -305,6 +308,29 @@ std::string family_counts(const RunResult& run, const html::FamilyGroup& g) {
     return text;
 }
 
+/// The plots across the cases of a family (reports/family_plots.h), before
+/// its rows: the rows' points gathered, their limits drawn as the report
+/// draws every limit.
+void append_family_plots(std::string& html, const std::vector<FamilyPlot>& plots, const std::string& family) {
+    std::string figures, titles;
+    for (std::size_t i = 0; i < plots.size(); ++i) {
+        if (plots[i].family != family) continue;
+        SvgOptions options;
+        options.id_prefix = fmt::format("f{}", i);
+        options.width = 520.0;
+        for (const Figure& l : plots[i].limits)
+            options.limits.push_back({false, l.value, l.name + " " + format_number(l.value)});
+        figures += "<figure><figcaption>" + escaped(plots[i].plot.title) + "</figcaption>" +
+                   render_svg(plots[i].plot, options);
+        if (plots[i].plot.log_y) figures += "<p class=\"note\">A value of 0 has no place on the log axis: not drawn.</p>";
+        figures += "</figure>\n";
+        titles += (titles.empty() ? "" : "; ") + plots[i].plot.title;
+    }
+    if (figures.empty()) return;
+    html += "<details class=\"across\" open=\"open\"><summary>Across the family: " + escaped(titles) +
+            "</summary><div class=\"plots\">\n" + figures + "</div></details>\n";
+}
+
 void append_results(std::string& html, const RunResult& run) {
     html += "<section id=\"results\"><h2>Results</h2>\n";
     if (run.results.empty()) {
@@ -321,9 +347,11 @@ void append_results(std::string& html, const RunResult& run) {
             if (const Verdict v = run.results[i].verdict; (v == Verdict::Fail || v == Verdict::Error) && open.size() < kMaxOpenRows)
                 open.insert(i);
     const Packs packs = pack_details(run, groups, open);
+    const std::vector<FamilyPlot> across = family_plots(run.results);
     for (const auto& g : groups) {
         html += fmt::format("<section class=\"fam\" data-f=\"{0}\"><h3><span class=\"fn\">{0}</span><span class=\"fc\">{1}</span></h3>\n",
                             escaped(g.family), family_counts(run, g));
+        append_family_plots(html, across, g.family);
         for (std::size_t i : g.rows) append_row(html, run, i, packs);
         html += "</section>\n";
     }

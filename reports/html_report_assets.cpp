@@ -90,6 +90,7 @@ table.judged td { padding: 2px 14px 2px 0; border-top: 1px solid #eceef1; }
 table.judged td.val { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 table.judged tr.beyond td { color: var(--fail); font-weight: 600; } table.judged tr.reported td { color: var(--muted); }
 .plots { display: flex; flex-wrap: wrap; gap: 6px 26px; align-items: flex-start; }
+details.across { margin: 4px 8px 8px; } details.across > summary { font-size: 12.5px; color: var(--muted); cursor: pointer; }
 figure { margin: 6px 0; max-width: 100%; }
 figcaption { font-weight: 600; margin-bottom: 2px; font-size: 13px; }
 figure .note { max-width: 560px; margin: 2px 0 0; }

@@ -109,6 +109,29 @@ const std::vector<std::pair<std::string_view, std::vector<Spec>>> kSpecs = {
          {{"outside", "samples that are not a category", Rule::Zero},
           {"zero_pmf_chosen", "categories of pmf 0 chosen", Rule::Zero}}},
         {"remapped_u", {{"outside", "remapped u outside [0, 1)", Rule::Zero}}},
+        {"bsdf_chi2",
+         {{"outside", "continuous samples off the sphere", Rule::Zero},
+          {"nan", "continuous samples with NaN coordinates", Rule::Zero},
+          {"zero_expected_hits", "continuous samples in cells where pdf(wo, .) integrates to 0", Rule::Zero},
+          {"reintegrated_cells", "cells integrated again around samples", Rule::Counted}}},
+        {"bsdf_weight",
+         {{"max_relative_difference", "largest relative weight difference, not excused", Rule::AtMost, "tolerance"},
+          {"max_unit_error", "largest ||wi| − 1|", Rule::AtMost, "unit_tolerance"},
+          {"weight_mismatches", "samples whose weight differs beyond the tolerance", Rule::Zero},
+          {"not_unit", "samples whose wi is not a unit vector", Rule::Zero},
+          {"wrong_side", "samples on the wrong side for their flags", Rule::Zero},
+          {"zero_pdf", "continuous samples where pdf(wo, wi) is 0", Rule::Zero},
+          {"zero_f", "continuous samples where f(wo, wi) is 0", Rule::Zero},
+          {"bad_delta", "delta samples with a weight not finite and positive", Rule::Zero},
+          {"excused", "samples at the float resolution of f and pdf (excused)", Rule::Counted}}},
+        {"bsdf_delta",
+         {{"off_direction", "delta samples off their mirror or Snell direction", Rule::Zero},
+          {"wrong_eta", "delta samples whose eta is not the case's", Rule::Zero}}},
+        {"bsdf_reciprocity",
+         {{"max_relative_error", "largest relative error |f(wo, wi) s − f(wi, wo)|, not excused", Rule::AtMost,
+           "tolerance"},
+          {"violations", "pairs beyond the tolerance", Rule::Zero},
+          {"excused_pairs", "pairs at f's float resolution (excused)", Rule::Counted}}},
 };
 
 const std::vector<Spec>& specs_of(std::string_view check) {
@@ -157,6 +180,43 @@ void chi2_p_lines(const CheckResult& r, double level, std::vector<JudgedLine>& o
                          *local, kLocalShare * level, fmt::format(" ({} \u00d7 level)", kLocalShare)));
 }
 
+/// bsdf_chi2's three tests, each at its share of the level: Pearson's 0.7,
+/// the largest residual's 0.2, the landing share's 0.1 (weighted Bonferroni).
+void bsdf_chi2_p_lines(const CheckResult& r, double level, std::vector<JudgedLine>& out) {
+    const auto pearson = r.figure("pearson_p_value"), local = r.figure("local_p_value"),
+               landing = r.figure("landing_p_value");
+    if (!pearson || !local || !landing || !r.p_value) return;
+    const double combined = std::min({1.0, *pearson / 0.7, *local / kLocalShare, *landing / 0.1});
+    if (!same(combined, *r.p_value)) return;
+    out.push_back(p_line(fmt::format("Pearson X\u00b2 = {:.4g} on {} dof: p-value", r.figure("statistic").value_or(NAN),
+                                     general(r.figure("dof").value_or(NAN))),
+                         *pearson, 0.7 * level, " (0.7 \u00d7 level)"));
+    out.push_back(p_line(fmt::format("largest cell residual {:+.2f}: p-value over the cells",
+                                     r.figure("local_max_residual").value_or(NAN)),
+                         *local, kLocalShare * level, fmt::format(" ({} \u00d7 level)", kLocalShare)));
+    out.push_back(p_line(fmt::format("share of draws that landed ({} of {}): binomial p-value",
+                                     general(r.figure("continuous_samples").value_or(NAN)),
+                                     general(r.figure("samples").value_or(NAN) - r.figure("delta_samples").value_or(0.0))),
+                         *landing, 0.1 * level, " (0.1 \u00d7 level)"));
+}
+
+/// The rules of the BSDF checks that compare two figures: pdf(wo, .)'s
+/// integral against what the continuous lobes hold, the energy albedo against 1.
+void bsdf_bound_lines(const CheckResult& r, std::vector<JudgedLine>& out) {
+    const auto integral = r.figure("pdf_integral"), tolerance = r.figure("integral_tolerance"),
+               delta = r.figure("delta_claimed");
+    if (r.check_name == "bsdf_chi2" && integral && tolerance && delta) {
+        const double room = 1.0 - *delta + *tolerance;
+        out.push_back({"pdf(wo, .) integrated over the sphere", fmt::format("{:.9g}", *integral),
+                       fmt::format("\u2264 1 \u2212 {} (delta lobes) + {}", general(*delta), general(*tolerance)),
+                       *integral <= room ? State::Within : State::Beyond});
+    }
+    const auto energy = r.figure("energy_albedo"), bound = r.figure("energy_tolerance");
+    if (r.check_name == "bsdf_albedo" && energy && bound)
+        out.push_back({"energy albedo", fmt::format("{:.9g}", *energy), "\u2264 1 + " + general(*bound),
+                       *energy <= 1.0 + *bound ? State::Within : State::Beyond});
+}
+
 /// "cos theta" -> "cos_theta", as the unbinned check names its figures.
 std::string figure_label(const std::string& label) {
     std::string s;
@@ -196,9 +256,14 @@ void shared_p_lines(const CheckResult& r, double level, std::vector<JudgedLine>&
         out.push_back(p_line(quantity, *r.figure(figure), share * level, fmt::format(" (level / {})", tests.size())));
 }
 
+/// The checks whose p-value is the unbinned check's (bsdf_unbinned runs its engine).
+bool unbinned_like(std::string_view check) { return check == "unbinned" || check == "bsdf_unbinned"; }
+
 std::string combined_name(std::string_view check) {
     if (check == "chi2") return "p-value: min(Pearson / 0.8, residual / 0.2), at most 1";
-    if (check == "unbinned") return "p-value: smallest judged p, \u0160id\u00e1k-corrected over the judged tests";
+    if (check == "bsdf_chi2") return "p-value: min(Pearson / 0.7, residual / 0.2, landing / 0.1), at most 1";
+    if (unbinned_like(check)) return "p-value: smallest judged p, \u0160id\u00e1k-corrected over the judged tests";
+    if (check == "bsdf_delta") return "p-value: the smallest lobe's, \u0160id\u00e1k-corrected over the lobes tested";
     if (check == "binade" || check == "remapped_u") return "p-value: the smallest test's, times the number of tests, at most 1";
     return "p-value";
 }
@@ -211,7 +276,8 @@ void p_value_lines(const CheckResult& r, std::vector<JudgedLine>& out) {
     }
     const double level = *r.level;
     if (r.check_name == "chi2") chi2_p_lines(r, level, out);
-    if (r.check_name == "unbinned") unbinned_p_lines(r, level, out);
+    if (r.check_name == "bsdf_chi2") bsdf_chi2_p_lines(r, level, out);
+    if (unbinned_like(r.check_name)) unbinned_p_lines(r, level, out);
     if (r.check_name == "binade")
         shared_p_lines(r, level, out, {{"mass_p_value", "mass per binade: Pearson p-value"},
                                        {"parity_p_value", "significand parity: Pearson p-value"},
@@ -278,6 +344,27 @@ const std::vector<std::pair<std::string_view, CheckLegend>> kLegends = {
     {"sample_pdf", {"The pdf that sample returns against pdf(x), within float rounding.", ""}},
     {"weight", {"The weight that sample returns against eval(x) / pdf(x), within float rounding.", ""}},
     {"pmf", {"The pmf is finite, non-negative and sums to 1 within float rounding.", ""}},
+    {"bsdf_chi2",
+     {"The continuous lobes' wi over cells of the sphere against pdf(wo, .) (Pearson's X\u00b2 and the largest "
+      "residual, with the chi2 check's float-aware cells and bands), and the share of draws that landed against "
+      "pdf(wo, .)'s integral; also fails on samples where the pdf integrates to 0 and an integral above what the "
+      "continuous lobes hold.",
+      "min(p_X\u00b2 / 0.7, p_cell / 0.2, p_landing / 0.1), weighted Bonferroni."}},
+    {"bsdf_unbinned",
+     {"The continuous lobes' phi_i and cos theta_i against their CDFs from pdf(wo, .): the unbinned check's "
+      "Anderson\u2013Darling on both and Kuiper on the azimuth, each sample within its float band where that matters.",
+      "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged tests."}},
+    {"bsdf_weight", {"Every sample's weight f |cos| / pdf against f() and pdf() at its wi (2^-12 relative; samples at "
+                     "f's and pdf's float resolution excused and counted); wi a unit vector on its flags' side; no "
+                     "sample where pdf or f is 0.", ""}},
+    {"bsdf_delta", {"Each delta lobe's share of draws against the probability its samples claim (exact binomial), and "
+                    "its direction (mirror, Snell) and eta within float rounding.",
+                    "The smallest lobe's p-value, \u0160id\u00e1k-corrected over the lobes tested."}},
+    {"bsdf_albedo", {"The mean weight against the directional albedo (the integral of f |cos| plus the delta lobes), "
+                     "and the energy albedo against 1 (energy created fails).",
+                     "The t-test's two-sided p-value."}},
+    {"bsdf_reciprocity", {"f(wo, wi) against f(wi, wo) (the eta\u00b2 rule across an interface) at every sampled wi "
+                          "and a Fibonacci grid, within 2^-12 relative or f's float resolution.", ""}},
 };
 
 }  // namespace
@@ -299,6 +386,7 @@ std::vector<std::pair<std::string, std::string>> judged_unbinned_tests(const Che
 std::vector<JudgedLine> judged_lines(const CheckResult& r) {
     std::vector<JudgedLine> out;
     p_value_lines(r, out);
+    bsdf_bound_lines(r, out);
     std::set<std::string> used;
     for (const Spec& s : specs_of(r.check_name)) {
         if (auto line = spec_line(r, s)) {

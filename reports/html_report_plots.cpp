@@ -1,8 +1,9 @@
 // What the report draws into a check's plots, so that each shows the quantity
 // judged and its limit: the round trip's tolerance, the points that decide the
-// unbinned statistics, the floats an exhaustive sweep found wrong, the cell
-// with the largest chi-square residual and the residual at which one cell
-// alone would fail. Read from the result's figures, tables and series.
+// unbinned statistics (bsdf_unbinned's too), the floats an exhaustive sweep
+// found wrong, the cell with the largest chi-square residual and the residual
+// at which one cell alone would fail (bsdf_chi2's map of the sphere too).
+// Read from the result's figures, tables and series.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -158,9 +159,10 @@ void annotate_plot(const CheckResult& r, std::size_t index, SvgOptions& options)
     if (index >= r.plots.size()) return;
     const Plot& plot = r.plots[index];
     if (r.check_name == "roundtrip") annotate_roundtrip(r, plot, options);
-    if (r.check_name == "unbinned") annotate_unbinned(r, plot, options);
+    if (r.check_name == "unbinned" || r.check_name == "bsdf_unbinned") annotate_unbinned(r, plot, options);
     if (r.check_name == "exhaustive") annotate_exhaustive(r, plot, options);
-    if (r.check_name == "chi2" && plot.kind == Plot::Kind::Heatmaps) annotate_chi2_heatmaps(r, plot, options);
+    if ((r.check_name == "chi2" || r.check_name == "bsdf_chi2") && plot.kind == Plot::Kind::Heatmaps)
+        annotate_chi2_heatmaps(r, plot, options);
     if (r.check_name == "chi2" && plot.kind == Plot::Kind::Points) annotate_chi2_residuals(r, plot, options);
 }
 
@@ -171,7 +173,7 @@ std::string plot_note(const CheckResult& r, std::size_t index) {
         return "Each bar counts the inputs whose error lies in one decade [10^e, 10^(e+1)), drawn at e; the dashed line "
                "stands at the tolerance's place in its decade. Right of it: inputs that missed the tolerance, failures "
                "unless excused (counted in the Judged table).";
-    if (r.check_name == "unbinned" && plot.kind == Plot::Kind::Lines)
+    if ((r.check_name == "unbinned" || r.check_name == "bsdf_unbinned") && plot.kind == Plot::Kind::Lines)
         return "Judged per marginal: Anderson\u2013Darling's A\u00b2 (the integral of the squared curve over "
                "F(1 \u2212 F); its largest term is ringed), and on an azimuth Kuiper's V = D\u207a + D\u207b too (the "
                "ringed highest and lowest points). The \u00b1KS lines are for scale: KS is not judged.";
@@ -180,6 +182,14 @@ std::string plot_note(const CheckResult& r, std::size_t index) {
         return fmt::format("Residual r = (observed \u2212 expected) / \u221aexpected per cell: noise stays within about \u00b14. "
                            "The check fails when Pearson's p < 0.8 \u00d7 level or the ringed largest residual's p < 0.2 \u00d7 "
                            "level{}.",
+                           z ? fmt::format(": one cell alone fails beyond |r| \u2248 {:.1f} (red marks)", *z) : "");
+    }
+    if (r.check_name == "bsdf_chi2" && plot.kind == Plot::Kind::Heatmaps) {
+        const auto z = single_cell_limit(r);
+        return fmt::format("The sphere of wi in (phi_i, cos theta_i), where cell area is solid angle: cos theta_i > 0 "
+                           "on wo's side. Residual r = (observed \u2212 expected) / \u221aexpected per cell: noise stays "
+                           "within about \u00b14. The check fails when Pearson's p < 0.7 \u00d7 level, the ringed "
+                           "largest residual's p < 0.2 \u00d7 level or the landing share's p < 0.1 \u00d7 level{}.",
                            z ? fmt::format(": one cell alone fails beyond |r| \u2248 {:.1f} (red marks)", *z) : "");
     }
     if (r.check_name == "exhaustive" && plot.kind == Plot::Kind::Lines)

@@ -78,6 +78,10 @@ struct Series {
     std::string label;
     std::vector<double> x;
     std::vector<double> y;
+    /// An interval around each y (a confidence interval), drawn as an error
+    /// bar from y_low to y_high: both as long as y, or both empty for none.
+    std::vector<double> y_low{};
+    std::vector<double> y_high{};
 };
 
 template <class V, Model<Series> T>
@@ -85,6 +89,8 @@ void fields(V& v, T& s) {
     v("label", s.label);
     v("x", s.x);
     v("y", s.y);
+    v("y_low", s.y_low);
+    v("y_high", s.y_high);
 }
 
 /// A 2D grid of values over [x_min, x_max] x [y_min, y_max]; values are row-major
@@ -176,6 +182,55 @@ void fields(V& v, T& t) {
     v("rows", t.rows);
 }
 
+/// One value a case gives a plot across its family, e.g. the mean weight at
+/// its theta_o; with an interval (a confidence interval) when low <= high.
+struct FamilyValue {
+    std::string label;  ///< e.g. "mean weight (99% interval)": one curve per label and group
+    double y = 0.0;
+    double low = 0.0, high = -1.0;
+};
+
+template <class V, Model<FamilyValue> T>
+void fields(V& v, T& f) {
+    v("label", f.label);
+    v("y", f.y);
+    v("low", f.low);
+    v("high", f.high);
+}
+
+/// One case's point on a plot across the cases of its family (a BSDF's
+/// albedo against theta_o over its grid of outgoing directions). The report
+/// gathers the points of every row with the same family and plot title into
+/// one plot, a curve per value label and group (reports/family_plots.h). The
+/// points live in the rows that make them, so a selection, a shard or a merge
+/// of shards (which concatenates rows) plots exactly the cases it holds.
+struct FamilyPoint {
+    std::string family;  ///< the case's family, e.g. "rough_conductor"
+    std::string title;   ///< the plot's, e.g. "albedo against theta_o"
+    std::string x_label, y_label;
+    bool log_y = false;
+    /// The case's parameters other than x, e.g. "alpha=0.05": its curves'
+    /// name within the family (empty when x is its only parameter).
+    std::string group;
+    double x = 0.0;
+    std::vector<FamilyValue> values;
+    /// Horizontal lines the values are judged against, e.g. {"energy bound", 1}.
+    std::vector<Figure> limits{};
+};
+
+template <class V, Model<FamilyPoint> T>
+void fields(V& v, T& p) {
+    v("family", p.family);
+    v("title", p.title);
+    v("x_label", p.x_label);
+    v("y_label", p.y_label);
+    v("log_y", p.log_y);
+    v("group", p.group);
+    v("x", p.x);
+    v("values", p.values);
+    v.named_numbers("limits", p.limits);
+}
+
 /// Time spent in one part of a check's compute, e.g. "integration" or "sampling+binning".
 struct PhaseTime {
     std::string phase;
@@ -205,6 +260,8 @@ struct CheckResult {
 
     std::vector<Plot> plots;
     std::vector<Table> tables;
+    /// This case's points on plots across its family (FamilyPoint).
+    std::vector<FamilyPoint> family_points{};
 
     uint64_t stream_seed = 0;      ///< PCG32 seed of this (case, check) stream
     uint64_t stream_sequence = 0;  ///< PCG32 sequence index of this stream
@@ -246,6 +303,7 @@ void fields(V& v, T& r) {
     v("rerun_command", r.rerun_command);
     v("plots", r.plots);
     v("tables", r.tables);
+    v("family_points", r.family_points);
     v("digest", r.digest);
 }
 

@@ -494,6 +494,20 @@ void widen_for_annotations(XyData& data, const Plot& plot, const SvgOptions& opt
         if (shows(h.x, plot.log_x) && shows(h.y, plot.log_y)) data.x.add(h.x), data.y.add(h.y);
 }
 
+/// The error bars of a series that the axes can show: (x, low, high) with
+/// low <= high, low raised to the axis' end where a log axis cannot show it.
+std::vector<std::array<double, 3>> error_bars_of(const Series& s, bool log_x, bool log_y) {
+    std::vector<std::array<double, 3>> bars;
+    const std::size_t n = std::min({s.x.size(), s.y.size(), s.y_low.size(), s.y_high.size()});
+    for (std::size_t i = 0; i < n; ++i) {
+        const double x = s.x[i], lo = s.y_low[i], hi = s.y_high[i];
+        if (!std::isfinite(x) || (log_x && x <= 0.0) || !std::isfinite(lo) || !std::isfinite(hi) || !(lo <= hi)) continue;
+        if (log_y && !(hi > 0.0)) continue;
+        bars.push_back({x, log_y && lo <= 0.0 ? std::numeric_limits<double>::quiet_NaN() : lo, hi});
+    }
+    return bars;
+}
+
 XyData xy_data(const Plot& plot, const SvgOptions& options) {
     XyData data;
     for (const Series& s : plot.series) {
@@ -501,6 +515,10 @@ XyData xy_data(const Plot& plot, const SvgOptions& options) {
         for (const Point& p : data.series.back()) {
             if (!std::isnan(p.x)) data.x.add(p.x);
             if (valid(p)) data.y.add(p.y);
+        }
+        for (const auto& [x, lo, hi] : error_bars_of(s, plot.log_x, plot.log_y)) {
+            if (!std::isnan(lo)) data.y.add(lo);
+            data.y.add(hi);
         }
     }
     // Annotations first: the half bar of padding then also keeps a limit past every bar inside the frame.
@@ -644,6 +662,19 @@ void append_step_outline(std::string& svg, const std::vector<Point>& points, con
     svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\"/>", d, color);
 }
 
+/// Series `i`'s error bars: a vertical stroke from low to high with caps, in
+/// the series' colour (a low a log axis cannot show runs to the axis' end, capless).
+void append_error_bars(std::string& svg, const Plot& plot, std::size_t i, const Axis& ax, const Axis& ay) {
+    std::string d;
+    for (const auto& [x, lo, hi] : error_bars_of(plot.series[i], plot.log_x, plot.log_y)) {
+        const double at = ax.map(x), top = ay.map(hi), bottom = std::isnan(lo) ? ay.from : ay.map(lo);
+        d += fmt::format("M{0} {1}V{2}M{3} {2}h6", px(at), px(bottom), px(top), px(at - 3));
+        if (!std::isnan(lo)) d += fmt::format("M{} {}h6", px(at - 3), px(bottom));
+    }
+    if (!d.empty())
+        svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.4\"/>", d, series_color(i));
+}
+
 void append_xy_series(std::string& svg, const Plot& plot, const XyData& data, const Axis& ax, const Axis& ay) {
     const BarLayout bars = bar_layout(plot, data, ax, ay);
     for (std::size_t i = 0; i < data.series.size(); ++i) {
@@ -656,6 +687,7 @@ void append_xy_series(std::string& svg, const Plot& plot, const XyData& data, co
             append_filled_bars(svg, points, i, bars, ax, ay);
         else
             append_step_outline(svg, points, series_color(i), bars.pixel_spacing, ax, ay);
+        append_error_bars(svg, plot, i, ax, ay);
     }
 }
 

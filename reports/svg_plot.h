@@ -1,6 +1,7 @@
 // Plots of the result model (reports/result.h) as inline SVG, for the HTML
-// report: line, bar and point plots with axes, ticks, legends and log scales;
-// heatmaps side by side with shared colour scales and a legend.
+// report: line, bar and point plots with axes, ticks, legends, log scales and
+// error bars (Series::y_low, y_high); heatmaps side by side with shared colour
+// scales and a legend.
 #pragma once
 
 #include <cstddef>

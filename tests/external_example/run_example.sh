@@ -77,7 +77,7 @@ expect_fail templated_cone_too_wide chi2
 # A renderer's BSDF over three outgoing directions passes every BSDF check (in
 # --all); its wrong twin fails the check meant for it.
 for theta in 0 60 85; do
-  for check in bsdf_chi2 bsdf_weight bsdf_albedo bsdf_reciprocity; do expect_row pass "$check" "renderer_diffuse[theta_o=$theta]"; done
+  for check in bsdf_chi2 bsdf_unbinned bsdf_weight bsdf_albedo bsdf_reciprocity; do expect_row pass "$check" "renderer_diffuse[theta_o=$theta]"; done
 done
 expect_fail "renderer_diffuse_not_reciprocal[theta_o=60]" bsdf_reciprocity "not reciprocal"
 

@@ -6,8 +6,9 @@
 # ctest names are clean; WARPCHECK_* settings reach both integrations and an
 # invalid one fails every test; with a wrong warp added, the gtest binary fails
 # at the user's line with the lines validate prints, the same figures and
-# level, and the evidence file it names (a failing ctest test too); names that
-# would collide are made unique; a registration that throws fails.
+# level, and the evidence file it names (a failing ctest test too); a BSDF and
+# its wrong twin likewise (EXPECT_BSDF_PASSES); names that would collide are
+# made unique; a registration that throws fails.
 # Usage: run_gtest_example.sh BUILD_DIR EXAMPLE_SOURCE_DIR
 set -euo pipefail
 build_dir=$1
@@ -39,7 +40,11 @@ chi2_jobs=$(grep -c "^chi2	" "$work/jobs.txt")
 # the n/a round trips of the warp without an inverse are skipped, saying why.
 (cd "$b" && ctest -j2 -LE wrong --output-on-failure > "$work/ctest.log") || { cat "$work/ctest.log"; fail "ctest failed"; }
 gtests=$("$b/power_warps_test" --gtest_list_tests | grep -c '^  ')
-[ "$gtests" -eq $((jobs + 1)) ] || fail "power_warps_test has $gtests tests, not one per job plus one"
+[ "$gtests" -eq $((jobs + 2)) ] || fail "power_warps_test has $gtests tests, not one per job plus two"
+# The BSDF cases are in the suite with the BSDF checks, and only those.
+"$b/power_warps_test" --gtest_list_tests > "$work/gtests.txt"
+grep -q '^  Passes/diffuse_theta_o_60__bsdf_unbinned$' "$work/gtests.txt" || fail "no BSDF check of a BSDF case in the suite"
+! grep -q '^  Passes/diffuse_theta_o_60__chi2$' "$work/gtests.txt" || fail "a warp's check on a BSDF case"
 "$b/power_warps_test" --gtest_filter='*power_no_inverse_n_3__roundtrip' > "$work/skip.txt" 2>&1 ||
   { cat "$work/skip.txt"; fail "an n/a test failed"; }
 grep -q '^\[  SKIPPED \] warpcheck/PowerWarps.Passes/power_no_inverse_n_3__roundtrip' "$work/skip.txt" &&
@@ -140,10 +145,47 @@ done
 lobe_line=$(grep -n 'WrongPowerWarp{}' "$example_dir/power_warps_test.cpp" | cut -d: -f1)
 grep -q "power_warps_test.cpp:$lobe_line: Failure" "$work/wrong_lobe.txt" || fail "EXPECT_WARP_PASSES's failure is not at its line"
 
+# A wrong BSDF (wi uniform while pdf() says cos / pi, each weight agreeing with
+# f() and pdf()): the suite's tests of where its samples go fail, and none of
+# the checks of its weights; the evidence holds the maps of the sphere.
+status=0
+WARPCHECK_EVIDENCE_DIR="$work/evidence" "$b/power_warps_test_wrong" --gtest_filter='*diffuse_uniform_sampled*' \
+  > "$work/wrong_bsdf.txt" 2>&1 || status=$?
+[ "$status" -ne 0 ] || fail "the wrong BSDF passed its gtest tests"
+for check in bsdf_chi2 bsdf_unbinned; do
+  grep -q "warpcheck: $check failed on diffuse_uniform_sampled\[theta_o=60\]" "$work/wrong_bsdf.txt" ||
+    { cat "$work/wrong_bsdf.txt"; fail "$check did not fail the wrong BSDF"; }
+done
+for check in bsdf_weight bsdf_albedo bsdf_reciprocity; do
+  ! grep -q "warpcheck: $check failed on diffuse_uniform_sampled" "$work/wrong_bsdf.txt" ||
+    fail "$check failed the wrong BSDF, whose weights agree with f() and pdf()"
+done
+chi2_evidence="$work/evidence/diffuse_uniform_sampled_theta_o_60__bsdf_chi2.html"
+grep -q "evidence: $chi2_evidence" "$work/wrong_bsdf.txt" && grep -q 'residual (obs - exp) / sqrt(exp)' "$chi2_evidence" ||
+  fail "no map of the sphere in the wrong BSDF's bsdf_chi2 evidence"
+# EXPECT_BSDF_PASSES on it: every BSDF check in one run, at the user's line,
+# and the evidence of them all, the plots across its family included.
+WARPCHECK_EVIDENCE_DIR="$work/evidence" "$b/power_warps_test_wrong" --gtest_filter='DiffuseBsdf.UniformlySampled' \
+  > "$work/wrong_bsdf_assert.txt" 2>&1 && fail "EXPECT_BSDF_PASSES passed the wrong BSDF"
+echo "--- the failure text of the wrong BSDF (power_warps_test_wrong --gtest_filter='DiffuseBsdf.UniformlySampled'):"
+sed -n '/failed checks:/,/evidence:/p' "$work/wrong_bsdf_assert.txt"
+echo "---"
+for line in "warpcheck: wrong (diffuse_uniform_grazing\[theta_o=85\]) failed checks:" "FAIL bsdf_chi2 diffuse_uniform_grazing\[theta_o=85\]: " \
+            "FAIL bsdf_unbinned diffuse_uniform_grazing\[theta_o=85\]: " \
+            "evidence: $work/evidence/diffuse_uniform_grazing_theta_o_85.html"; do
+  grep -q -- "$line" "$work/wrong_bsdf_assert.txt" || { cat "$work/wrong_bsdf_assert.txt"; fail "EXPECT_BSDF_PASSES's text lacks: $line"; }
+done
+bsdf_line=$(grep -n 'EXPECT_BSDF_PASSES(wrong)' "$example_dir/power_warps_test.cpp" | cut -d: -f1)
+grep -q "power_warps_test.cpp:$bsdf_line: Failure" "$work/wrong_bsdf_assert.txt" ||
+  fail "EXPECT_BSDF_PASSES's failure is not at its line"
+grep -q "Across the family: albedo against theta_o" "$work/evidence/diffuse_uniform_grazing_theta_o_85.html" ||
+  fail "no albedo against theta_o in EXPECT_BSDF_PASSES's evidence"
+
 # The same figures and level as the validate program of the same warps and seed,
 # whose rerun line names that program.
 status=0
-"$b/validate_power_warps_wrong" --all --samples "$WARPCHECK_SAMPLES" --color never > "$work/validate_wrong.txt" 2>&1 || status=$?
+# (--wide: whole figures, as the gtest text prints them; the BSDF names widen the case column.)
+"$b/validate_power_warps_wrong" --all --samples "$WARPCHECK_SAMPLES" --color never --wide > "$work/validate_wrong.txt" 2>&1 || status=$?
 [ "$status" -eq 1 ] || fail "validate_power_warps_wrong exited $status, not 1"
 row() { grep -E "^FAIL +chi2 +power_wrong" "$1" | tr -s ' '; }
 level() { grep -E "^Statistical tests:" "$1" | head -1; }

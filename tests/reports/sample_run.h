@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "reports/result.h"
 
@@ -196,6 +197,40 @@ inline RunInfo sample_info() {
     info.machine = "x86_64 Linux, 2 threads";
     info.started_at = "2024-05-01T12:00:00Z";
     return info;
+}
+
+/// A BSDF's albedo row at one outgoing direction of its grid, with its points
+/// on the family's plots across the grid (the mean weight with its interval,
+/// the albedo and its bound; their difference), as bsdf_albedo writes them.
+inline CheckResult sample_bsdf_albedo(double alpha, double theta_o, double albedo, double mean, double standard_error) {
+    CheckResult r;
+    const std::string group = alpha == 0.05 ? "alpha=0.05" : "alpha=0.3";
+    r.case_name = "rough_conductor[" + group + ",theta_o=" + std::to_string(static_cast<int>(theta_o)) + "]";
+    r.check_name = "bsdf_albedo";
+    r.verdict = Verdict::Pass;
+    r.summary = "mean weight vs albedo";
+    r.p_value = 0.4;
+    r.level = 7.28e-05;
+    r.figures = {{"mean_weight", mean}, {"albedo", albedo}, {"standard_error", standard_error},
+                 {"energy_albedo", albedo}, {"energy_tolerance", 1e-6}};
+    const double half = 2.576 * standard_error;
+    FamilyPoint a{"rough_conductor", "albedo against theta_o", "theta_o (degrees)", "albedo", false, group, theta_o,
+                  {{"mean weight (99% interval)", mean, mean - half, mean + half}, {"albedo", albedo}}};
+    a.limits = {{"energy bound", 1.0}};
+    FamilyPoint d{"rough_conductor", "mean weight minus albedo against theta_o", "theta_o (degrees)",
+                  "mean weight - albedo", false, group, theta_o,
+                  {{"mean weight - albedo (99% interval)", mean - albedo, mean - albedo - half, mean - albedo + half}}};
+    d.limits = {{"agreement", 0.0}};
+    r.family_points = {a, d};
+    return r;
+}
+
+/// A rough conductor's albedo rows over its grid: two roughnesses, three
+/// outgoing directions, listed out of order.
+inline std::vector<CheckResult> sample_bsdf_family() {
+    return {sample_bsdf_albedo(0.3, 60, 0.756, 0.7567, 3.1e-4), sample_bsdf_albedo(0.3, 0, 0.81, 0.8099, 2.4e-4),
+            sample_bsdf_albedo(0.3, 85, 0.831, 0.8314, 5.2e-4), sample_bsdf_albedo(0.05, 85, 0.858, 0.8584, 3.8e-4),
+            sample_bsdf_albedo(0.05, 0, 0.921, 0.9209, 1.1e-4), sample_bsdf_albedo(0.05, 60, 0.912, 0.912, 1.9e-4)};
 }
 
 /// One passing and one failing result.

@@ -31,6 +31,8 @@ TEST(ResultModel, DescriptionsCoverEveryMember) {
     expect_every_member_described<Heatmap>("Heatmap");
     expect_every_member_described<Plot>("Plot");
     expect_every_member_described<Table>("Table");
+    expect_every_member_described<FamilyValue>("FamilyValue");
+    expect_every_member_described<FamilyPoint>("FamilyPoint");
     expect_every_member_described<PhaseTime>("PhaseTime");
     expect_every_member_described<CheckResult>("CheckResult");
     expect_every_member_described<RunInfo>("RunInfo");

@@ -13,6 +13,7 @@
 #include "sampling/bsdf_plastic.h"
 #include "validate/api/bsdf_case.h"
 #include "validate/api/registry.h"
+#include "validate/cases/bsdf_flawed.h"
 
 namespace warpcheck {
 namespace {
@@ -174,6 +175,17 @@ std::unique_ptr<WarpCase> visible_normals_wrong_side() {
             .with_pdf([c](Vector3f wo, Vector3f wi) { return c.pdf(wo, wi); }));
 }
 
+/// A sharp conductor seen at 85 degrees whose visible normals are sampled
+/// with alpha 1% too large (a roughness remapped twice, or the sampler fed
+/// the unclamped value), each sample reporting f() and pdf() at its wi: the
+/// weights agree and the lobe lands almost where it should.
+std::unique_ptr<WarpCase> roughness_one_percent_off() {
+    return sampled_by(flawed_info("rough_conductor_alpha_1pct_wide", {{"alpha", 0.05}, {"theta_o", 85}},
+                                  "rough conductor sampling its visible normals with alpha 0.0505 instead of 0.05"),
+                      bsdf_direction(85), RoughConductor(TrowbridgeReitz(0.05f), kGoldEta, kGoldK),
+                      RoughConductor(TrowbridgeReitz(0.0505f), kGoldEta, kGoldK));
+}
+
 }  // namespace
 
 std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
@@ -182,16 +194,21 @@ std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
         {weight_without_cosine, "bsdf_weight", "the sampled weight misses |cos theta_i|", {"bsdf_albedo"}},
         // The weights are right for the direction it claims, so the albedo holds.
         {eta_swapped, "bsdf_delta", "refracts with 1 / eta in place of eta"},
-        // Weights f |cos| / pdf with the wrong pdf: the mean weight is off too.
+        // Weights f |cos| / pdf with the wrong pdf: the mean weight is off too,
+        // and the samples' marginals are not pdf()'s.
         {mixture_wrong_lobe_pdf, "bsdf_chi2", "pdf() gives each lobe of the mixture the other's probability",
-         {"bsdf_albedo"}},
+         {"bsdf_albedo", "bsdf_unbinned"}},
         // Each lobe's weight is scaled by its claimed over its true probability.
         {lobe_probability_swapped, "bsdf_delta", "chooses reflection with probability F, claims 1 - F",
          {"bsdf_albedo"}},
         {not_reciprocal, "bsdf_reciprocity", "f(wo, wi) != f(wi, wo)"},
         {energy_gain_at_grazing, "bsdf_albedo", "albedo 1.02 at grazing: creates energy"},
-        // Weights against the right pdf of the wrong distribution: the mean is off.
-        {visible_normals_wrong_side, "bsdf_chi2", "visible normals sampled from the wrong side of wo", {"bsdf_albedo"}},
+        // Weights against the right pdf of the wrong distribution: the mean is
+        // off, and so are the marginals.
+        {visible_normals_wrong_side, "bsdf_chi2", "visible normals sampled from the wrong side of wo",
+         {"bsdf_albedo", "bsdf_unbinned"}},
+        // Every sample a little off: bsdf_chi2's cells average it away (p 0.09).
+        {roughness_one_percent_off, "bsdf_unbinned", "visible normals sampled with alpha 1% too large"},
     };
 }
 

@@ -59,6 +59,7 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(make_discrete_chi2_check());
     registry.add_check(make_remapped_u_check());
     registry.add_check(bsdf::make_bsdf_chi2_check());
+    registry.add_check(bsdf::make_bsdf_unbinned_check());
     registry.add_check(bsdf::make_bsdf_weight_check());
     registry.add_check(bsdf::make_bsdf_delta_check());
     registry.add_check(bsdf::make_bsdf_albedo_check());

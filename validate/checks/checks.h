@@ -1,7 +1,10 @@
 // Factories of the checks that ship with warpcheck; register_builtin_checks adds them all.
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "chi2/chi2_test.h"
 #include "validate/checks/check.h"
@@ -33,6 +36,18 @@ chi2::SampleChunk chi2_sample_chunks(const WarpCase& warp, const CheckContext& c
 std::unique_ptr<Check> make_tabulated_check();
 /// "unbinned": KS, Kuiper and Anderson-Darling tests of every marginal against its CDF from the pdf.
 std::unique_ptr<Check> make_unbinned_check();
+/// What the unbinned tests take: the outputs of a chunk of inputs, in input
+/// order (a warp's samples, or only some of them: a BSDF's continuous ones),
+/// and the integral of the case's pdf over its domain that the tabulated
+/// marginals must reproduce, with its error bound (1 for a warp's density).
+struct UnbinnedSource {
+    std::function<void(std::span<const WarpInput> in, std::vector<WarpOutput>& out)> draw;
+    double total = 1.0;
+    double total_error = 0.0;
+};
+/// The unbinned check's run on the outputs the source draws, tested against
+/// the marginal CDFs of warp.pdf normalised by their integral.
+CheckResult run_unbinned(const WarpCase& warp, const CheckContext& ctx, const UnbinnedSource& source);
 /// "sample_pdf": the pdf that sample returns (PdfSample) equals pdf(x) at every sample.
 std::unique_ptr<Check> make_sample_pdf_check();
 /// "weight": the weight that sample returns (WeightedSample) equals eval(x) / pdf(x) at every sample.

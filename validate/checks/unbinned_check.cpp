@@ -282,11 +282,14 @@ std::vector<Marginal> declared_marginals(const WarpCase& warp, const CheckContex
 }
 
 /// The CDF's error: the tabulation's own bound, plus how far the strips'
-/// total misses 1. A correct density integrates to 1 to float precision (the
-/// chi2 check judges that); a larger shortfall means the cubature missed part
-/// of a peak that lies between its nodes across the whole strip, and then the
-/// CDF is wrong by at least that much.
-double cdf_error_of(const chi2::MarginalCdf& cdf) { return cdf.error_bound() + std::abs(cdf.total - 1.0); }
+/// total misses the density's integral (1 for a warp's density, which
+/// integrates to 1 to float precision: the chi2 check judges that; else the
+/// source's, within its bound). A larger shortfall means the cubature missed
+/// part of a peak that lies between its nodes across the whole strip, and
+/// then the CDF is wrong by at least that much.
+double cdf_error_of(const chi2::MarginalCdf& cdf, const UnbinnedSource& source) {
+    return cdf.error_bound() + std::abs(cdf.total - source.total) + source.total_error;
+}
 
 /// The largest |F1 - F2| of two tabulated CDFs: both are linear between their
 /// edges, so the largest difference is at an edge of one of them.
@@ -307,8 +310,8 @@ double largest_difference(const chi2::MarginalCdf& a, const chi2::MarginalCdf& b
 /// allowance is a quarter), |err2| <= |err1| / 2 and |err1| <= d + |err2| give
 /// |err2| <= d: a stated error that is itself wrong is replaced by a measured
 /// one. Costs one finer tabulation, only for such marginals.
-void check_cdf_error(Marginal& m, uint64_t samples) {
-    m.cdf_error = cdf_error_of(m.cdf);
+void check_cdf_error(Marginal& m, uint64_t samples, const UnbinnedSource& source) {
+    m.cdf_error = cdf_error_of(m.cdf, source);
     if (m.cdf_error <= kCdfErrorScale / std::sqrt(static_cast<double>(samples))) return;
     if (!(std::isfinite(m.cdf.total) && m.cdf.total > 0.0)) return;  // no CDF to check: judged an error
     chi2::MarginalCdf finer = m.tabulate(kCheckTable);
@@ -316,7 +319,7 @@ void check_cdf_error(Marginal& m, uint64_t samples) {
     finer.evaluations += m.cdf.evaluations;
     m.table_difference = d;
     m.cdf = std::move(finer);
-    m.cdf_error = std::max(cdf_error_of(m.cdf), d);
+    m.cdf_error = std::max(cdf_error_of(m.cdf, source), d);
     if (std::isnan(d)) m.cdf_error = d;
 }
 
@@ -401,12 +404,13 @@ ChunkTransforms transform(const Marginal& m, std::span<const WarpOutput> out) {
 }
 
 /// Samples every chunk and gathers each marginal's transforms and bands in chunk order.
-void gather(Computed& c, const WarpCase& warp, const CheckContext& ctx, std::vector<std::vector<float>>& band) {
+void gather(Computed& c, const WarpCase& warp, const CheckContext& ctx, const UnbinnedSource& source,
+            std::vector<std::vector<float>>& band) {
     const std::size_t k = c.marginals.size();
     const auto parts = map_input_chunks<std::vector<ChunkTransforms>>(
         ctx, warp.input_kind(), ctx.options().samples, false, [&](std::size_t, std::span<const WarpInput> in) {
-            std::vector<WarpOutput> out(in.size());
-            warp.sample(in, out);
+            std::vector<WarpOutput> out;
+            source.draw(in, out);
             std::vector<ChunkTransforms> t;
             for (std::size_t m = 0; m < k; ++m) t.push_back(transform(c.marginals[m], out));
             return t;
@@ -469,7 +473,7 @@ chi2::UnbinnedStatistics banded(const Computed& c, std::size_t m, const std::vec
 
 /// The compute part: marginal CDFs, then the samples' transforms, sorted, and
 /// each marginal's statistics, ordinary or banded.
-Computed compute(const WarpCase& warp, const CheckContext& ctx) {
+Computed compute(const WarpCase& warp, const CheckContext& ctx, const UnbinnedSource& source) {
     using Clock = std::chrono::steady_clock;
     const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
     const uint64_t samples = ctx.options().samples;
@@ -478,13 +482,13 @@ Computed compute(const WarpCase& warp, const CheckContext& ctx) {
     c.marginals = natural_marginals(warp, ctx);
     for (Marginal& m : declared_marginals(warp, ctx, c.marginals)) c.marginals.push_back(std::move(m));
     for (Marginal& m : c.marginals) {
-        check_cdf_error(m, samples);
+        check_cdf_error(m, samples, source);
         band_model(m, samples);
     }
     const auto tabulated = Clock::now();
     const std::size_t k = c.marginals.size();
     std::vector<std::vector<float>> band;
-    gather(c, warp, ctx, band);
+    gather(c, warp, ctx, source, band);
     const auto sampled = Clock::now();
     c.stats.assign(k, {});
     for (std::size_t m = 0; m < k; ++m) c.mode.push_back(mode_of(c, m, samples));
@@ -627,14 +631,17 @@ double marginal_power(const Computed& c, std::size_t m, double level, uint64_t s
 /// detected on whichever marginal it lies).
 void add_figures(CheckResult& r, const Computed& c, const RunOptions& options, int tests) {
     r.samples = options.samples;
+    // The outputs the source drew (a warp's: every sample; a BSDF's: its
+    // continuous samples), each marginal's tested or left out.
+    const uint64_t drawn = c.sorted_u.empty() ? options.samples : c.sorted_u[0].size() + c.nan[0];
     const double level = power_level(options, tests);
     double worst = 0.0;
     for (chi2::UnbinnedTest t : chi2::kUnbinnedTests)
         r.figures.push_back({fmt::format("power_{}_tilt_eps", chi2::short_name(t)),
-                             chi2::unbinned_tilt_for_power(t, level, options.samples)});
+                             chi2::unbinned_tilt_for_power(t, level, drawn)});
     for (std::size_t m = 0; m < c.marginals.size(); ++m)
         if (c.mode[m] == Mode::Exact || c.mode[m] == Mode::Banded) {
-            const double eps = marginal_power(c, m, level, options.samples);
+            const double eps = marginal_power(c, m, level, drawn);
             worst = std::isnan(eps) || std::isnan(worst) ? std::nan("") : std::max(worst, eps);
         }
     r.figures.push_back({"power_tilt_eps", worst > 0.0 ? worst : std::nan("")});
@@ -717,19 +724,27 @@ public:
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
-        const Computed c = compute(warp, ctx);
-        CheckResult r;
-        r.phases = c.phases;
-        const int tests = std::max(1, judge(r, c, ctx.options().samples));
-        add_figures(r, c, ctx.options(), tests);
-        const double eps = r.figure("power_tilt_eps").value_or(std::nan(""));
-        if (r.verdict == Verdict::Pass && std::isfinite(eps)) r.summary += fmt::format("; 90% power: tilt {:.2g}", eps);
-        add_evidence(r, c, warp.name(), power_level(ctx.options(), tests));
-        return r;
+        const auto samples = [&warp](std::span<const WarpInput> in, std::vector<WarpOutput>& out) {
+            out.resize(in.size());
+            warp.sample(in, out);
+        };
+        return run_unbinned(warp, ctx, {samples});
     }
 };
 
 }  // namespace
+
+CheckResult run_unbinned(const WarpCase& warp, const CheckContext& ctx, const UnbinnedSource& source) {
+    const Computed c = compute(warp, ctx, source);
+    CheckResult r;
+    r.phases = c.phases;
+    const int tests = std::max(1, judge(r, c, ctx.options().samples));
+    add_figures(r, c, ctx.options(), tests);
+    const double eps = r.figure("power_tilt_eps").value_or(std::nan(""));
+    if (r.verdict == Verdict::Pass && std::isfinite(eps)) r.summary += fmt::format("; 90% power: tilt {:.2g}", eps);
+    add_evidence(r, c, warp.name(), power_level(ctx.options(), tests));
+    return r;
+}
 
 std::unique_ptr<Check> make_unbinned_check() { return std::make_unique<UnbinnedCheck>(); }
 

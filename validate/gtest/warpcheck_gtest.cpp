@@ -224,7 +224,8 @@ Settings settings_from_environment() {
                                              << declaration_error("warp case " + warp.name(), problems).what();
     std::vector<Job> jobs;
     for (const auto& check : builtin_checks().checks())
-        if (check->runs_by_default(settings.run) && check->applies_to(warp)) jobs.push_back({&warp, check.get()});
+        if (check->runs_by_default(settings.run) && check_is_for(*check, warp) && check->applicability(warp).applies())
+            jobs.push_back({&warp, check.get()});
     const ::testing::AssertionResult verdict =
         judge(run_part(jobs, statistical_tests(jobs), settings), settings, identifier(warp.name()) + ".html");
     if (verdict) return verdict;
@@ -235,6 +236,19 @@ Settings settings_from_environment() {
 ::testing::AssertionResult WarpCasePasses(const char* expression, const std::unique_ptr<WarpCase>& warp) {
     if (!warp) return ::testing::AssertionFailure() << "warpcheck: " << expression << " is a null warp case";
     return WarpCasePasses(expression, *warp);
+}
+
+::testing::AssertionResult BsdfCasePasses(const char* expression, const WarpCase& bsdf) {
+    if (bsdf.sample_returns() != SampleReturns::Bsdf)
+        return ::testing::AssertionFailure() << "warpcheck: " << expression << " (" << bsdf.name()
+                                             << ") is not a BSDF case (make_bsdf_case, make_phase_case): "
+                                                "EXPECT_WARP_PASSES checks a warp";
+    return WarpCasePasses(expression, bsdf);
+}
+
+::testing::AssertionResult BsdfCasePasses(const char* expression, const std::unique_ptr<WarpCase>& bsdf) {
+    if (!bsdf) return ::testing::AssertionFailure() << "warpcheck: " << expression << " is a null BSDF case";
+    return BsdfCasePasses(expression, *bsdf);
 }
 
 std::vector<std::string> job_test_names(const std::vector<Job>& jobs) {

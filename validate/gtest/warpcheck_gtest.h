@@ -6,11 +6,16 @@
 //         EXPECT_WARP_PASSES(warpcheck::make_warp_case(info, MyCone(0.3f)));
 //     }
 //
+// and for a BSDF at one outgoing direction, with every BSDF check:
+//
+//     EXPECT_BSDF_PASSES(warpcheck::make_bsdf_case(info, {.wo = warpcheck::bsdf_direction(60)}, MyDiffuse{0.7f}));
+//
 // and one test per (case, check) of everything a registration function adds:
 //
 //     WARPCHECK_TEST_SUITE(MyWarps, warpcheck_register);
 //
-// which gives tests named warpcheck/MyWarps.Passes/<case>__<check>, e.g.
+// which gives tests named warpcheck/MyWarps.Passes/<case>__<check> (BSDF cases
+// with the BSDF checks, e.g. my_diffuse_theta_o_60__bsdf_chi2), e.g.
 // warpcheck/MyWarps.Passes/linear_a_1_b_3__chi2, for --gtest_filter and, through
 // gtest_discover_tests, as ctest names (no "# GetParam() = ..." after them).
 // A failure is reported at the line of the WARPCHECK_TEST_SUITE (or of the
@@ -44,11 +49,18 @@
 
 namespace warpcheck::gtest {
 
-/// Success when every default check that applies to `warp` passes, judged as
-/// one run (the Šidák family: those checks). Otherwise the failure lines and
-/// the path of the evidence. For EXPECT_PRED_FORMAT1; see EXPECT_WARP_PASSES.
+/// Success when every default check that applies to `warp` passes (the BSDF
+/// checks for a BSDF case), judged as one run (the Šidák family: those
+/// checks). Otherwise the failure lines and the path of the evidence. For EXPECT_PRED_FORMAT1; see EXPECT_WARP_PASSES.
 ::testing::AssertionResult WarpCasePasses(const char* expression, const WarpCase& warp);
 ::testing::AssertionResult WarpCasePasses(const char* expression, const std::unique_ptr<WarpCase>& warp);
+
+/// The same for a BSDF or phase function case (make_bsdf_case, make_phase_case):
+/// every BSDF check that applies to it passes (bsdf_chi2, bsdf_unbinned,
+/// bsdf_weight, ...); a case that is not a BSDF's is a failure that says so.
+/// For EXPECT_PRED_FORMAT1; see EXPECT_BSDF_PASSES.
+::testing::AssertionResult BsdfCasePasses(const char* expression, const WarpCase& bsdf);
+::testing::AssertionResult BsdfCasePasses(const char* expression, const std::unique_ptr<WarpCase>& bsdf);
 
 /// Registers one GoogleTest test per (case, check) job of `register_cases`
 /// (called with a registry that has the built-in checks), in suite
@@ -70,6 +82,14 @@ class SuiteRegistrar : public ::testing::TestWithParam<int> {};
 /// make_warp_case returns (a warp object plus its case info).
 #define EXPECT_WARP_PASSES(warp_case) EXPECT_PRED_FORMAT1(::warpcheck::gtest::WarpCasePasses, warp_case)
 #define ASSERT_WARP_PASSES(warp_case) ASSERT_PRED_FORMAT1(::warpcheck::gtest::WarpCasePasses, warp_case)
+
+/// EXPECT_BSDF_PASSES(bsdf_case): every BSDF check that applies to the case
+/// passes (one case is one outgoing direction: bsdf_direction(theta_o)). The
+/// argument is a BsdfCase or the std::unique_ptr that make_bsdf_case and
+/// make_phase_case return. EXPECT_WARP_PASSES takes a BSDF case as well; this
+/// one also fails when the case is not a BSDF's.
+#define EXPECT_BSDF_PASSES(bsdf_case) EXPECT_PRED_FORMAT1(::warpcheck::gtest::BsdfCasePasses, bsdf_case)
+#define ASSERT_BSDF_PASSES(bsdf_case) ASSERT_PRED_FORMAT1(::warpcheck::gtest::BsdfCasePasses, bsdf_case)
 
 /// One gtest test per (case, check) of the cases `register_cases` adds, e.g.
 ///   WARPCHECK_TEST_SUITE(MyWarps, warpcheck_register);

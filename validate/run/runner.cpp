@@ -31,6 +31,10 @@ StreamId job_stream(const WarpCase& warp, const Check& check, uint64_t seed) {
     return stream_for(warp.name() + "/" + check.name(), seed);
 }
 
+bool check_is_for(const Check& check, const WarpCase& warp) {
+    return (warp.sample_returns() == SampleReturns::Bsdf) == check.about_bsdfs();
+}
+
 std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::string>& case_patterns,
                              const std::vector<std::string>& check_names, const RunOptions& options) {
     std::vector<Job> jobs;
@@ -50,7 +54,7 @@ std::vector<Job> select_jobs(const Registry& registry, const std::vector<std::st
                                                     : std::find(check_names.begin(), check_names.end(),
                                                                 check->name()) != check_names.end();
             if (!wanted || (!registry.known_flaw(*warp, check->name()).empty() && !run_flawed)) continue;
-            if ((warp->sample_returns() == SampleReturns::Bsdf) != check->about_bsdfs()) continue;
+            if (!check_is_for(*check, *warp)) continue;
             const Applicability applicability = check->applicability(*warp);
             if (applicability.applies()) jobs.push_back({warp.get(), check.get()});
             else if (!applicability.not_applicable_because().empty())

@@ -22,6 +22,11 @@ namespace warpcheck {
 /// The stream of one (case, check) job: a function of the names and the seed only.
 StreamId job_stream(const WarpCase& warp, const Check& check, uint64_t seed);
 
+/// Whether `check` is for cases of `warp`'s kind: the BSDF checks
+/// (Check::about_bsdfs) take BSDF cases only, and the others every other case.
+/// select_jobs and the GoogleTest assertions pair cases and checks by it.
+bool check_is_for(const Check& check, const WarpCase& warp);
+
 /// The jobs of a selection, in registry order (case by case, then check by check).
 /// Empty `case_patterns` selects every case; empty `check_names` every check that
 /// runs by default. Cases marked as known flaws (and checks of a case marked as

@@ -69,6 +69,9 @@ std::unique_ptr<WarpCase> tilted_case(const WarpCase& base, int coordinate, doub
     WarpCaseInfo info = base.info();
     info.family += "_tilted";
     info.params.push_back({coordinate == 0 ? "eps_u0" : "eps_u1", eps});
+    // The base's lane form draws and warps untilted inputs itself: the tilted
+    // case is sampled through its own sample(), which tilts u first.
+    info.lanes = nullptr;
     return std::make_unique<TiltedCase>(base, std::move(info), coordinate, eps);
 }
 

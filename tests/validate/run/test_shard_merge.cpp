@@ -208,6 +208,39 @@ TEST(ShardMerge, NotApplicableRowsAndPhasesMergeIntoExactlyTheUnshardedRun) {
     for (std::size_t i = 0; i < a["results"].size(); ++i) EXPECT_EQ(a["results"][i], b["results"][i]) << "row " << i;
 }
 
+/// The report's plots across the cases of each family (<details class="across">).
+std::string across_sections(const std::string& report_path) {
+    std::ifstream in(report_path);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string html = text.str();
+    std::string sections;
+    for (std::size_t at = html.find("<details class=\"across\""); at != std::string::npos;
+         at = html.find("<details class=\"across\"", at + 1))
+        sections += html.substr(at, html.find("</details>", at) - at);
+    return sections;
+}
+
+// A BSDF family's plots across its grid (the albedo against theta_o) come
+// from every row of the family: the merged shards, each with a part of the
+// rows, plot exactly what the whole run plots.
+TEST(ShardMerge, BsdfFamilyPlotsOfMergedShardsAreTheWholeRuns) {
+    ShardRuns runs;
+    const std::string selection = "--filter 'rough_conductor[' --check bsdf_albedo --check bsdf_reciprocity "
+                                  "--samples 20000 --color never --progress none";
+    const auto whole = run_validate(selection + " --report " + runs / "whole.html");
+    ASSERT_EQ(whole.status, 0) << whole.output;
+    for (int i = 1; i <= 3; ++i)
+        ASSERT_EQ(run_validate(selection + " --shard " + std::to_string(i) + "/3 --json " + runs / fmt_shard(i)).status, 0);
+    const auto merged = run_validate("--color never --merge" + runs.shard_files(3) + " --report " + runs / "merged.html");
+    ASSERT_EQ(merged.status, 0) << merged.output;
+    const std::string plots = across_sections(runs / "whole.html");
+    EXPECT_NE(plots.find("albedo against theta_o"), std::string::npos);
+    EXPECT_NE(plots.find("reciprocity error against theta_o"), std::string::npos);
+    EXPECT_EQ(across_sections(runs / "merged.html"), plots);
+    EXPECT_NE(across_sections(runs / "merged.html").find("alpha=0.05"), std::string::npos);
+}
+
 // A shard of another selection with as many jobs (and statistical tests) as
 // the one it replaces: only the digest of the whole job list tells them apart.
 TEST(ShardMerge, AShardOfAnotherSelectionWithTheSameJobCountIsRefused) {

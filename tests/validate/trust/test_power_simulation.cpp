@@ -95,5 +95,16 @@ TEST(StatedPower, EveryStatisticalResultStatesItsPower) {
     EXPECT_EQ(statistical, 7);  // chi2 and unbinned of each, binade of the float interval
 }
 
+// A warp with a lane form (cosine_hemisphere) is tilted too: its lanes would
+// draw and warp the untilted inputs, and chi2 would never see the tilt.
+TEST(PowerSimulation, AWarpWithALaneFormIsSampledThroughItsTilt) {
+    const auto& warp = testing::builtin_case("cosine_hemisphere");
+    ASSERT_NE(warp.info().lanes, nullptr);
+    EXPECT_EQ(tilted_case(warp, 0, 0.1)->info().lanes, nullptr);
+    const auto chi2 = make_chi2_check();
+    const PowerSimulation s = simulate_stated_power(warp, *chi2, 0, "power_tilt_eps", reduced_options(), 5, 4.0);
+    EXPECT_EQ(s.detected, 5) << "a tilt of 4 times the stated 90%-power tilt";
+}
+
 }  // namespace
 }  // namespace warpcheck

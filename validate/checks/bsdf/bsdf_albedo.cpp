@@ -17,11 +17,15 @@
 //    chi2::kIntegralTolerance): more is energy created by the surface (FAIL).
 //    One-sided: an albedo below 1 is a surface that absorbs.
 // Evidence: the albedo and energy albedo against theta_o at this case's
-// azimuth (a cheaper quadrature per angle, kSweepAccuracySamples).
+// azimuth (a cheaper quadrature per angle, kSweepAccuracySamples), and the
+// case's points on its family's plots across its grid (the mean weight with
+// its 99% interval, the albedo, the energy albedo and its bound 1; the mean
+// weight minus the albedo with that interval).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -165,6 +169,26 @@ void judge(CheckResult& r, const Outcome& o) {
     }
 }
 
+/// The case's points on its family's plots across its grid: the mean weight
+/// with its 99% interval (2.576 standard errors of the t-test, the reference's
+/// uncertainty included; the verdict's level is the run's, far smaller), the
+/// albedo it estimates, the energy albedo where it differs (transmission in
+/// radiance transport) and its bound 1; and their difference, whose interval
+/// is too narrow to see beside an albedo near 1, against 0.
+std::vector<FamilyPoint> albedo_points(const BsdfCase& bsdf, const Outcome& o) {
+    const double half = 2.576 * o.test.standard_error;
+    FamilyPoint albedo = family_point(bsdf, "albedo against theta_o", "albedo");
+    albedo.values = {{"mean weight (99% interval)", o.test.mean, o.test.mean - half, o.test.mean + half},
+                     {"albedo", o.albedo}};
+    if (o.energy != o.albedo) albedo.values.push_back({"energy albedo", o.energy});
+    albedo.limits = {{"energy bound", 1.0}};
+    FamilyPoint difference = family_point(bsdf, "mean weight minus albedo against theta_o", "mean weight - albedo");
+    const double d = o.test.mean - o.albedo;
+    difference.values = {{"mean weight - albedo (99% interval)", d, d - half, d + half}};
+    difference.limits = {{"agreement", 0.0}};
+    return {std::move(albedo), std::move(difference)};
+}
+
 class BsdfAlbedoCheck final : public BsdfCheck {
 public:
     std::string name() const override { return "bsdf_albedo"; }
@@ -200,6 +224,7 @@ protected:
                      {"power_relative_weight_error", detectable / o.albedo},
                      {"power_level", level}};
         judge(r, o);
+        r.family_points = albedo_points(bsdf, o);
         if (!bsdf.phase_function()) {
             double sweep_error = 0.0;
             r.plots.push_back(albedo_sweep(bsdf, o.integral.albedo, o.test.mean, sweep_error));

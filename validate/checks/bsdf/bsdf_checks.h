@@ -11,6 +11,9 @@ namespace warpcheck::bsdf {
 /// "bsdf_chi2": the continuous lobes' wi over the sphere against pdf(wo, .)
 /// (chi-square), and the pdf's integral against the share of draws that landed.
 std::unique_ptr<Check> make_bsdf_chi2_check();
+/// "bsdf_unbinned": the continuous lobes' phi_i and cos theta_i against their
+/// CDFs from pdf(wo, .) (Kuiper, Anderson-Darling; float-aware, as "unbinned").
+std::unique_ptr<Check> make_bsdf_unbinned_check();
 /// "bsdf_weight": every sample's weight f |cos theta_i| / pdf against f() and
 /// pdf() at its wi; wi a unit vector on the side its flags say; no sample
 /// where pdf or f is 0.

@@ -29,7 +29,10 @@
 // bound, the float noise and chi2::kEdgeFloatSteps float steps at each edge)
 // that Pearson's statistic and the largest residual allow for, so a sharp lobe
 // (alpha 0.05) and the horizon, where the float wi crowd onto few floats, are
-// judged at what a float sampler can do.
+// judged at what a float sampler can do. A cell integrated as zero where
+// continuous samples landed is integrated again around them, as the chi2
+// check does (integrate_and_draw); a sample where the pdf is still 0 is a
+// failure, and a failure is reported before any error.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -88,6 +91,35 @@ Draws draw(const BsdfCase& bsdf, const CheckContext& ctx, const chi2::Binning& b
         return d;
     });
     return merge_in_order(parts);
+}
+
+/// The expected side and the observed side, as the chi2 check counts them.
+struct Counted {
+    chi2::CellIntegrals integrals;
+    Draws draws;
+    std::size_t reintegrated_cells = 0;
+};
+
+/// pdf(wo, .) integrated over the cells and the draws binned; then, as the
+/// chi2 check does (chi2::run_chi2_test), the cells integrated as zero where
+/// continuous samples landed and the pdf is positive at them (a lobe thinner
+/// than the cubature's nodes can see) integrated again around those samples,
+/// and the same draws binned again if any was. What is still zero there after
+/// that is a sample where the pdf is 0: a failure (evaluate_chi2).
+Counted integrate_and_draw(const BsdfCase& bsdf, const CheckContext& ctx, const chi2::Binning& binning,
+                           const chi2::Chi2Options& options) {
+    chi2::QuadratureOptions q;
+    q.sample_count = ctx.options().samples;
+    q.accuracy_fraction = options.accuracy_fraction;
+    q.max_regions_per_cell = options.max_regions_per_cell;
+    q.verify = true;
+    q.float_noise = true;
+    Counted c;
+    c.integrals = chi2::integrate_cells(binning, pdf_integrand(bsdf), q, ctx.executor());
+    c.draws = draw(bsdf, ctx, binning, chi2::zero_cells_of(c.integrals));
+    c.reintegrated_cells = chi2::reintegrate_missed_support(binning, c.draws.hist, pdf_integrand(bsdf), q, c.integrals);
+    if (c.reintegrated_cells > 0) c.draws = draw(bsdf, ctx, binning, chi2::zero_cells_of(c.integrals));
+    return c;
 }
 
 /// The cells' integrals over T: the density of a continuous sample given that
@@ -157,6 +189,7 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
                  {"pearson_p_value", o.p_value()},
                  {"local_p_value", local.p_value},
                  {"local_max_residual", local.residual},
+                 {"local_cell", static_cast<double>(local.cell)},
                  {"landing_p_value", n.p_value},
                  {"pdf_integral", n.integral},
                  {"integral_tolerance", n.tolerance},
@@ -168,6 +201,7 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
                  {"outside", static_cast<double>(o.histogram.outside)},
                  {"nan", static_cast<double>(o.histogram.nan)},
                  {"zero_expected_hits", static_cast<double>(o.zero_expected_hits)},
+                 {"reintegrated_cells", static_cast<double>(o.reintegrated_cells)},
                  {"cells", static_cast<double>(o.expected.size())},
                  {"cells_used", static_cast<double>(o.pearson.terms)},
                  {"noncentrality", o.pearson.noncentrality},
@@ -188,6 +222,7 @@ void judge(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual
         r.p_value = n.p_value;
     r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}; landed {} of {} (pdf integral {:.5g})", o.statistic(),
                             o.dof(), o.p_value(), n.landed, n.trials, n.integral);
+    if (o.reintegrated_cells > 0) r.summary += fmt::format("; {} cells integrated again around samples", o.reintegrated_cells);
     std::vector<std::string> failures = o.failures;
     if (!n.failure.empty()) failures.insert(failures.begin(), n.failure);
     r.verdict = Verdict::Pass;
@@ -238,20 +273,15 @@ protected:
     }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
-        const uint64_t samples = ctx.options().samples;
         chi2::Chi2Options options;
-        options.resolution = chi2::float_aware_resolution(bsdf.domain(), bsdf_resolution(bsdf), samples);
+        options.resolution = chi2::float_aware_resolution(bsdf.domain(), bsdf_resolution(bsdf), ctx.options().samples);
         options.strict = ctx.options().strict;
         const chi2::Binning binning(bsdf.domain(), options.resolution);
-        chi2::QuadratureOptions q;
-        q.sample_count = samples;
-        q.accuracy_fraction = options.accuracy_fraction;
-        q.verify = true;
-        q.float_noise = true;
-        const chi2::CellIntegrals integrals = chi2::integrate_cells(binning, pdf_integrand(bsdf), q, ctx.executor());
-        const Draws d = draw(bsdf, ctx, binning, chi2::zero_cells_of(integrals));
-        const Normalisation n = normalisation(integrals, d, options.strict);
-        const chi2::Chi2Outcome o = chi2::evaluate_chi2(binning, d.hist, conditional(integrals), n.landed, options);
+        const Counted c = integrate_and_draw(bsdf, ctx, binning, options);
+        const Draws& d = c.draws;
+        const Normalisation n = normalisation(c.integrals, d, options.strict);
+        chi2::Chi2Outcome o = chi2::evaluate_chi2(binning, d.hist, conditional(c.integrals), n.landed, options);
+        o.reintegrated_cells = c.reintegrated_cells;
         const chi2::LocalResidual local = local_residual(o, n.landed);
         CheckResult r;
         add_figures(r, o, local, n, d, ctx.options());

@@ -1,7 +1,9 @@
 #include "validate/checks/bsdf/bsdf_common.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace warpcheck::bsdf {
 
@@ -43,6 +45,22 @@ std::vector<WarpOutput> float_neighbours(const WarpOutput& w) {
         out.push_back({static_cast<float>(v[0] / len), static_cast<float>(v[1] / len), static_cast<float>(v[2] / len)});
     }
     return out;
+}
+
+FamilyPoint family_point(const BsdfCase& bsdf, std::string title, std::string y_label) {
+    FamilyPoint p;
+    p.family = bsdf.info().family;
+    p.title = std::move(title);
+    p.x_label = "theta_o (degrees)";
+    p.y_label = std::move(y_label);
+    p.x = std::acos(std::clamp(static_cast<double>(bsdf.wo().z), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+    std::vector<Parameter> others;
+    for (const Parameter& q : bsdf.info().params)
+        if (q.name == "theta_o") p.x = q.value;
+        else others.push_back(q);
+    const std::string name = case_name("", others);  // "[alpha=0.05]", or "" without others
+    p.group = name.empty() ? name : name.substr(1, name.size() - 2);
+    return p;
 }
 
 chi2::BinResolution bsdf_resolution(const BsdfCase& bsdf) {

@@ -41,13 +41,16 @@ protected:
 
 /// Calls f(chunk, inputs, records) for every chunk of map_input_chunks (edge
 /// inputs first when with_edges, then `samples` random ones), with the
-/// records of sample_bsdf; results in chunk order.
+/// records of sample_bsdf (valid during the call only); results in chunk order.
 template <typename Result, typename F>
 std::vector<Result> map_bsdf_chunks(const CheckContext& ctx, const BsdfCase& bsdf, uint64_t samples, bool with_edges,
                                     F&& f) {
     return map_input_chunks<Result>(ctx, InputKind::Uniform3D, samples, with_edges,
                                     [&](std::size_t chunk, std::span<const WarpInput> inputs) {
-                                        std::vector<BsdfRecord> records(inputs.size());
+                                        // Kept per thread: a fresh chunk-sized vector each time costs
+                                        // page faults worth a tenth of a cheap BSDF's sampling.
+                                        thread_local std::vector<BsdfRecord> records;
+                                        records.resize(inputs.size());
                                         bsdf.sample_bsdf(inputs, records);
                                         return f(chunk, inputs, std::span<const BsdfRecord>(records));
                                     });
@@ -72,6 +75,12 @@ inline constexpr std::size_t kFloatNeighbours = 8;
 /// rounded directions, a Fresnel term near the critical angle, a microfacet
 /// seen edge-on.
 std::vector<WarpOutput> float_neighbours(const WarpOutput& w);
+
+/// This case's point on a plot across its family (FamilyPoint, reports/
+/// result.h), at its theta_o: the grid's "theta_o" parameter where it has
+/// one, else wo's polar angle in degrees; its curves named by its other
+/// parameters ("alpha=0.05"). The caller adds the values and limits.
+FamilyPoint family_point(const BsdfCase& bsdf, std::string title, std::string y_label);
 
 /// The cells of the BSDF checks' sphere: the case's chi2_resolution, or by
 /// default 32 azimuths by 64 heights, so that each hemisphere has the 32 x 32

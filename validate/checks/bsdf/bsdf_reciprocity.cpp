@@ -215,6 +215,11 @@ protected:
         }
         r.plots.push_back(error_plot(bsdf, s));
         r.tables.push_back(worst_table(s));
+        FamilyPoint point = family_point(bsdf, "reciprocity error against theta_o", "largest relative error");
+        point.log_y = true;
+        point.values = {{"largest relative error", s.max_error}};
+        point.limits = {{"tolerance", kRelativeTolerance}};
+        r.family_points.push_back(std::move(point));
         return r;
     }
 };

@@ -116,22 +116,29 @@ bool within_float_resolution(const BsdfCase& bsdf, const Example& e) {
     return lo <= hi && e.weight >= lo - width && e.weight <= hi + width;
 }
 
-/// Judges one sample, given f(wo, wi) and pdf(wo, wi) at its wi.
-void judge_sample(const BsdfCase& bsdf, Stats& s, uint64_t index, Example& e) {
+/// |wi| in double: the squares of float components are exact in double and
+/// their sum is off by 2^-53 relative, far below kUnitTolerance (and a third
+/// of the cost of std::hypot, which guards against overflow that three floats
+/// cannot reach in double).
+double length(const WarpOutput& w) {
+    const double x = w[0], y = w[1], z = w[2];
+    return std::sqrt(x * x + y * y + z * z);
+}
+
+/// The rules every sample answers to: unit length, its side, and for a delta
+/// sample a finite positive weight of probability at most 1.
+void judge_direction(const BsdfCase& bsdf, Stats& s, uint64_t index, const Example& e) {
     const BsdfRecord& r = e.record;
-    const auto add = [&](Kind k) { s.kinds[k].add(index, e); };
-    const double len = std::hypot(static_cast<double>(r.wi[0]), static_cast<double>(r.wi[1]),
-                                  static_cast<double>(r.wi[2]));
+    const double len = length(r.wi);
     s.max_unit_error = max_nan_wins(s.max_unit_error, std::abs(len - 1.0));
-    if (!(std::abs(len - 1.0) <= kUnitTolerance)) add(kNotUnit);
-    if (!on_its_side(bsdf, r)) add(kWrongSide);
-    e.weight = static_cast<double>(r.f) * bsdf.cosine(r.wi) / r.pdf;
-    if (r.delta()) {
-        ++s.delta;
-        if (!(e.weight > 0.0 && std::isfinite(e.weight) && r.pdf <= 1.0f)) add(kDeltaWeight);
-        return;
-    }
-    e.weight_at = e.f_at * bsdf.cosine(r.wi) / e.pdf_at;
+    if (!(std::abs(len - 1.0) <= kUnitTolerance)) s.kinds[kNotUnit].add(index, e);
+    if (!on_its_side(bsdf, r)) s.kinds[kWrongSide].add(index, e);
+    if (r.delta() && !(e.weight > 0.0 && std::isfinite(e.weight) && r.pdf <= 1.0f)) s.kinds[kDeltaWeight].add(index, e);
+}
+
+/// Judges a continuous sample's weight, given f(wo, wi) and pdf(wo, wi) at its wi.
+void judge_weight(const BsdfCase& bsdf, Stats& s, uint64_t index, Example& e) {
+    e.weight_at = e.f_at * bsdf.cosine(e.record.wi) / e.pdf_at;
     const double rel = relative_difference(e.weight, e.weight_at);
     const bool agrees = e.pdf_at > 0.0 && e.f_at > 0.0 && rel <= kRelativeTolerance;
     if (!agrees && within_float_resolution(bsdf, e)) {
@@ -139,6 +146,7 @@ void judge_sample(const BsdfCase& bsdf, Stats& s, uint64_t index, Example& e) {
         s.excused_max_relative = max_nan_wins(s.excused_max_relative, rel);
         return;
     }
+    const auto add = [&](Kind k) { s.kinds[k].add(index, e); };
     if (!(e.pdf_at > 0.0)) add(kZeroPdf);
     if (!(e.f_at > 0.0)) add(kZeroF);
     s.max_relative = max_nan_wins(s.max_relative, rel);
@@ -146,25 +154,57 @@ void judge_sample(const BsdfCase& bsdf, Stats& s, uint64_t index, Example& e) {
     if (s.worst.wants(rel)) s.worst.offer(rel, index, e);
 }
 
+/// What a chunk needs besides its records, kept per thread from chunk to
+/// chunk: the continuous samples' wi and their f and pdf there (fresh
+/// vectors of a chunk's size each time cost a tenth of the check in page
+/// faults alone).
+struct Scratch {
+    std::vector<std::size_t> continuous;
+    std::vector<WarpOutput> wi, wo;
+    std::vector<double> f, pdf;
+};
+
+Stats judge_chunk(const BsdfCase& bsdf, std::size_t chunk, std::span<const WarpInput> in,
+                  std::span<const BsdfRecord> rec) {
+    thread_local Scratch t;
+    t.continuous.clear();
+    t.wi.clear();
+    Stats s;
+    s.samples = rec.size();
+    for (std::size_t i = 0; i < rec.size(); ++i) {
+        if (!rec[i].sampled()) continue;
+        ++s.sampled;
+        const double weight = static_cast<double>(rec[i].f) * bsdf.cosine(rec[i].wi) / rec[i].pdf;
+        judge_direction(bsdf, s, chunk * kInputChunkSize + i, Example{in[i], rec[i], weight, 0.0, 0.0, 0.0});
+        if (rec[i].delta()) {
+            ++s.delta;
+        } else {
+            t.continuous.push_back(i);
+            t.wi.push_back(rec[i].wi);
+        }
+    }
+    // f() and pdf() only where a continuous sample landed: a delta sample's
+    // direction has no density to compare with.
+    const std::size_t n = t.wi.size();
+    t.wo.assign(n, detail::to_output_of(bsdf.wo()));
+    t.f.resize(n);
+    t.pdf.resize(n);
+    bsdf.f(t.wo, t.wi, t.f);
+    bsdf.pdf(t.wi, t.pdf);
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = t.continuous[k];
+        Example e{in[i], rec[i], static_cast<double>(rec[i].f) * bsdf.cosine(rec[i].wi) / rec[i].pdf, t.f[k], t.pdf[k],
+                  0.0};
+        judge_weight(bsdf, s, chunk * kInputChunkSize + i, e);
+    }
+    return s;
+}
+
 Stats compute(const BsdfCase& bsdf, const CheckContext& ctx) {
     const auto parts = map_bsdf_chunks<Stats>(
         ctx, bsdf, ctx.options().samples, true,
         [&](std::size_t chunk, std::span<const WarpInput> in, std::span<const BsdfRecord> rec) {
-            std::vector<WarpOutput> wi(rec.size());
-            for (std::size_t i = 0; i < rec.size(); ++i) wi[i] = rec[i].wi;
-            const std::vector<WarpOutput> wo(rec.size(), detail::to_output_of(bsdf.wo()));
-            std::vector<double> f(rec.size()), pdf(rec.size());
-            bsdf.f(wo, wi, f);
-            bsdf.pdf(wi, pdf);
-            Stats s;
-            s.samples = rec.size();
-            for (std::size_t i = 0; i < rec.size(); ++i) {
-                if (!rec[i].sampled()) continue;
-                ++s.sampled;
-                Example e{in[i], rec[i], 0.0, f[i], pdf[i], 0.0};
-                judge_sample(bsdf, s, chunk * kInputChunkSize + i, e);
-            }
-            return s;
+            return judge_chunk(bsdf, chunk, in, rec);
         });
     return merge_in_order(parts);
 }

@@ -16,7 +16,8 @@
 namespace warpcheck {
 namespace {
 
-constexpr const char* kBsdfChecks[] = {"bsdf_chi2", "bsdf_weight", "bsdf_delta", "bsdf_albedo", "bsdf_reciprocity"};
+constexpr const char* kBsdfChecks[] = {"bsdf_chi2",   "bsdf_unbinned",   "bsdf_weight",
+                                       "bsdf_delta", "bsdf_albedo", "bsdf_reciprocity"};
 
 std::vector<std::string> bsdf_checks() { return {std::begin(kBsdfChecks), std::end(kBsdfChecks)}; }
 
@@ -91,6 +92,45 @@ TEST(BsdfFlawed, EachIsCaughtByItsCheckAndOnlyByTheChecksItsBugTouches) {
                 EXPECT_EQ(c.verdict, Verdict::Fail) << name << ": " << c.check_name << " " << c.summary;
         }
         EXPECT_TRUE(caught) << name << " (" << flawed.flaw << ") not caught by " << flawed.caught_by;
+    }
+}
+
+// The evidence across a family's grid (issue 23): each albedo row is a point
+// at its theta_o on the family's albedo plot (the mean weight with its 99%
+// interval, the albedo, the bound 1) and on the plot of their difference; each
+// reciprocity row on the reciprocity error's; grouped by the other parameters.
+TEST(BsdfEvidence, RowsArePointsOnTheirFamilysPlotsAcrossTheGrid) {
+    Registry registry;
+    register_builtin_cases(registry);
+    register_builtin_checks(registry);
+    RunOptions options;
+    options.samples = 20'000;
+    options.threads = 2;
+    const RunResult r = run_jobs(select_jobs(registry, {"rough_conductor["}, {"bsdf_albedo", "bsdf_reciprocity"}, options),
+                                 options);
+    ASSERT_EQ(r.results.size(), 12u);
+    for (const CheckResult& c : r.results) {
+        ASSERT_FALSE(c.family_points.empty()) << c.check_name << " " << c.case_name;
+        const FamilyPoint& p = c.family_points.front();
+        EXPECT_EQ(p.family, "rough_conductor");
+        EXPECT_NE(c.case_name.find("theta_o=" + fmt::format("{}", p.x) + "]"), std::string::npos) << c.case_name;
+        EXPECT_NE(c.case_name.find(p.group), std::string::npos) << p.group;
+        EXPECT_EQ(p.group.find("theta_o"), std::string::npos) << p.group;
+        if (c.check_name == "bsdf_reciprocity") {
+            EXPECT_TRUE(p.log_y);
+            EXPECT_EQ(p.values.at(0).y, c.figure("max_relative_error"));
+            continue;
+        }
+        ASSERT_EQ(c.family_points.size(), 2u);
+        const FamilyValue& mean = p.values.at(0);
+        EXPECT_EQ(mean.y, c.figure("mean_weight"));
+        EXPECT_LT(mean.low, mean.y);
+        EXPECT_GT(mean.high, mean.y);
+        EXPECT_EQ(p.values.at(1).y, c.figure("albedo"));
+        ASSERT_EQ(p.limits.size(), 1u);
+        EXPECT_EQ(p.limits[0].value, 1.0);
+        const FamilyValue& difference = c.family_points[1].values.at(0);
+        EXPECT_DOUBLE_EQ(difference.y, mean.y - p.values[1].y);
     }
 }
 

@@ -1,8 +1,8 @@
 // The power of the BSDF checks at the default sample count (10^6), for the
-// note: the smallest energy gain, weight error and lobe-probability error each
-// check detects in 90% of seeds, judged at the per-test level of a default
-// `validate --all` run (Sidak over its statistical tests). Disabled by default
-// (about three CPU minutes); run with
+// note: the smallest energy gain, weight error, lobe-probability error and
+// error of the sampled lobe's shape each check detects in 90% of seeds,
+// judged at the per-test level of a default `validate --all` run (Sidak over
+// its statistical tests). Disabled by default (about six CPU minutes); run with
 //   test_validate --gtest_also_run_disabled_tests --gtest_filter='BsdfPower*'
 // It prints, per effect size, the share of 20 seeds on which each check failed.
 #include <gtest/gtest.h>
@@ -17,6 +17,7 @@
 #include "sampling/bsdf_conductor.h"
 #include "sampling/bsdf_dielectric.h"
 #include "sampling/bsdf_diffuse.h"
+#include "support/bsdf_twins.h"
 #include "validate/api/bsdf_case.h"
 #include "validate/api/registry.h"
 #include "validate/run/runner.h"
@@ -110,6 +111,20 @@ std::unique_ptr<WarpCase> lobe_error(double eps) {
         bsdf_of([d, scale](Vector3f wo, float uc, Point2f u) { return d.sample(wo, uc / scale, u); })
             .with_f([d](Vector3f wo, Vector3f wi) { return d.f(wo, wi); })
             .with_pdf([d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); }));
+}
+
+// Where the samples go, the weights agreeing (tests/support/bsdf_twins.h): a
+// sharp conductor at 85 degrees sampled with alpha (1 + eps), and
+// Henyey-Greenstein at g = 0.99 sampled with g + dg; bsdf_unbinned against
+// bsdf_chi2's cells.
+TEST(BsdfPower, DISABLED_SmallestShapeErrorsDetectedAtDefaultSamples) {
+    const double level = all_level();
+    scan(
+        "roughness error", [](double eps) { return testing::conductor_wrong_roughness(0.05f, 85, eps); },
+        {0.001, 0.0025, 0.005, 0.01}, {"bsdf_unbinned", "bsdf_chi2"}, level);
+    scan(
+        "g error", [](double dg) { return testing::henyey_greenstein_wrong_g(0.99f, static_cast<float>(dg)); },
+        {2e-5, 5e-5, 1e-4, 2e-4}, {"bsdf_unbinned", "bsdf_chi2"}, level);
 }
 
 TEST(BsdfPower, DISABLED_SmallestEffectsDetectedAtDefaultSamples) {
