@@ -52,6 +52,23 @@
 //   of a Poisson count with mean N 2^-24 * 8 (eight such lines), so a correct
 //   warp exceeds it with probability at most 1e-9; edge inputs, which sit on
 //   such lines by construction, are counted and reported apart.
+// - An input that sample rounds across an edge of the inverse: x sits within
+//   kEdgeNeighbourFloats floats (per coordinate) of a line where invert jumps
+//   (a table's row edge: x.y rounded up onto it is read in the next row,
+//   whose conditional CDF differs), so invert(x) lands far from u while a
+//   float neighbour of x on u's side of the edge inverts within the tolerance
+//   of u. Tried only where every rule above failed; such inputs are counted
+//   (inverse_edge_*). 2 floats because the real sample(u) lies within half a
+//   float of x after its last rounding plus a float for the operations
+//   before it. The random inputs excused so may number at most the 1e-9 upper
+//   quantile of a Poisson count with mean kInverseEdgeProbability = 2^-12 per
+//   input, in each chunk of random inputs: the band of 4 floats (at most
+//   2^-22 wide) around lines where a correct inverse jumps holds 2^-22 of the
+//   inputs per unit of density-weighted line length, so 2^-12 allows the row
+//   edges of a 1024-row table (whose densities average 1 along each edge),
+//   while an inverse that is wrong beyond float resolution is wrong at its
+//   neighbours' floats too and is never excused. Past the bound the chunk
+//   stops trying, so a wrong warp's failures cost no neighbour search.
 // Raw-bit inputs: the inverse must be exact: invert(x) fits the input's width,
 // sample(invert(x)) == x, and invert(x) is the first preimage, so
 // invert(x) <= the bits that produced x.
@@ -67,6 +84,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -92,6 +110,8 @@ constexpr double kBoundTail = 1e-9;           // chance that a correct warp exce
 constexpr double kCellFactor = 4.0;           // float cells of x an inverse's error may span (see the top)
 constexpr double kEdgeFloats = 2.0;              // floats below 1 whose inverse may round up to 1 (see the top)
 constexpr float kTopTwoFloats = 0x1.fffffcp-1f;  // the smaller of the kEdgeFloats largest floats below 1
+constexpr int kEdgeNeighbourFloats = 2;              // floats of x per coordinate searched across an inverse edge
+constexpr double kInverseEdgeProbability = 0x1p-12;  // largest chance of a random input rounding across one (see the top)
 
 /// How one input's trip ended.
 enum class Outcome {
@@ -100,6 +120,7 @@ enum class Outcome {
     Pole,           ///< sample ignores an input coordinate at u, and back differs in it
     RoundedToOne,   ///< back is 1.0 where u is at the edge of 1 (fails under --strict)
     OtherPreimage,  ///< sample(back) ~ x with back far from u: accepted on a set of measure zero
+    InverseEdge,    ///< x rounded across an edge of the inverse: a float neighbour of x inverts to u
     OutsideInputs,  ///< back is NaN or outside the input domain
     Failed,         ///< back is a valid input that does not map to x
 };
@@ -152,6 +173,10 @@ struct Stats {
     uint64_t resolution_random = 0;  ///< of them, random inputs
     Excused pole_random;       ///< random inputs on a float pole
     Excused rounded_to_one{.by_cells = true};
+    Excused inverse_edge;            ///< inputs rounded across an edge of the inverse
+    uint64_t inverse_edge_random = 0;  ///< of them, random inputs
+    uint64_t inverse_edge_chunk_max = 0;  ///< the most random ones in one chunk
+    uint64_t inverse_edge_chunk_bound = 0;  ///< the bound per chunk of kInputChunkSize random inputs
     double max_strip = 0.0;    ///< widest strip of inputs rounded onto a pole
     uint64_t exact = 0;
     // Over inputs that came back within the tolerance or failed; NaN wins. Edge
@@ -172,6 +197,10 @@ struct Stats {
         resolution_random += o.resolution_random;
         pole_random.merge(o.pole_random);
         rounded_to_one.merge(o.rounded_to_one);
+        inverse_edge.merge(o.inverse_edge);
+        inverse_edge_random += o.inverse_edge_random;
+        inverse_edge_chunk_max = std::max(inverse_edge_chunk_max, o.inverse_edge_chunk_max);
+        inverse_edge_chunk_bound = std::max(inverse_edge_chunk_bound, o.inverse_edge_chunk_bound);
         max_strip = max_nan_wins(max_strip, o.max_strip);
         exact += o.exact;
         max_error = max_nan_wins(max_error, o.max_error);
@@ -383,6 +412,10 @@ bool count_excused(Stats& s, Trip& trip, bool edge, uint64_t index) {
             s.resolution.add(std::move(trip), index);
             return true;
         case Outcome::RoundedToOne: s.rounded_to_one.add(std::move(trip), index); return true;
+        case Outcome::InverseEdge:
+            s.inverse_edge_random += !edge;
+            s.inverse_edge.add(std::move(trip), index);
+            return true;
         default: return false;
     }
 }
@@ -415,6 +448,49 @@ bool segment_maps_to_x(const WarpCase& warp, const Rule& rule, const Trip& t) {
     return true;
 }
 
+/// The float neighbours of x within kEdgeNeighbourFloats floats in each
+/// output coordinate (x itself left out) that lie in the warp's domain.
+std::vector<WarpOutput> float_neighbours_of(const WarpCase& warp, const WarpOutput& x, int dims) {
+    constexpr int kSide = 2 * kEdgeNeighbourFloats + 1;
+    int combinations = 1;
+    for (int k = 0; k < dims; ++k) combinations *= kSide;
+    std::vector<WarpOutput> out;
+    for (int c = 0; c < combinations; ++c) {
+        WarpOutput p = x;
+        bool moved = false;
+        for (int k = 0, rest = c; k < dims; ++k, rest /= kSide) {
+            const int steps = rest % kSide - kEdgeNeighbourFloats;
+            for (int s = 0; s < std::abs(steps); ++s)
+                p[k] = steps > 0 ? next_float_up(p[k]) : next_float_down(p[k]);
+            moved = moved || steps != 0;
+        }
+        if (moved && warp.domain().contains(to_domain_point(p))) out.push_back(p);
+    }
+    return out;
+}
+
+/// Whether x was rounded across an edge of the inverse (see the top): a float
+/// neighbour of x inverts to within the tolerance of u.
+bool rounded_across_inverse_edge(const WarpCase& warp, const Rule& rule, const Trip& t) {
+    const std::vector<WarpOutput> near = float_neighbours_of(warp, t.output, rule.out_dims);
+    std::vector<WarpInput> back(near.size());
+    warp.invert(near, back);
+    for (const WarpInput& b : back) {
+        if (place_of(b, rule) != Place::Inside) continue;
+        double error = 0.0;
+        for (int k = 0; k < rule.in_dims; ++k)
+            error = max_nan_wins(error, std::abs(static_cast<double>(b.u[k]) - t.input.u[k]));
+        if (error <= rule.tolerance) return true;
+    }
+    return false;
+}
+
+/// How many random inputs of a chunk may be excused as rounded across an
+/// edge of the inverse (see the top).
+uint64_t inverse_edge_bound(std::size_t chunk_inputs) {
+    return chi2::poisson_count_bound(static_cast<double>(chunk_inputs) * kInverseEdgeProbability, kBoundTail);
+}
+
 Stats compute(const WarpCase& warp, const CheckContext& ctx, const Rule& rule) {
     auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, true,
                                          [&](std::size_t chunk, std::span<const WarpInput> inputs) {
@@ -425,12 +501,23 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx, const Rule& rule) {
         warp.invert(x, back);
         if (rule.bits()) warp.sample(back, x2);
         const uint64_t base = chunk * kInputChunkSize;  // edge inputs first, then the random stream
+        // Edge inputs are not random: every one may try, and is counted apart.
+        const uint64_t search_limit = chunk == 0 ? inputs.size() : inverse_edge_bound(inputs.size());
+        uint64_t tries = 0;
         for (std::size_t i = 0; i < inputs.size(); ++i) {
             const TripInputs trip_inputs(warp, rule, back[i], x[i], rule.bits() ? &x2[i] : nullptr);
             Trip trip = judge_trip(trip_inputs, inputs[i], x[i], back[i]);
             if (trip.outcome == Outcome::OtherPreimage && !segment_maps_to_x(warp, rule, trip))
                 trip.outcome = Outcome::Failed;
+            if (trip.outcome == Outcome::Failed && !rule.bits() && tries < search_limit) {
+                ++tries;
+                if (rounded_across_inverse_edge(warp, rule, trip)) trip.outcome = Outcome::InverseEdge;
+            }
             count_trip(s, rule, std::move(trip), chunk == 0, base + i);
+        }
+        if (chunk > 0) {
+            s.inverse_edge_chunk_max = s.inverse_edge.count;
+            s.inverse_edge_chunk_bound = search_limit;
         }
         return s;
     });
@@ -451,8 +538,15 @@ std::string failure_reason(const Stats& s, const Rule& rule) {
     if (rule.bits())
         return fmt::format("{} of {} inputs: sample(invert(x)) != x or invert(x) is not the first preimage",
                            s.failures - s.outside_inputs, s.count);
-    return fmt::format("{} of {} inputs come back further than {:.3g} from u, and further than {} float cells of x",
-                       s.failures - s.outside_inputs, s.count, rule.tolerance, kCellFactor);
+    std::string why = fmt::format("{} of {} inputs come back further than {:.3g} from u, and further than {} float "
+                                  "cells of x",
+                                  s.failures - s.outside_inputs, s.count, rule.tolerance, kCellFactor);
+    if (s.inverse_edge_chunk_bound > 0 && s.inverse_edge_chunk_max >= s.inverse_edge_chunk_bound)
+        why += fmt::format(" (a chunk of {} random inputs reached its bound of {} rounded across an edge of the "
+                           "inverse, which a correct warp exceeds with probability {:.0e}; its later inputs were "
+                           "not searched)",
+                           kInputChunkSize, s.inverse_edge_chunk_bound, kBoundTail);
+    return why;
 }
 
 /// The reasons for the excused classes that went over their bounds.
@@ -505,6 +599,7 @@ void judge(CheckResult& r, const Stats& s, const Rule& rule) {
     r.summary = fmt::format("max |du| {:.2e}", max_nan_wins(s.max_error, s.failures ? s.max_edge_error : 0.0));
     if (s.degenerate() > 0) r.summary += fmt::format(", {} degenerate", s.degenerate());
     if (s.resolution.count > 0) r.summary += fmt::format(", {} resolution-limited", s.resolution.count);
+    if (s.inverse_edge.count > 0) r.summary += fmt::format(", {} across an inverse edge", s.inverse_edge.count);
     if (s.rounded_to_one.count > 0)
         r.summary += fmt::format(", {} rounded to 1 ({})", s.rounded_to_one.count,
                                  rule.strict ? "failed: --strict" : "fails under --strict");
@@ -537,6 +632,11 @@ void add_figures(CheckResult& r, const Stats& s, const Rule& rule) {
                       {"float_pole_bound", static_cast<double>(pole_bound(s))},
                       {"float_pole_max_strip", s.max_strip},
                       {"count_bound_false_failure_probability", kBoundTail},
+                      {"inverse_edge_inputs", static_cast<double>(s.inverse_edge.count)},
+                      {"inverse_edge_random_inputs", static_cast<double>(s.inverse_edge_random)},
+                      {"inverse_edge_most_in_a_chunk", static_cast<double>(s.inverse_edge_chunk_max)},
+                      {"inverse_edge_chunk_bound", static_cast<double>(s.inverse_edge_chunk_bound)},
+                      {"inverse_edge_neighbour_floats", static_cast<double>(kEdgeNeighbourFloats)},
                       {"rounded_to_one", static_cast<double>(s.rounded_to_one.count)},
                       {"rounded_to_one_edge_floats", kEdgeFloats},
                       {"max_rounded_to_one_error", s.rounded_to_one.max_error},
@@ -553,6 +653,7 @@ Table excused_table(const Stats& s, const Rule& rule) {
     const std::pair<const char*, const Excused*> classes[] = {{"resolution-limited", &s.resolution},
                                                               {"float pole", &s.pole_random},
                                                               {"rounded to 1", &s.rounded_to_one},
+                                                              {"across an inverse edge", &s.inverse_edge},
                                                               {"other preimage", &s.other_random}};
     for (const auto& [name, excused] : classes)
         for (const auto& e : excused->worst.entries())
