@@ -68,13 +68,13 @@ inline constexpr double kFloatStep = 0x1p-20;
 /// How many neighbours float_neighbours gives.
 inline constexpr std::size_t kFloatNeighbours = 8;
 
-/// The kFloatNeighbours directions kFloatStep from w in eight directions of
+/// The kFloatNeighbours directions `step` from w in eight directions of
 /// its tangent plane, renormalised and rounded to float. What f or pdf does
 /// over them (a smooth change plus each evaluation's own rounding) is the
 /// float resolution of a value computed at w: a half vector recomputed from
 /// rounded directions, a Fresnel term near the critical angle, a microfacet
 /// seen edge-on.
-std::vector<WarpOutput> float_neighbours(const WarpOutput& w);
+std::vector<WarpOutput> float_neighbours(const WarpOutput& w, double step = kFloatStep);
 
 /// This case's point on a plot across its family (FamilyPoint, reports/
 /// result.h), at its theta_o: the grid's "theta_o" parameter where it has

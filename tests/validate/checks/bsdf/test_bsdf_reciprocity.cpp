@@ -1,0 +1,90 @@
+// bsdf_reciprocity at f's float resolution (issue 22): rough glass seen at
+// theta_o = 85 degrees transmits through facets whose interior cosine sits
+// just inside the critical angle, where Fresnel's 1 - sin^2 t cancels and f
+// moves by about 0.2% from one float of wi to the next. The rule measured f's
+// resolution only 16 floats away, and on seed 1079 (warpcheck_fpr's run 80 of
+// --first-seed 1000) one pair of 67,996, wi (-0.6049, -0.0175, -0.7961),
+// differed by 1.4e-3 relative while its eight neighbours there all lay on one
+// side of the jump: a false failure. The neighbours at 1, 4 and 16 floats see
+// the jump; the correct case passes on 100 seeds, and a twin whose
+// transmission from above is 0.5% too large still fails on every seed.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "sampling/bsdf_dielectric.h"
+#include "support/check_harness.h"
+#include "validate/api/bsdf_case.h"
+#include "validate/api/registry.h"
+#include "validate/run/runner.h"
+
+namespace warpcheck {
+namespace {
+
+/// Rough glass whose f from above the surface into it is `scale` times the
+/// reciprocal value (sample and pdf unchanged).
+struct ScaledTransmission {
+    RoughDielectric glass;
+    float scale = 1.0f;
+
+    float eta() const { return glass.eta(); }
+    Transport transport() const { return glass.transport(); }
+    BsdfFlags flags() const { return glass.flags(); }
+    BsdfSample sample(Vector3f wo, float uc, Point2f u) const {
+        BsdfSample s = glass.sample(wo, uc, u);
+        if (wo.z > 0.0f && s.wi.z < 0.0f) s.f *= scale;
+        return s;
+    }
+    float f(Vector3f wo, Vector3f wi) const {
+        return glass.f(wo, wi) * (wo.z > 0.0f && wi.z < 0.0f ? scale : 1.0f);
+    }
+    float pdf(Vector3f wo, Vector3f wi) const { return glass.pdf(wo, wi); }
+};
+
+CheckResult reciprocity(const WarpCase& bsdf, uint64_t seed) {
+    Registry registry;
+    register_builtin_checks(registry);
+    RunOptions options;
+    options.seed = seed;
+    options.threads = 2;
+    options.check_time_budget = testing::kTestTimeBudget;
+    return run_jobs({Job{&bsdf, registry.find_check("bsdf_reciprocity")}}, options).results.at(0);
+}
+
+double figure(const CheckResult& r, const std::string& name) {
+    const auto f = r.figure(name);
+    EXPECT_TRUE(f.has_value()) << name;
+    return f.value_or(std::nan(""));
+}
+
+std::unique_ptr<WarpCase> glass(float scale) {
+    // The built-in case's name and parameters, so the directions are the built-in's.
+    return make_bsdf_case({.family = "rough_dielectric", .params = {{"alpha", 0.1}, {"eta", 1.5}, {"theta_o", 85}}},
+                          {.wo = bsdf_direction(85)}, ScaledTransmission{RoughDielectric(TrowbridgeReitz(0.1f), 1.5f), scale});
+}
+
+TEST(BsdfReciprocity, RoughGlassAtGrazingPassesOnAHundredSeeds) {
+    const auto correct = glass(1.0f);
+    double excused = 0.0;
+    for (uint64_t seed = 1000; seed < 1100; ++seed) {
+        const CheckResult r = reciprocity(*correct, seed);
+        EXPECT_EQ(r.verdict, Verdict::Pass) << "seed " << seed << ": " << r.message;
+        excused += figure(r, "excused_pairs");
+        if (seed == 1079) {
+            EXPECT_GE(figure(r, "excused_pairs"), 1.0) << "the pair that failed is excused, and counted";
+        }
+    }
+    EXPECT_LT(excused, 100.0 * 1e-3 * 67'996) << "at most 1 pair in 1000 sits on f's rounding noise";
+}
+
+TEST(BsdfReciprocity, RoughGlassHalfAPercentOffStillFails) {
+    const auto twin = glass(1.005f);
+    for (uint64_t seed = 1000; seed < 1010; ++seed) {
+        const CheckResult r = reciprocity(*twin, seed);
+        EXPECT_EQ(r.verdict, Verdict::Fail) << "seed " << seed;
+        EXPECT_GT(figure(r, "violations"), 1000.0) << "seed " << seed;
+    }
+}
+
+}  // namespace
+}  // namespace warpcheck
