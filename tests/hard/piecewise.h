@@ -104,4 +104,19 @@ private:
     PiecewiseConstant1D marginal_;
 };
 
+/// The catalogue's 8 x 8 environment image (`environment_zero_rows`): rows 0-1
+/// black ground, row 7 black, zero pixels inside the sky.
+inline const std::vector<float>& environment_image() {
+    static const std::vector<float> image{
+        0, 0, 0,    0, 0, 0,    0, 0,    //
+        0, 0, 0,    0, 0, 0,    0, 0,    //
+        1, 2, 0,    3, 1, 0.5f, 2, 1,    //
+        2, 2, 1,    0, 0, 1,    4, 0.5f, //
+        1, 0, 0,    6, 2, 1,    1, 3,    //
+        3, 1, 0.5f, 1, 1, 1,    1, 8,    //
+        0, 4, 2,    2, 1, 0,    0, 1,    //
+        0, 0, 0,    0, 0, 0,    0, 0};
+    return image;
+}
+
 }  // namespace hard

@@ -149,17 +149,6 @@ void register_table(warpcheck::Registry& registry) {
               "the returned pdf divides by a total without the bucket of weight 0.5");
 }
 
-// 8 x 8: rows 0-1 black ground, row 7 black, zero pixels inside the sky.
-const std::vector<float> kEnvironment{
-    0, 0, 0,    0, 0, 0,    0, 0,    //
-    0, 0, 0,    0, 0, 0,    0, 0,    //
-    1, 2, 0,    3, 1, 0.5f, 2, 1,    //
-    2, 2, 1,    0, 0, 1,    4, 0.5f, //
-    1, 0, 0,    6, 2, 1,    1, 3,    //
-    3, 1, 0.5f, 1, 1, 1,    1, 8,    //
-    0, 4, 2,    2, 1, 0,    0, 1,    //
-    0, 0, 0,    0, 0, 0,    0, 0};
-
 struct EnvironmentMap {
     PiecewiseConstant2D map;
     Point2f sample(Point2f u) const {
@@ -178,18 +167,18 @@ void register_environment(warpcheck::Registry& registry) {
         {.family = "environment_zero_rows",
          .description = "8x8 piecewise-constant image with zero rows and pixels, row then column",
          .domain = Domain::unit_square()},
-        EnvironmentMap{PiecewiseConstant2D(kEnvironment, 8)}));
+        EnvironmentMap{PiecewiseConstant2D(environment_image(), 8)}));
     std::vector<float> short_sums;  // each row's integral without its last column (the twin's off-by-one)
     for (std::size_t v = 0; v < 8; ++v) {
         float sum = 0;
-        for (std::size_t x = 0; x + 1 < 8; ++x) sum += kEnvironment[v * 8 + x];
+        for (std::size_t x = 0; x + 1 < 8; ++x) sum += environment_image()[v * 8 + x];
         short_sums.push_back(sum / 8);
     }
     registry.add_case(warpcheck::make_warp_case(
         {.family = "environment_zero_rows_marginal_off_by_one",
          .description = "the environment map whose marginal skips each row's last column",
          .domain = Domain::unit_square()},
-        EnvironmentMap{PiecewiseConstant2D(kEnvironment, 8, short_sums)}));
+        EnvironmentMap{PiecewiseConstant2D(environment_image(), 8, short_sums)}));
     mark_twin(registry, "environment_zero_rows_marginal_off_by_one", "chi2,unbinned",
               "rows chosen by sums without their last column (row 5 loses half its weight)");
 }

@@ -24,22 +24,10 @@
 namespace warpcheck {
 namespace {
 
-// The hard catalogue's map (tests/hard/supports.cpp): rows 0-1 and 7 black,
-// zero pixels inside the sky.
-const std::vector<float> kEnvironment{
-    0, 0, 0,    0, 0, 0,    0, 0,    //
-    0, 0, 0,    0, 0, 0,    0, 0,    //
-    1, 2, 0,    3, 1, 0.5f, 2, 1,    //
-    2, 2, 1,    0, 0, 1,    4, 0.5f, //
-    1, 0, 0,    6, 2, 1,    1, 3,    //
-    3, 1, 0.5f, 1, 1, 1,    1, 8,    //
-    0, 4, 2,    2, 1, 0,    0, 1,    //
-    0, 0, 0,    0, 0, 0,    0, 0};
-
 enum class Inverse { Correct, WrongRowNearEdges, WrongOnOddFloats };
 
 struct EnvironmentMap {
-    hard::PiecewiseConstant2D map{kEnvironment, 8};
+    hard::PiecewiseConstant2D map{hard::environment_image(), 8};
     Inverse inverse = Inverse::Correct;
 
     Point2f sample(Point2f u) const {
