@@ -104,6 +104,12 @@ constexpr double kResolutionFactor = 2.0;
 /// (a single distance of 16 floats missed a 0.14% jump of rough glass's f at
 /// theta_o 85, a pair whose neighbours there all fell on one side of it).
 constexpr double kNeighbourSteps[] = {0x1p-24, 0x1p-22, kFloatStep};
+/// At most 2^-7 of the pairs may be excused by f's float resolution: its
+/// rounding noise exceeds the relative tolerance only near cancellations (the
+/// critical angle, facets edge-on), which the built-in rough glass shows on at
+/// most 35 of 67,990 pairs (seed 1), 1/15 of this bound; an f noisier than that
+/// is unstable, not float-limited, and fails.
+constexpr double kMaxExcusedFraction = 0x1p-7;
 
 /// How much f(wo, wi) s and f(wi, wo) move over wi's neighbours: their float resolution at the pair.
 double float_resolution(const BsdfCase& bsdf, const Pair& p) {
@@ -216,7 +222,16 @@ protected:
                      {"tolerance", kRelativeTolerance}};
         r.summary = fmt::format("max rel. error {:.3g} over {} pairs, {} at float resolution", s.max_error, s.pairs,
                                 s.excused);
-        r.verdict = s.violations == 0 ? Verdict::Pass : Verdict::Fail;
+        const double excused_bound = kMaxExcusedFraction * static_cast<double>(s.pairs);
+        r.figures.push_back({"excused_pairs_bound", excused_bound});
+        r.verdict = s.violations == 0 && static_cast<double>(s.excused) <= excused_bound ? Verdict::Pass : Verdict::Fail;
+        if (s.violations == 0 && r.verdict == Verdict::Fail) {
+            r.summary = fmt::format("f's float noise excuses {} of {} pairs", s.excused, s.pairs);
+            r.message = fmt::format("{} of {} pairs differ by more than {:.3g} relative and are within f's float "
+                                    "resolution, more than the {:.0f} ({:.3g} of the pairs) that cancellations near "
+                                    "the critical angle or edge-on facets explain: f is unstable, not float-limited",
+                                    s.excused, s.pairs, kRelativeTolerance, excused_bound, kMaxExcusedFraction);
+        }
         if (s.violations > 0) {
             const Pair& p = s.worst.front().item;
             r.summary = fmt::format("not reciprocal at {} of {} pairs", s.violations, s.pairs);
