@@ -46,6 +46,10 @@
 // bsdfs_test.cpp does (float, libm acosf/atan2f/sinf/cosf, a float cosine
 // hemisphere; it was double acos/atan2 and the project's sin_cos, 1.4x slower
 // than pbrt's own procedure), so the speedup printed is against pbrt's real cost.
+// Issue 27, the speed limit (BM_DrawWarpBinVsLimitLoop), 05:44 UTC, machine
+// shared (load 6 on 2 cores), three runs of --benchmark_filter=DrawWarpBin: lane
+// path 77-79 M samples/s on one thread, the plain vectorised loop 196-220 M/s:
+// times_limit_loop 2.5-2.8 (at load 2.5-2.8 before: 118 against 217-296 M/s, 1.9-2.5).
 // Issue 16's targets: check <= 50 ms and >= 15x the pbrt-style procedure;
 // >= 150 M samples/s per core.
 #include <algorithm>
