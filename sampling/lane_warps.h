@@ -1,7 +1,7 @@
 // Lane forms of the common spherical and disk warps: eight samples at once,
-// each step the same IEEE operation as the scalar form in disk.h, hemisphere.h,
-// sphere.h and trowbridge_reitz.h, so they return the same bits
-// (tests/sampling/test_lanes.cpp).
+// each step the same IEEE operation (or libm function) as the scalar form in
+// disk.h, hemisphere.h, sphere.h and trowbridge_reitz.h, so they return the
+// same bits (tests/sampling/test_lanes.cpp).
 // The scalar forms stay the readable definition; these feed the vectorised
 // chi-square path (validate/lanes/lane_sampling.h). Branches of the scalar forms
 // become selects: both sides are computed and the lane picks one.
@@ -67,6 +67,17 @@ struct UniformHemisphereLanes {
         const F32 phi = kTwoPi * u1;
         const SinCos sc = sin_cos(phi);
         return {r * sc.cos, r * sc.sin, z};
+    }
+};
+
+/// CosinePowerHemisphere::sample: the uniform hemisphere's map with z =
+/// u.x^(1/(n+1)) in place of u.x, the power from libm per lane (lanes::pow).
+struct CosinePowerHemisphereLanes {
+    float exponent = 0.0f;
+    friend bool operator==(const CosinePowerHemisphereLanes&, const CosinePowerHemisphereLanes&) = default;
+
+    WARPCHECK_LANE Points operator()(F32 u0, F32 u1) const {
+        return UniformHemisphereLanes{}(pow(u0, 1.0f / (exponent + 1.0f)), u1);
     }
 };
 

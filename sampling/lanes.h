@@ -4,8 +4,9 @@
 // The types are GCC vector extensions (also understood by Clang). Code written
 // with them compiles to AVX-512 inside a function built for that target and to
 // plain SSE2 or scalar code elsewhere, with the same IEEE operations in the same
-// order, so both give the same bits: no library calls, no fused multiply-add
-// (the project builds with -ffp-contract=off), no approximate reciprocals.
+// order, so both give the same bits: no library calls (but one: pow, below),
+// no fused multiply-add (the project builds with -ffp-contract=off), no
+// approximate reciprocals.
 // Every helper is always_inline, so none is ever compiled for one target and
 // called from another.
 //
@@ -77,6 +78,17 @@ WARPCHECK_LANE F32 safe_sqrt(F32 x) { return sqrt(max_zero(x)); }
 /// sin_from_cos of sampling/math.h.
 WARPCHECK_LANE F32 sin_from_cos(F32 z) { return safe_sqrt((1.0f - z) * (1.0f + z)); }
 
+/// std::pow(x, y) of each lane: libm's powf, called lane by lane. No
+/// polynomial of ours could stand in for it: glibc's powf is not correctly
+/// rounded (within 0.82 ulp), so only powf itself gives its bits. Both
+/// builds call the one powf of the process, which the scalar warps call too
+/// (std::pow of floats is __builtin_powf), so the bits are the scalar form's.
+WARPCHECK_LANE F32 pow(F32 x, float y) {
+    F32 r;
+    for (int i = 0; i < kWidth; ++i) r[i] = __builtin_powf(x[i], y);
+    return r;
+}
+
 // The same functions of one float, so that a warp written as a template over
 // its float type (validate/api/float_template_warp.h) calls lanes::sqrt and
 // friends for either.
@@ -85,6 +97,7 @@ WARPCHECK_LANE float sqrt(float x) { return std::sqrt(x); }
 WARPCHECK_LANE float max_zero(float x) { return x < 0.0f ? 0.0f : x; }
 WARPCHECK_LANE float safe_sqrt(float x) { return warpcheck::safe_sqrt(x); }
 WARPCHECK_LANE float sin_from_cos(float z) { return warpcheck::sin_from_cos(z); }
+WARPCHECK_LANE float pow(float x, float y) { return std::pow(x, y); }
 
 /// The operations of detail::sin_cos_core on lanes of doubles.
 struct DoubleOps {

@@ -11,10 +11,14 @@
 //                           procedure (pbrt_style_chi2.h) on one
 //   BM_DrawWarpBinPerCore   draw + warp + bin on one thread vs a plain scalar
 //                           fused loop (PCG32, the warp, atan2, a grid index)
+//   BM_DrawWarpBinVsLimitLoop  the lane path on one thread vs a plain loop left
+//                           to the vectoriser (vectorised_limit_loop.h): the speed
+//                           limit; counter times_limit_loop
 //   BM_PlainWarpVsLanePath  a renderer's plain warp (arg 0, 1), and one written
 //                           as a template over its float type (arg 2), vs the
 //                           built-in lane form
 // Run: build/test/tests/benchmarks/bench_chi2 --benchmark_filter='Vs|PerCore'
+// (the draw + warp + bin ones: --benchmark_filter=DrawWarpBin)
 //
 // Measured 2026-11-23 (Release, g++ 12, 2-core AMD EPYC with AVX-512, shared
 // with other builds), best of the rounds, before any vectorisation (issue 16):
@@ -42,8 +46,13 @@
 // bsdfs_test.cpp does (float, libm acosf/atan2f/sinf/cosf, a float cosine
 // hemisphere; it was double acos/atan2 and the project's sin_cos, 1.4x slower
 // than pbrt's own procedure), so the speedup printed is against pbrt's real cost.
+// Issue 27, the speed limit (BM_DrawWarpBinVsLimitLoop), 05:44 UTC, machine
+// shared (load 6 on 2 cores), three runs of --benchmark_filter=DrawWarpBin: lane
+// path 77-79 M samples/s on one thread, the plain vectorised loop 196-220 M/s:
+// times_limit_loop 2.5-2.8 (at load 2.5-2.8 before: 118 against 217-296 M/s, 1.9-2.5).
 // Issue 16's targets: check <= 50 ms and >= 15x the pbrt-style procedure;
 // >= 150 M samples/s per core.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <span>
@@ -55,6 +64,7 @@
 #include "support/builtin_case.h"
 #include "paired_timing.h"
 #include "pbrt_style_chi2.h"
+#include "vectorised_limit_loop.h"
 #include "sampling/hemisphere.h"
 #include "validate/checks/check.h"
 #include "validate/checks/checks.h"
@@ -220,6 +230,43 @@ void BM_DrawWarpBinPerCore(benchmark::State& state) {
                                                            : "lanes, portable");
 }
 BENCHMARK(BM_DrawWarpBinPerCore)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
+
+// The built-in lane path (the check's, chosen at run time) against the speed
+// limit of a plain vectorised loop (vectorised_limit_loop), both on one thread:
+// counter times_limit_loop = lane path / limit loop (best of the rounds; issue
+// 27's target: at most 3). The two histograms are of the same grid and the
+// same distribution: limit_vs_lanes_max_z is the largest difference of a
+// cell's counts in standard deviations (about 4 for independent samples).
+void BM_DrawWarpBinVsLimitLoop(benchmark::State& state) {
+    Fixture f(1);
+    const CheckContext ctx = f.context();
+    const chi2::Binning binning(f.warp->domain());
+    const auto chunk_rng = [&](uint64_t chunk) { return ctx.chunk_rng(chunk); };
+    chi2::Histogram lanes;
+    std::vector<uint64_t> limit;
+    bench::run_paired(
+        state,
+        [&] {
+            lanes = lane_histogram(binning, kSamples, 4096, chunk_rng, *f.warp->info().lanes, {}, f.parallel());
+            benchmark::DoNotOptimize(lanes.counts.data());
+        },
+        [&] {
+            bench::vectorised_limit_loop(kSamples, *binning.lane_plan(), limit);
+            benchmark::DoNotOptimize(limit.data());
+        });
+    double max_z = 0.0;
+    for (std::size_t c = 0; c < limit.size(); ++c) {
+        const double a = static_cast<double>(lanes.counts[c]), b = static_cast<double>(limit[c]);
+        if (a + b > 0) max_z = std::max(max_z, std::abs(a - b) / std::sqrt(a + b));
+    }
+    if (!(max_z < 6.0)) state.SkipWithError("the limit loop's histogram is not the lane path's distribution");
+    state.counters["limit_vs_lanes_max_z"] = max_z;
+    state.counters["times_limit_loop"] = 1.0 / state.counters["speedup"];
+    state.counters["subject_Msamples_per_s"] = 1e-3 * kSamples / state.counters["subject_min_ms"];
+    state.counters["reference_Msamples_per_s"] = 1e-3 * kSamples / state.counters["reference_min_ms"];
+    state.SetLabel(std::string("lanes, ") + lane_path_name(LanePath::Auto) + " vs the limit loop");
+}
+BENCHMARK(BM_DrawWarpBinVsLimitLoop)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(5);
 
 template <typename F>
 struct Vec2 {

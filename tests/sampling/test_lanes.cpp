@@ -186,6 +186,9 @@ TEST(LaneWarps, GiveTheScalarWarpsBits) {
     EXPECT_EQ(lane_differences(CosineHemisphere{}, lanes::CosineHemisphereLanes{}), 0u);
     EXPECT_EQ(lane_differences(UniformHemisphere{}, lanes::UniformHemisphereLanes{}), 0u);
     EXPECT_EQ(lane_differences(UniformSphere{}, lanes::UniformSphereLanes{}), 0u);
+    for (const float n : {0.0f, 0.5f, 1.0f, 4.0f, 50.0f, 1e4f})
+        EXPECT_EQ(lane_differences(CosinePowerHemisphere(n), lanes::CosinePowerHemisphereLanes{n}), 0u)
+            << "exponent " << n;
     for (const float c : {-1.0f, -0.5f, 0.0f, 0.3f, 0.99f, 0.99999f})
         EXPECT_EQ(lane_differences(UniformCone(c), lanes::UniformConeLanes{c}), 0u) << "cos_theta_max " << c;
     for (const auto& [ax, ay] : {std::pair{1e-4f, 1e-4f}, {0.05f, 0.05f}, {0.3f, 0.05f}, {1.0f, 1.0f}, {0.05f, 0.4f},
@@ -211,6 +214,20 @@ TEST(LaneWarps, ComparisonCanFail) {
         }
     };
     EXPECT_GT(lane_differences(CosineHemisphere{}, OffByOneUlp{}), 100000u);
+}
+
+TEST(LaneWarps, PowerComparisonCanFail) {
+    // The cosine power's lane form with its power one ulp off in one lane of
+    // eight, or with the uniform hemisphere's z = u.x (exponent 0 for 4), is caught.
+    struct PowerOffByOneUlp {
+        lanes::Points operator()(lanes::F32 u0, lanes::F32 u1) const {
+            lanes::F32 z = lanes::pow(u0, 1.0f / 5.0f);
+            z[3] = std::nextafter(z[3], 0.0f);
+            return lanes::UniformHemisphereLanes{}(z, u1);
+        }
+    };
+    EXPECT_GT(lane_differences(CosinePowerHemisphere(4.0f), PowerOffByOneUlp{}), 20000u);
+    EXPECT_GT(lane_differences(CosinePowerHemisphere(4.0f), lanes::CosinePowerHemisphereLanes{0.0f}), 190000u);
 }
 
 }  // namespace

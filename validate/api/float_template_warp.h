@@ -19,8 +19,8 @@
 // with members x, y (and z) of type Float; its arithmetic written so that it
 // compiles for Float = lanes::F32: the operators of float, comparisons inside
 // ?: (a lane mask there), and the functions of warpcheck::lanes, which take a
-// float or lanes of floats alike (sqrt, safe_sqrt, sin_from_cos, sin_cos, abs,
-// max_zero, select). pdf and invert stay plain functions of float.
+// float or lanes of floats alike (sqrt, safe_sqrt, sin_from_cos, sin_cos, pow,
+// abs, max_zero, select). pdf and invert stay plain functions of float.
 //
 // The lane instantiation is compiled for AVX-512 in a function of its own,
 // with the warp inlined into it, and with contraction off: the renderer's

@@ -77,7 +77,8 @@ void register_geometric_cases(Registry& registry) {
              .params = {{"exponent", n}},
              .description = "Phong lobe around the normal; pdf (n+1)/(2 pi) cos^n(theta)",
              .domain = Domain::hemisphere(),
-             .views = {cos_theta_marginal(true, 0.0, [n](double z) { return (n + 1.0) * std::pow(z, n); }), azimuth()}},
+             .views = {cos_theta_marginal(true, 0.0, [n](double z) { return (n + 1.0) * std::pow(z, n); }), azimuth()},
+             .lanes = &builtin_lanes::cosine_power_hemisphere(static_cast<float>(n))},
             CosinePowerHemisphere(static_cast<float>(n))));
     }
     registry.add_case(make_warp_case({.family = "uniform_sphere",

@@ -3,9 +3,10 @@
 // the baseline target) and lane_sampling_avx512.cpp (the whole file built for
 // x86-64-v4). The lane helpers must be compiled for the target they run on:
 // inlined from a baseline build they arrive already split into 128-bit pieces.
-// Everything here is always_inline and nothing calls out of it (no library
-// call, no std::vector), so the AVX-512 file emits no shared inline function
-// that the linker could pick for a caller on another processor; the ctest
+// Everything here is always_inline and nothing calls out of it but libm's
+// powf (lanes::pow: a library function, not an inline one; no std::vector),
+// so the AVX-512 file emits no shared inline function that the linker could
+// pick for a caller on another processor; the ctest
 // lane_avx512_object_is_isolated checks that.
 #pragma once
 
@@ -158,6 +159,7 @@ WARPCHECK_LANE void run_planar_group(const void* warp, const LaneGroup& g) {
 #define WARPCHECK_LANE_FORMS(X) \
     WARPCHECK_PLAIN_LANE_FORMS(X) \
     X(uniform_cone, UniformConeLanes) \
+    X(cosine_power_hemisphere, CosinePowerHemisphereLanes) \
     X(trowbridge_reitz_normals, TrowbridgeReitzNormalsLanes) \
     X(trowbridge_reitz_visible, TrowbridgeReitzVisibleNormalsLanes)
 

@@ -75,6 +75,11 @@ const LaneSampler& uniform_cone(float cos_theta_max) {
                          &lane_kernels::uniform_cone_portable);
 }
 
+const LaneSampler& cosine_power_hemisphere(float exponent) {
+    return parameterised(lanes::CosinePowerHemisphereLanes{exponent}, &lane_kernels::cosine_power_hemisphere_avx512,
+                         &lane_kernels::cosine_power_hemisphere_portable);
+}
+
 const LaneSampler& trowbridge_reitz_normals(float alpha_x, float alpha_y) {
     return parameterised(lanes::TrowbridgeReitzNormalsLanes{alpha_x, alpha_y},
                          &lane_kernels::trowbridge_reitz_normals_avx512,

@@ -63,6 +63,7 @@ const LaneSampler& cosine_hemisphere();
 const LaneSampler& uniform_hemisphere();
 const LaneSampler& uniform_sphere();
 const LaneSampler& uniform_cone(float cos_theta_max);
+const LaneSampler& cosine_power_hemisphere(float exponent);
 const LaneSampler& trowbridge_reitz_normals(float alpha_x, float alpha_y);
 const LaneSampler& trowbridge_reitz_visible(const TrowbridgeReitzVisibleNormals& warp);
 }  // namespace builtin_lanes
