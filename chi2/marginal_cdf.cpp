@@ -7,7 +7,51 @@
 
 namespace warpcheck::chi2 {
 
+namespace {
+
+/// Buckets per strip of the lookup index: a bucket then holds about one edge
+/// where the strips are uniform, and a refined peak's strips are searched
+/// within the bucket only.
+constexpr std::size_t kBucketsPerStrip = 2;
+
+}  // namespace
+
+void MarginalCdf::index_strips() {
+    bucket_strip_.clear();
+    const std::size_t n = edges.size() < 2 ? 0 : edges.size() - 1;  // strips
+    for (std::size_t j = 0; j < edges.size(); ++j)
+        if (!std::isfinite(edges[j]) || (j > 0 && !(edges[j] >= edges[j - 1]))) return;
+    if (n == 0 || n > (std::size_t{1} << 28) || !(edges.back() > edges.front())) return;
+    const std::size_t buckets = kBucketsPerStrip * n;
+    bucket_scale_ = static_cast<double>(buckets) / (edges.back() - edges.front());
+    bucket_strip_.resize(buckets + 1);
+    std::size_t j = 0;
+    for (std::size_t b = 0; b <= buckets; ++b) {
+        const double start = edges.front() + static_cast<double>(b) / bucket_scale_;
+        while (j + 1 < n && edges[j + 1] <= start) ++j;
+        bucket_strip_[b] = static_cast<uint32_t>(j);
+    }
+}
+
 std::size_t MarginalCdf::strip_of(double t) const {
+    // The largest j < strips with edges[j] <= t. The index's bucket of t names
+    // the strips that hold its start and its end; where t lies between their
+    // edges, as it does unless rounding put t in a neighbouring bucket, the
+    // answer is among them. Either way it is strip_by_grid's.
+    if (bucket_strip_.empty()) return strip_by_grid(t);
+    const std::size_t buckets = bucket_strip_.size() - 1;
+    const std::size_t b = std::min(buckets - 1, static_cast<std::size_t>((t - edges.front()) * bucket_scale_));
+    const std::size_t lo = bucket_strip_[b], hi = bucket_strip_[b + 1];
+    if (!(edges[lo] <= t && t < edges[hi + 1])) return strip_by_grid(t);
+    // A bucket holds at most one edge where the strips are uniform: whether t
+    // lies past it, without a branch that t's position would decide at random.
+    if (hi - lo <= 1) return lo + static_cast<std::size_t>(lo < hi) * static_cast<std::size_t>(edges[lo + 1] <= t);
+    const auto first = edges.begin() + static_cast<std::ptrdiff_t>(lo) + 1;
+    const auto last = edges.begin() + static_cast<std::ptrdiff_t>(hi) + 1;
+    return static_cast<std::size_t>(std::upper_bound(first, last, t) - edges.begin()) - 1;
+}
+
+std::size_t MarginalCdf::strip_by_grid(double t) const {
     // The uniform grid's strips are uniform in the parameter up to float
     // rounding of their edges: guess the strip arithmetically, step to the
     // exact one, then search its refined strips (usually just itself).
@@ -220,6 +264,7 @@ MarginalCdf assemble(const std::vector<Strip>& strips, std::size_t coarse_count,
         m.interpolation_error = std::max(m.interpolation_error, pair_error(strips, k, m.total));
     if (!std::isfinite(m.total) || !(m.total > 0.0)) m.interpolation_error = std::nan("");
     m.refined_strips = n - coarse_count;
+    m.index_strips();
     return m;
 }
 

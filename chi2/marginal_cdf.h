@@ -72,10 +72,21 @@ struct MarginalCdf {
         double lo = 0.0, value = 0.0, hi = 0.0;
     };
     AtBand at_band(double lo, double t, double hi) const;
+    /// Indexes `edges` for the lookups of operator() and at_band (the same
+    /// strips, found faster): tabulate_marginal_cdf calls it; call it again
+    /// after changing `edges` by hand.
+    void index_strips();
 
 private:
     /// The strip (index into edges) that holds t, edges.front() < t < edges.back().
     std::size_t strip_of(double t) const;
+    /// strip_of by the uniform grid and its refined strips (no index needed).
+    std::size_t strip_by_grid(double t) const;
+    /// Per bucket of kBucketsPerStrip * strips equal buckets across the edges'
+    /// range, and one past the end: the strip that holds the bucket's start.
+    /// Empty when the edges are not finite and ascending (strip_by_grid then).
+    std::vector<uint32_t> bucket_strip_;
+    double bucket_scale_ = 0.0;  ///< buckets per unit of the parameter
     double interpolate(std::size_t j, double t) const {
         const double w = (t - edges[j]) / (edges[j + 1] - edges[j]);
         return cdf[j] + w * (cdf[j + 1] - cdf[j]);
