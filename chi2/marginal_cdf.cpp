@@ -33,24 +33,6 @@ void MarginalCdf::index_strips() {
     }
 }
 
-std::size_t MarginalCdf::strip_of(double t) const {
-    // The largest j < strips with edges[j] <= t. The index's bucket of t names
-    // the strips that hold its start and its end; where t lies between their
-    // edges, as it does unless rounding put t in a neighbouring bucket, the
-    // answer is among them. Either way it is strip_by_grid's.
-    if (bucket_strip_.empty()) return strip_by_grid(t);
-    const std::size_t buckets = bucket_strip_.size() - 1;
-    const std::size_t b = std::min(buckets - 1, static_cast<std::size_t>((t - edges.front()) * bucket_scale_));
-    const std::size_t lo = bucket_strip_[b], hi = bucket_strip_[b + 1];
-    if (!(edges[lo] <= t && t < edges[hi + 1])) return strip_by_grid(t);
-    // A bucket holds at most one edge where the strips are uniform: whether t
-    // lies past it, without a branch that t's position would decide at random.
-    if (hi - lo <= 1) return lo + static_cast<std::size_t>(lo < hi) * static_cast<std::size_t>(edges[lo + 1] <= t);
-    const auto first = edges.begin() + static_cast<std::ptrdiff_t>(lo) + 1;
-    const auto last = edges.begin() + static_cast<std::ptrdiff_t>(hi) + 1;
-    return static_cast<std::size_t>(std::upper_bound(first, last, t) - edges.begin()) - 1;
-}
-
 std::size_t MarginalCdf::strip_by_grid(double t) const {
     // The uniform grid's strips are uniform in the parameter up to float
     // rounding of their edges: guess the strip arithmetically, step to the
@@ -63,13 +45,6 @@ std::size_t MarginalCdf::strip_by_grid(double t) const {
     const auto begin = edges.begin() + static_cast<std::ptrdiff_t>(first_edge[k]);
     const auto end = edges.begin() + static_cast<std::ptrdiff_t>(first_edge[k + 1]);
     return static_cast<std::size_t>(std::upper_bound(begin + 1, end, t) - edges.begin()) - 1;
-}
-
-double MarginalCdf::operator()(double t) const {
-    if (std::isnan(t)) return t;
-    if (!(t > edges.front())) return 0.0;
-    if (!(t < edges.back())) return 1.0;
-    return interpolate(strip_of(t), t);
 }
 
 MarginalCdf::AtBand MarginalCdf::at_band(double lo, double t, double hi) const {
