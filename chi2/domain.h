@@ -8,7 +8,9 @@
 //        kPointDimension (1, 2 or 3) and kAzimuthal (see below);
 //        measure(), slack(), contains(p, slack), on_boundary(p), describe();
 //        and its binning map: default_resolution(), parameter_bounds(),
-//        jacobian(u, v, res), cell_measure(rect, res), on_parameter_boundary(u, v),
+//        jacobian(u, v, res) (the measure density, a function of u alone: the
+//        cubature weights a column of nodes by one value), cell_measure(rect, res),
+//        on_parameter_boundary(u, v),
 //        parameter_slack(slack) (the membership slack in parameter units),
 //        u_label(), v_label(); and
 //        - if kAzimuthal is false: point_at(u, v, res), parameters_of(p, res)

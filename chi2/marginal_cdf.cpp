@@ -7,7 +7,33 @@
 
 namespace warpcheck::chi2 {
 
-std::size_t MarginalCdf::strip_of(double t) const {
+namespace {
+
+/// Buckets per strip of the lookup index: a bucket then holds about one edge
+/// where the strips are uniform, and a refined peak's strips are searched
+/// within the bucket only.
+constexpr std::size_t kBucketsPerStrip = 2;
+
+}  // namespace
+
+void MarginalCdf::index_strips() {
+    bucket_strip_.clear();
+    const std::size_t n = edges.size() < 2 ? 0 : edges.size() - 1;  // strips
+    for (std::size_t j = 0; j < edges.size(); ++j)
+        if (!std::isfinite(edges[j]) || (j > 0 && !(edges[j] >= edges[j - 1]))) return;
+    if (n == 0 || n > (std::size_t{1} << 28) || !(edges.back() > edges.front())) return;
+    const std::size_t buckets = kBucketsPerStrip * n;
+    bucket_scale_ = static_cast<double>(buckets) / (edges.back() - edges.front());
+    bucket_strip_.resize(buckets + 1);
+    std::size_t j = 0;
+    for (std::size_t b = 0; b <= buckets; ++b) {
+        const double start = edges.front() + static_cast<double>(b) / bucket_scale_;
+        while (j + 1 < n && edges[j + 1] <= start) ++j;
+        bucket_strip_[b] = static_cast<uint32_t>(j);
+    }
+}
+
+std::size_t MarginalCdf::strip_by_grid(double t) const {
     // The uniform grid's strips are uniform in the parameter up to float
     // rounding of their edges: guess the strip arithmetically, step to the
     // exact one, then search its refined strips (usually just itself).
@@ -19,13 +45,6 @@ std::size_t MarginalCdf::strip_of(double t) const {
     const auto begin = edges.begin() + static_cast<std::ptrdiff_t>(first_edge[k]);
     const auto end = edges.begin() + static_cast<std::ptrdiff_t>(first_edge[k + 1]);
     return static_cast<std::size_t>(std::upper_bound(begin + 1, end, t) - edges.begin()) - 1;
-}
-
-double MarginalCdf::operator()(double t) const {
-    if (std::isnan(t)) return t;
-    if (!(t > edges.front())) return 0.0;
-    if (!(t < edges.back())) return 1.0;
-    return interpolate(strip_of(t), t);
 }
 
 MarginalCdf::AtBand MarginalCdf::at_band(double lo, double t, double hi) const {
@@ -220,6 +239,7 @@ MarginalCdf assemble(const std::vector<Strip>& strips, std::size_t coarse_count,
         m.interpolation_error = std::max(m.interpolation_error, pair_error(strips, k, m.total));
     if (!std::isfinite(m.total) || !(m.total > 0.0)) m.interpolation_error = std::nan("");
     m.refined_strips = n - coarse_count;
+    m.index_strips();
     return m;
 }
 

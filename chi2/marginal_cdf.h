@@ -25,6 +25,8 @@
 // the cubature's first nodes across the whole strip.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -72,15 +74,52 @@ struct MarginalCdf {
         double lo = 0.0, value = 0.0, hi = 0.0;
     };
     AtBand at_band(double lo, double t, double hi) const;
+    /// Indexes `edges` for the lookups of operator() and at_band (the same
+    /// strips, found faster): tabulate_marginal_cdf calls it; call it again
+    /// after changing `edges` by hand.
+    void index_strips();
 
 private:
     /// The strip (index into edges) that holds t, edges.front() < t < edges.back().
     std::size_t strip_of(double t) const;
+    /// strip_of by the uniform grid and its refined strips (no index needed).
+    std::size_t strip_by_grid(double t) const;
+    /// Per bucket of kBucketsPerStrip * strips equal buckets across the edges'
+    /// range, and one past the end: the strip that holds the bucket's start.
+    /// Empty when the edges are not finite and ascending (strip_by_grid then).
+    std::vector<uint32_t> bucket_strip_;
+    double bucket_scale_ = 0.0;  ///< buckets per unit of the parameter
     double interpolate(std::size_t j, double t) const {
         const double w = (t - edges[j]) / (edges[j + 1] - edges[j]);
         return cdf[j] + w * (cdf[j + 1] - cdf[j]);
     }
 };
+
+// Inline: the unbinned check looks up a million samples per marginal.
+inline std::size_t MarginalCdf::strip_of(double t) const {
+    // The largest j < strips with edges[j] <= t. The index's bucket of t names
+    // the strips that hold its start and its end; where t lies between their
+    // edges, as it does unless rounding put t in a neighbouring bucket, the
+    // answer is among them. Either way it is strip_by_grid's.
+    if (bucket_strip_.empty()) return strip_by_grid(t);
+    const std::size_t buckets = bucket_strip_.size() - 1;
+    const std::size_t b = std::min(buckets - 1, static_cast<std::size_t>((t - edges.front()) * bucket_scale_));
+    const std::size_t lo = bucket_strip_[b], hi = bucket_strip_[b + 1];
+    if (!(edges[lo] <= t && t < edges[hi + 1])) return strip_by_grid(t);
+    // A bucket holds at most one edge where the strips are uniform: whether t
+    // lies past it, without a branch that t's position would decide at random.
+    if (hi - lo <= 1) return lo + static_cast<std::size_t>(lo < hi) * static_cast<std::size_t>(edges[lo + 1] <= t);
+    const auto first = edges.begin() + static_cast<std::ptrdiff_t>(lo) + 1;
+    const auto last = edges.begin() + static_cast<std::ptrdiff_t>(hi) + 1;
+    return static_cast<std::size_t>(std::upper_bound(first, last, t) - edges.begin()) - 1;
+}
+
+inline double MarginalCdf::operator()(double t) const {
+    if (std::isnan(t)) return t;
+    if (!(t > edges.front())) return 0.0;
+    if (!(t < edges.back())) return 1.0;
+    return interpolate(strip_of(t), t);
+}
 
 /// The binning whose cells are the `strips` strips across parameter `axis` of
 /// `domain` (axis 1 needs a 2D domain). `line` supplies an unbounded line's

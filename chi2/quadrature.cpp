@@ -80,9 +80,12 @@ public:
         evaluations += values_.size();
 
         // Weight by the measure density, screening for values that make no density.
+        // Every kind's Jacobian depends on u alone (chi2/domain.h): one per column.
+        std::array<double, kNodes> jacobian{};
+        for (std::size_t i = 0; i < kNodes; ++i) jacobian[i] = binning_.jacobian(us[i], vs[0]);
         bool finite = true;
         double f_min = std::numeric_limits<double>::infinity(), f_max = -f_min;
-        for (std::size_t k = 0; k < values_.size(); ++k) {
+        for (std::size_t k = 0, i = 0; k < values_.size(); ++k, i = i + 1 == kNodes ? 0 : i + 1) {
             const double f = values_[k];
             if (!std::isfinite(f)) {
                 ++nonfinite;
@@ -90,10 +93,9 @@ public:
             } else if (f < 0.0) {
                 ++negative;
             }
-            const std::size_t i = one_d ? k : k % kNodes, j = one_d ? 0 : k / kNodes;
             f_min = std::min(f_min, f);
             f_max = std::max(f_max, f);
-            values_[k] = f * binning_.jacobian(us[i], vs[j]);
+            values_[k] = f * jacobian[i];
         }
         if (probe_edges_) widen_by_edge_probes(r, f_min, f_max);
         Region out{r, 0.0, 0.0, 0.0, f_min, f_max};

@@ -114,11 +114,11 @@ uint32_t unit_key(double u) {
     return std::min(static_cast<uint32_t>(u * 0x1p20), (uint32_t{1} << 20) - 1);
 }
 
+/// Where each bucket of 10 bits of the key starts: 1024 starts and the end.
+using BucketStarts = std::array<std::size_t, 1025>;
+
 /// One stable counting-sort pass of `from` into `to` by 10 bits of the key.
-void radix_pass(const std::vector<double>& from, std::vector<double>& to, int shift) {
-    std::array<std::size_t, 1025> start{};
-    for (double u : from) ++start[((unit_key(u) >> shift) & 1023u) + 1];
-    for (std::size_t b = 0; b < 1024; ++b) start[b + 1] += start[b];
+void radix_pass(const std::vector<double>& from, std::vector<double>& to, BucketStarts& start, int shift) {
     for (double u : from) to[start[(unit_key(u) >> shift) & 1023u]++] = u;
 }
 
@@ -126,11 +126,22 @@ void radix_pass(const std::vector<double>& from, std::vector<double>& to, int sh
 
 void sort_unit_values(std::vector<double>& values) {
     // LSD radix sort on the 20-bit key (two passes of 1024 buckets: each pass
-    // writes 1024 sequential streams, which stay in cache). About 3 times faster
-    // than std::sort at 10^6 values.
+    // writes 1024 sequential streams, which stay in cache), both passes'
+    // buckets counted in one read. About 3 times faster than std::sort at 10^6
+    // values.
+    BucketStarts low{}, high{};
+    for (double u : values) {
+        const uint32_t key = unit_key(u);
+        ++low[(key & 1023u) + 1];
+        ++high[(key >> 10) + 1];
+    }
+    for (std::size_t b = 0; b < 1024; ++b) {
+        low[b + 1] += low[b];
+        high[b + 1] += high[b];
+    }
     std::vector<double> tmp(values.size());
-    radix_pass(values, tmp, 0);
-    radix_pass(tmp, values, 10);
+    radix_pass(values, tmp, low, 0);
+    radix_pass(tmp, values, high, 10);
     // Then insertion sort, which only has to order values that share a key
     // (~1 per key for values spread over [0, 1]). A wrong warp may put most of
     // its values under one key: past 8 moves per value, std::sort finishes.

@@ -141,6 +141,18 @@ TEST_P(BinningTest, CellCentresMapBackToTheirCell) {
     }
 }
 
+/// The cubature weights each column of its nodes by one Jacobian
+/// (chi2/quadrature.cpp): a kind's may not depend on v.
+TEST_P(BinningTest, JacobianDependsOnUAlone) {
+    const Binning b(GetParam().domain, GetParam().resolution);
+    const ParamRect all = b.parameter_bounds();
+    for (double fu : {0.01, 0.3, 0.77, 0.99}) {
+        const double u = all.u0 + fu * (all.u1 - all.u0);
+        const double j = b.jacobian(u, all.v0 + 0.5 * (all.v1 - all.v0));
+        for (double fv : {0.0, 0.01, 0.4, 0.93, 1.0}) EXPECT_EQ(b.jacobian(u, all.v0 + fv * (all.v1 - all.v0)), j);
+    }
+}
+
 TEST_P(BinningTest, FastBinningAgreesWithExactClassification) {
     const Binning b(GetParam().domain, GetParam().resolution);
     Pcg32 rng(3, 5);

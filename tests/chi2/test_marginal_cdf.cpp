@@ -139,5 +139,39 @@ TEST(MarginalCdf, ProbesMeasureStructureWithinStripsThatStripPairsCannotSee) {
     }
 }
 
+/// The CDF interpolated in the strip found by a search of every edge: what
+/// operator() must give, however it finds the strip.
+double by_full_search(const MarginalCdf& m, double t) {
+    if (!(t > m.edges.front())) return 0.0;
+    if (!(t < m.edges.back())) return 1.0;
+    const std::size_t j = static_cast<std::size_t>(std::upper_bound(m.edges.begin(), m.edges.end(), t) -
+                                                   m.edges.begin()) - 1;
+    const double w = (t - m.edges[j]) / (m.edges[j + 1] - m.edges[j]);
+    return m.cdf[j] + w * (m.cdf[j + 1] - m.cdf[j]);
+}
+
+TEST(MarginalCdf, IndexedLookupsFindTheStripThatASearchOfEveryEdgeFinds) {
+    // The refined peak puts hundreds of strips into a few of the index's
+    // buckets; every edge, its float neighbours and the midpoints are looked up.
+    CdfRefinement r;
+    r.interpolation_target = kTarget;
+    r.max_strips = 8 * kStrips;
+    const MarginalCdf m = tabulate_marginal_cdf(strip_binning(Domain::interval(0.0, 1.0), 0, kStrips), 0,
+                                                steep_exponential, quadrature(), serial_for, r);
+    ASSERT_GT(m.refined_strips, 100u);
+    std::size_t looked_up = 0;
+    for (std::size_t j = 0; j < m.edges.size(); ++j)
+        for (double t : {m.edges[j], std::nextafter(m.edges[j], -1.0), std::nextafter(m.edges[j], 2.0),
+                         j + 1 < m.edges.size() ? 0.5 * (m.edges[j] + m.edges[j + 1]) : 2.0}) {
+            ASSERT_EQ(m(t), by_full_search(m, t)) << t;
+            const MarginalCdf::AtBand b = m.at_band(t - 1e-4, t, t + 1e-4);
+            ASSERT_EQ(b.lo, by_full_search(m, t - 1e-4)) << t;
+            ASSERT_EQ(b.value, by_full_search(m, t)) << t;
+            ASSERT_EQ(b.hi, by_full_search(m, t + 1e-4)) << t;
+            ++looked_up;
+        }
+    EXPECT_EQ(looked_up, 4 * m.edges.size());
+}
+
 }  // namespace
 }  // namespace warpcheck::chi2

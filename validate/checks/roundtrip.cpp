@@ -420,7 +420,9 @@ bool count_excused(Stats& s, Trip& trip, bool edge, uint64_t index) {
     }
 }
 
-void count_trip(Stats& s, const Rule& rule, Trip trip, bool edge, uint64_t index) {
+/// Counts a trip. Taken by reference: it is copied only into a list that keeps
+/// it (a copy of every trip was a tenth of the check's time).
+void count_trip(Stats& s, const Rule& rule, Trip&& trip, bool edge, uint64_t index) {
     ++s.count;
     s.random_count += !edge;
     if (count_excused(s, trip, edge, index)) return;

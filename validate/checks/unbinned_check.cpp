@@ -419,6 +419,15 @@ void gather(Computed& c, const WarpCase& warp, const CheckContext& ctx, const Un
     band.assign(k, {});
     c.nan.assign(k, 0);
     c.float_band.assign(k, 0.0);
+    for (std::size_t m = 0; m < k; ++m) {  // each marginal's whole size at once: no copies as it grows
+        std::size_t values = 0, bands = 0;
+        for (const auto& p : parts) {
+            values += p[m].u.size();
+            bands += p[m].band.size();
+        }
+        c.sorted_u[m].reserve(values);
+        band[m].reserve(bands);
+    }
     for (const auto& p : parts)
         for (std::size_t m = 0; m < p.size(); ++m) {
             c.sorted_u[m].insert(c.sorted_u[m].end(), p[m].u.begin(), p[m].u.end());
