@@ -19,8 +19,9 @@ namespace warpcheck::bench {
 /// pi/4] by Taylor polynomials in float, not the project's sin_cos (a limit,
 /// not the same bits: the terms end at w^9 and w^10, the next below 2e-9); the
 /// cell of the point found as lane_cells finds it but in float (row by z,
-/// column by the signs, the |x|, |y| comparison and the octant's tan edges),
-/// without atan2. Built for x86-64-v4 where the processor has it, as the lane
+/// column by the signs, the |x|, |y| comparison and the octant's tan edges
+/// against min(|x|, |y|) / max(|x|, |y|), compared as a product), without atan2,
+/// all in one loop body per lane. Built for x86-64-v4 where the processor has it, as the lane
 /// path is, else for the baseline. `plan` must be a spherical cap's.
 void vectorised_limit_loop(uint64_t samples, const chi2::LanePlan& plan, std::vector<uint64_t>& counts);
 
