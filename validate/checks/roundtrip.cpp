@@ -91,6 +91,7 @@
 #include "chi2/count_bounds.h"
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
+#include "validate/checks/error_decades.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/float_cell.h"
 #include "validate/checks/formatting.h"
@@ -101,8 +102,8 @@ namespace {
 
 constexpr std::size_t kWorstKept = 10;
 constexpr std::size_t kExcusedKept = 5;  // per class of excused inputs
-constexpr int kFirstDecade = -10;  // error histogram: decades 1e-10 .. 1e0
-constexpr int kDecades = 11;
+constexpr int kFirstDecade = kErrorFirstDecade;  // error histogram: decades 1e-10 .. 1e0 (error_decades.h)
+constexpr int kDecades = kErrorDecades;
 constexpr double kLineProbability = 0x1p-24;  // largest chance of one input coordinate taking one value
 constexpr double kSeamLines = 8.0;            // lines u_k = c where a warp may fail to be injective
 constexpr double kPolesPerAxis = 2.0;         // float poles a flat axis may have (top and bottom of a sphere)
@@ -388,8 +389,7 @@ void count_error(Stats& s, const Rule& rule, double error) {
     if (error == 0.0) {
         ++s.exact;
     } else if (std::isfinite(error)) {
-        const int decade = static_cast<int>(std::floor(std::log10(error)));
-        s.histogram[static_cast<std::size_t>(std::clamp(decade - kFirstDecade + 1, 0, kDecades + 1))]++;
+        s.histogram[error_decade_bin(error)]++;
     }
 }
 
