@@ -50,6 +50,15 @@
 // shared (load 6 on 2 cores), three runs of --benchmark_filter=DrawWarpBin: lane
 // path 77-79 M samples/s on one thread, the plain vectorised loop 196-220 M/s:
 // times_limit_loop 2.5-2.8 (at load 2.5-2.8 before: 118 against 217-296 M/s, 1.9-2.5).
+// Issue 27, one sitting on 2026-11-27, 08:27-08:32 UTC (load 0.6-2.0, nothing else
+// running), --benchmark_filter='Vs|PerCore', this build beside the build of main
+// when issue 27 was filed (61b7c31), which measured 117.7 M samples/s on the lane
+// path here (168.9 when the issue was written: the machine is slower today, so
+// compare ratios): lane path 107-110 M/s; the limit loop in one body per lane
+// 265 M/s (321 in a run before): times_limit_loop 2.40 (2.74); a plain struct on
+// the planar lane path 2.63x the lane form (2.69x in the old build; 2.47x the
+// day before), on scalar chunks 5.34x; templated 1.03x; the whole check 11.3x
+// the pbrt-style procedure (11.7x in the old build).
 // Issue 16's targets: check <= 50 ms and >= 15x the pbrt-style procedure;
 // >= 150 M samples/s per core.
 #include <algorithm>
