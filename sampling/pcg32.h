@@ -3,6 +3,7 @@
 // gets its own independent stream without coordination between threads.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace warpcheck {
@@ -29,15 +30,30 @@ public:
     constexpr uint32_t next_u32() {
         const uint64_t old = state_;
         state_ = old * kMultiplier + inc_;
-        const auto xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
-        const auto rot = static_cast<uint32_t>(old >> 59u);
-        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
+        return output(old);
     }
 
     /// 64 random bits: the first 32-bit draw gives the high half.
     constexpr uint64_t next_u64() {
         const uint64_t hi = next_u32();
         return (hi << 32) | next_u32();
+    }
+
+    /// Fills `out` with out.size() draws of next_u64, the same values and the
+    /// same state after. Eight steps at a time are computed from one state
+    /// (the state k steps on is A^k s + c (A^(k-1) + ... + 1)), so they do not
+    /// wait on each other's multiply as next_u64's chain of steps does.
+    constexpr void next_u64s(uint64_t* out, std::size_t n) {
+        uint64_t mult[9] = {1}, plus[9] = {0};
+        for (int k = 1; k <= 8; ++k) mult[k] = mult[k - 1] * kMultiplier, plus[k] = plus[k - 1] * kMultiplier + inc_;
+        std::size_t i = 0;
+        for (; i + 4 <= n; i += 4) {
+            uint32_t r[8] = {};
+            for (int k = 0; k < 8; ++k) r[k] = output(mult[k] * state_ + plus[k]);
+            state_ = mult[8] * state_ + plus[8];
+            for (int j = 0; j < 4; ++j) out[i + j] = (uint64_t{r[2 * j]} << 32) | r[2 * j + 1];
+        }
+        for (; i < n; ++i) out[i] = next_u64();
     }
 
     /// A float in [0,1) on the 2^-24 grid: every value is exact and equally
@@ -69,6 +85,13 @@ public:
     friend constexpr bool operator==(const Pcg32&, const Pcg32&) = default;
 
 private:
+    /// PCG-XSH-RR's output of a state: its xorshifted high bits, rotated by its top 5 bits.
+    static constexpr uint32_t output(uint64_t state) {
+        const auto xorshifted = static_cast<uint32_t>(((state >> 18u) ^ state) >> 27u);
+        const auto rot = static_cast<uint32_t>(state >> 59u);
+        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
+    }
+
     uint64_t state_ = kDefaultState;
     uint64_t inc_ = kDefaultStream;
 };

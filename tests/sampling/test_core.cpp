@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <vector>
 
 #include "sampling/float_bits.h"
 #include "sampling/hash.h"
@@ -66,6 +67,22 @@ TEST(Pcg32, AdvanceJumpsForwardAndBack) {
     Pcg32 d(7, 1234);
     d.advance(0);
     EXPECT_EQ(d, c);
+}
+
+// next_u64s computes eight steps from one state: the draws and the state after
+// must be next_u64's, for every length (the tail after the blocks of four
+// draws included) and every stream.
+TEST(Pcg32, BlockDrawsAreTheDrawsOneByOne) {
+    for (uint64_t stream : {0ull, 1ull, 54ull, 0x7fffffffffffffffull})
+        for (std::size_t n : {0, 1, 2, 3, 4, 5, 7, 8, 9, 31, 768, 1001}) {
+            Pcg32 one(stream, 42 + n), block(stream, 42 + n);
+            std::vector<uint64_t> expected(n), got(n + 1, 0xdeadbeefull);
+            for (auto& e : expected) e = one.next_u64();
+            block.next_u64s(got.data(), n);
+            for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(got[i], expected[i]) << "stream " << stream << ", draw " << i;
+            EXPECT_EQ(got[n], 0xdeadbeefull) << "wrote past the end";
+            EXPECT_EQ(block, one) << "stream " << stream << ", " << n << " draws";
+        }
 }
 
 TEST(Pcg32, StreamsDiffer) {
