@@ -248,8 +248,18 @@ Place place_of(const WarpInput& back, const Rule& rule) {
     return p;
 }
 
-/// The error of a trip of uniform inputs along input axis k.
-double axis_error(const Trip& t, int k) { return std::abs(static_cast<double>(t.back.u[k]) - t.input.u[k]); }
+/// How far `back` lies from the uniform input `u` along input axis k.
+double axis_error(const WarpInput& back, const WarpInput& u, int k) {
+    return std::abs(static_cast<double>(back.u[k]) - u.u[k]);
+}
+double axis_error(const Trip& t, int k) { return axis_error(t.back, t.input, k); }
+
+/// The largest of those over the input's `dims` axes (NaN wins): a trip's error.
+double input_error(const WarpInput& back, const WarpInput& u, int dims) {
+    double e = 0.0;
+    for (int k = 0; k < dims; ++k) e = max_nan_wins(e, axis_error(back, u, k));
+    return e;
+}
 
 Outcome bits_outcome(Trip& t, const WarpOutput& x2, const Rule& rule) {
     t.error = static_cast<double>(t.input.bits - std::min(t.input.bits, t.back.bits));
@@ -370,7 +380,7 @@ Trip judge_trip(const TripInputs& in, const WarpInput& u, const WarpOutput& x, c
         }
         return t;
     }
-    for (int k = 0; k < rule.in_dims; ++k) t.error = max_nan_wins(t.error, axis_error(t, k));
+    t.error = input_error(back, u, rule.in_dims);
     if (place == Place::Outside) {
         t.outcome = Outcome::OutsideInputs;
     } else if (place == Place::AtOne) {
@@ -477,13 +487,8 @@ bool rounded_across_inverse_edge(const WarpCase& warp, const Rule& rule, const T
     const std::vector<WarpOutput> near = float_neighbours_of(warp, t.output, rule.out_dims);
     std::vector<WarpInput> back(near.size());
     warp.invert(near, back);
-    for (const WarpInput& b : back) {
-        if (place_of(b, rule) != Place::Inside) continue;
-        double error = 0.0;
-        for (int k = 0; k < rule.in_dims; ++k)
-            error = max_nan_wins(error, std::abs(static_cast<double>(b.u[k]) - t.input.u[k]));
-        if (error <= rule.tolerance) return true;
-    }
+    for (const WarpInput& b : back)
+        if (place_of(b, rule) == Place::Inside && input_error(b, t.input, rule.in_dims) <= rule.tolerance) return true;
     return false;
 }
 
