@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "hard_warps.h"
+#include "environment_map.h"
 #include "piecewise.h"
 
 namespace hard {
@@ -148,19 +149,6 @@ void register_table(warpcheck::Registry& registry) {
     mark_twin(registry, "table_zero_buckets_pdf_forgets_weight", "inverse_pdf_mean",
               "the returned pdf divides by a total without the bucket of weight 0.5");
 }
-
-struct EnvironmentMap {
-    PiecewiseConstant2D map;
-    Point2f sample(Point2f u) const {
-        const auto p = map.sample(u.x, u.y);
-        return {p.x, p.y};
-    }
-    float pdf(Point2f p) const { return map.pdf({p.x, p.y}); }
-    Point2f invert(Point2f p) const {
-        const auto u = map.invert({p.x, p.y});
-        return {u.x, u.y};
-    }
-};
 
 void register_environment(warpcheck::Registry& registry) {
     registry.add_case(warpcheck::make_warp_case(

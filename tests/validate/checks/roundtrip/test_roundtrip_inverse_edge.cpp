@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "sampling/float_bits.h"
+#include "hard/environment_map.h"
 #include "hard/piecewise.h"
 #include "support/check_harness.h"
 #include "validate/api/warp_case.h"
@@ -26,17 +27,11 @@ namespace {
 
 enum class Inverse { Correct, WrongRowNearEdges, WrongOnOddFloats };
 
-struct EnvironmentMap {
-    hard::PiecewiseConstant2D map{hard::environment_image(), 8};
+struct EnvironmentMap : hard::EnvironmentMap {
     Inverse inverse = Inverse::Correct;
 
-    Point2f sample(Point2f u) const {
-        const auto p = map.sample(u.x, u.y);
-        return {p.x, p.y};
-    }
-    float pdf(Point2f p) const { return map.pdf({p.x, p.y}); }
     Point2f invert(Point2f p) const {
-        const auto u = map.invert({p.x, p.y});
+        const Point2f u = hard::EnvironmentMap::invert(p);
         // Wrong twins: within 1e-4 below a row edge, u.x from the next row's
         // conditional (a band of positive measure); or u.x off by 0.25 wherever
         // x.x's last significand bit is 1 (right at each float neighbour of those).
@@ -44,12 +39,13 @@ struct EnvironmentMap {
             return {map.invert({p.x, std::min(7.0f, std::ceil(p.y * 8.0f)) / 8.0f}).x, u.y};
         if (inverse == Inverse::WrongOnOddFloats && (float_to_bits(p.x) & 1u) != 0)
             return {std::fmod(u.x + 0.25f, 1.0f), u.y};
-        return {u.x, u.y};
+        return u;
     }
 };
 
 std::unique_ptr<WarpCase> environment(const std::string& name, Inverse inverse) {
-    return make_warp_case({.family = name, .domain = chi2::Domain::unit_square()}, EnvironmentMap{.inverse = inverse});
+    return make_warp_case({.family = name, .domain = chi2::Domain::unit_square()},
+                          EnvironmentMap{{hard::PiecewiseConstant2D(hard::environment_image(), 8)}, inverse});
 }
 
 CheckResult roundtrip(const WarpCase& warp, uint64_t seed) {
