@@ -39,8 +39,8 @@ public:
         return (hi << 32) | next_u32();
     }
 
-    /// Fills `out` with out.size() draws of next_u64, the same values and the
-    /// same state after. Eight steps at a time are computed from one state
+    /// Writes n draws of next_u64 to out[0, n): the same values, and the same
+    /// state after. Eight steps at a time are computed from one state
     /// (the state k steps on is A^k s + c (A^(k-1) + ... + 1)), so they do not
     /// wait on each other's multiply as next_u64's chain of steps does.
     constexpr void next_u64s(uint64_t* out, std::size_t n) {
