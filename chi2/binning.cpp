@@ -96,6 +96,32 @@ void Histogram::merge(const Histogram& other) {
     for (std::size_t r = 0; r < other.poles.size(); ++r) poles[r] += other.poles[r];
 }
 
+void Histogram::spread_poles(int cols, std::span<const double> shares) {
+    const auto n_cols = static_cast<std::size_t>(cols);
+    if (shares.size() < poles.size() * n_cols) throw std::invalid_argument("Histogram::spread_poles: too few shares");
+    for (std::size_t r = 0; r < poles.size(); ++r) {
+        if (poles[r] == 0) continue;
+        const std::span<const double> w = shares.subspan(r * n_cols, n_cols);
+        double sum = 0.0;
+        for (double x : w) sum += std::max(x, 0.0);
+        if (!(sum > 0.0)) throw std::invalid_argument("Histogram::spread_poles: shares must be positive");
+        // Largest remainders: each column its whole share, then the rest one
+        // at a time to the largest fractions.
+        std::vector<std::pair<double, std::size_t>> fraction;
+        uint64_t dealt = 0;
+        for (std::size_t c = 0; c < n_cols; ++c) {
+            const double exact = static_cast<double>(poles[r]) * std::max(w[c], 0.0) / sum;
+            const auto whole = static_cast<uint64_t>(std::floor(exact));
+            counts[r * n_cols + c] += whole;
+            dealt += whole;
+            fraction.emplace_back(-(exact - static_cast<double>(whole)), c);
+        }
+        std::sort(fraction.begin(), fraction.end());
+        for (std::size_t k = 0; dealt < poles[r]; ++k, ++dealt) ++counts[r * n_cols + fraction[k % n_cols].second];
+    }
+    poles.clear();
+}
+
 void Histogram::spread_poles(int cols) {
     const auto n_cols = static_cast<uint64_t>(cols);
     for (std::size_t r = 0; r < poles.size(); ++r)
@@ -142,6 +168,102 @@ Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domai
     if (domain_.is<Interval>()) build_interval_edges();
     dv_ = (bounds_.v1 - bounds_.v0) / rows_;
     if (domain_.azimuthal() && cols_ % 8 == 0) build_phi_table();
+}
+
+Binning::Binning(const Domain& domain, BinResolution resolution, CellEdges edges) : Binning(domain, resolution) {
+    edges_ = std::move(edges);
+    check_edges();
+    rows_ = static_cast<int>(edges_.rows.size()) - 1;
+    cols_ = static_cast<int>(edges_.cols.front().size()) - 1;
+    resolution_.first = cols_;
+    resolution_.second = dims_ == 1 ? 0 : rows_;
+    du_ = (bounds_.u1 - bounds_.u0) / cols_;
+    dv_ = (bounds_.v1 - bounds_.v0) / rows_;
+    if (domain_.is<Interval>()) {
+        // As the uniform cells' (interval_edges_): a float x >= e exactly when
+        // x >= e rounded up to a float, so the cells hold the same samples and
+        // are integrated over the span those samples cover.
+        std::vector<double>& e = edges_.cols.front();
+        for (std::size_t j = 1; j + 1 < e.size(); ++j) {
+            float f = static_cast<float>(e[j]);
+            if (static_cast<double>(f) < e[j]) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+            e[j] = static_cast<double>(f);
+        }
+        check_edges();
+    }
+    interval_edges_.clear();
+    octant_cols_ = 0;
+    // Sixteen buckets per part: most hold no edge.
+    row_lookup_.build(edges_.rows, 16);
+    column_lookup_.resize(edges_.cols.size());
+    for (std::size_t r = 0; r < edges_.cols.size(); ++r) column_lookup_[r].build(edges_.cols[r], 16);
+}
+
+void Binning::check_edges() {
+    const auto ascending = [](const std::vector<double>& e, double lo, double hi) {
+        if (e.size() < 2 || e.front() != lo || e.back() != hi) return false;
+        for (std::size_t i = 0; i + 1 < e.size(); ++i)
+            if (!(e[i] < e[i + 1])) return false;
+        return true;
+    };
+    const double v0 = dims_ == 1 ? 0.0 : bounds_.v0, v1 = dims_ == 1 ? 1.0 : bounds_.v1;
+    if (!ascending(edges_.rows, v0, v1) || (dims_ == 1 && edges_.rows.size() != 2))
+        throw std::invalid_argument("cell edges: rows must ascend strictly from the parameter range's start to its end");
+    if (edges_.cols.size() + 1 != edges_.rows.size())
+        throw std::invalid_argument("cell edges: one list of column edges per row");
+    for (const std::vector<double>& c : edges_.cols)
+        if (!ascending(c, bounds_.u0, bounds_.u1) || c.size() != edges_.cols.front().size())
+            throw std::invalid_argument(
+                "cell edges: every row's columns must ascend strictly across the parameter range, as many in each row");
+    const std::size_t cells = (edges_.cols.front().size() - 1) * (edges_.rows.size() - 1);
+    if (cells > (std::size_t{1} << 26)) throw std::invalid_argument("cell edges: too many cells");
+    if (!edges_.pieces.empty() && edges_.pieces.size() != cells)
+        throw std::invalid_argument("cell edges: integration pieces for every cell or none");
+}
+
+void Binning::EdgeLookup::build(const std::vector<double>& e, std::size_t buckets_per_part) {
+    const std::size_t parts = e.size() - 1, buckets = buckets_per_part * parts;
+    lo = e.front();
+    scale = static_cast<double>(buckets) / (e.back() - e.front());
+    first.assign(buckets + 1, 0);
+    std::size_t i = 0;
+    for (std::size_t b = 0; b <= buckets; ++b) {
+        const double start = lo + static_cast<double>(b) / scale;
+        while (i + 1 < parts && e[i + 1] <= start) ++i;
+        first[b] = static_cast<uint32_t>(i);
+    }
+}
+
+int Binning::EdgeLookup::find(const std::vector<double>& e, double x) const {
+    const std::size_t parts = e.size() - 1, buckets = first.size() - 1;
+    const double f = (x - lo) * scale;
+    const std::size_t b = f >= 0.0 ? std::min(buckets - 1, static_cast<std::size_t>(f)) : 0;  // NaN: bucket 0
+    std::size_t i = first[b];
+    const std::size_t j = first[b + 1];
+    // The bucket's parts run from i to j; rounding of f may put x in a
+    // neighbouring bucket, so the answer is checked and searched for whole if
+    // it does not hold x.
+    if (j > i) {
+        if (j - i <= 4) {
+            while (i < j && e[i + 1] <= x) ++i;
+        } else {
+            i = static_cast<std::size_t>(std::upper_bound(e.begin() + 1 + i, e.begin() + 1 + j, x) - e.begin()) - 1;
+        }
+    }
+    const bool holds = (i == 0 || e[i] <= x) && (i + 1 == parts || x < e[i + 1]);
+    if (holds || !(x == x)) return static_cast<int>(i);
+    return static_cast<int>(std::upper_bound(e.begin() + 1, e.end() - 1, x) - (e.begin() + 1));
+}
+
+int Binning::row_of(double v) const {
+    // The last row whose lower edge is at or below v (clamped: points within
+    // the tolerance outside go to the nearest row).
+    return row_lookup_.find(edges_.rows, v);
+}
+
+int Binning::column_of(int row, double u) const {
+    const auto r = static_cast<std::size_t>(row);
+    return column_lookup_[r].find(edges_.cols[r], u);
 }
 
 void Binning::build_interval_edges() {
@@ -207,6 +329,11 @@ int Binning::interval_column(double x) const {
 ParamRect Binning::cell_rect(std::size_t cell) const {
     const auto col = static_cast<int>(cell % static_cast<std::size_t>(cols_));
     const auto row = static_cast<int>(cell / static_cast<std::size_t>(cols_));
+    if (!edges_.empty()) {
+        const std::vector<double>& c = edges_.cols[static_cast<std::size_t>(row)];
+        const auto i = static_cast<std::size_t>(col), j = static_cast<std::size_t>(row);
+        return {c[i], c[i + 1], edges_.rows[j], edges_.rows[j + 1]};
+    }
     if (!interval_edges_.empty())
         return {interval_edges_[static_cast<std::size_t>(col)], interval_edges_[static_cast<std::size_t>(col) + 1],
                 0.0, 1.0};
@@ -214,6 +341,11 @@ ParamRect Binning::cell_rect(std::size_t cell) const {
     auto edge = [](double lo, double hi, int i, int n) { return i == n ? hi : lo + (hi - lo) * i / n; };
     return {edge(bounds_.u0, bounds_.u1, col, cols_), edge(bounds_.u0, bounds_.u1, col + 1, cols_),
             edge(bounds_.v0, bounds_.v1, row, rows_), edge(bounds_.v0, bounds_.v1, row + 1, rows_)};
+}
+
+std::vector<ParamRect> Binning::integration_pieces(std::size_t cell) const {
+    if (cell < edges_.pieces.size() && !edges_.pieces[cell].empty()) return edges_.pieces[cell];
+    return {cell_rect(cell)};
 }
 
 double Binning::cell_measure(std::size_t cell) const {
@@ -262,6 +394,11 @@ std::size_t Binning::cell_at_parameters(double u, double v) const {
         if (u < 0.0) u += kTwoPi;
     }
     // The same arithmetic as bin_impl, so both put a point in the same cell.
+    if (!edges_.empty()) {
+        const int row = dims_ == 1 ? 0 : row_of(v);
+        return static_cast<std::size_t>(row) * static_cast<std::size_t>(cols_) +
+               static_cast<std::size_t>(column_of(row, u));
+    }
     const int col = !interval_edges_.empty() ? interval_column(u) : clamp_index((u - bounds_.u0) * (1.0 / du_), cols_);
     const int row = clamp_index((v - bounds_.v0) * (1.0 / dv_), rows_);
     return static_cast<std::size_t>(row) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(col);
@@ -276,11 +413,40 @@ std::ptrdiff_t Binning::cell_of(const DomainPoint& p) const {
     return static_cast<std::ptrdiff_t>(cell_at_parameters(uv[0], uv[1]));
 }
 
+std::array<double, 2> Binning::rounding_reach(double u, double v) const {
+    // Each coordinate moved kSnapFloatSteps float spacings of the domain's
+    // extent (the slack's scale, as the consistency check probes), both ways.
+    const DomainPoint p = point_at(u, v);
+    const double extent[3] = {tol_x_ / kDomainTolerance, tol_y_ / kDomainTolerance, tol_x_ / kDomainTolerance};
+    const std::array<double, 2> at = parameters_of(p);
+    std::array<double, 2> reach{0.0, 0.0};
+    for (int c = 0; c < domain_.point_dimension(); ++c)
+        for (const double sign : {1.0, -1.0}) {
+            DomainPoint q = p;
+            const auto k = static_cast<std::size_t>(c);
+            q[k] += sign * kSnapFloatSteps * 0x1p-24 * std::max(extent[k], std::abs(p[k]));
+            const std::array<double, 2> moved = parameters_of(q);
+            for (std::size_t a = 0; a < 2; ++a) {
+                double d = std::abs(moved[a] - at[a]);
+                if (a == 0 && domain_.azimuthal()) d = std::min(d, kTwoPi - d);
+                if (std::isfinite(d)) reach[a] = std::max(reach[a], d);
+            }
+        }
+    return reach;
+}
+
 std::size_t Binning::snap_from_zero_cell(double u, double v, std::size_t cell, std::span<const unsigned char> zero_cells,
                                          uint64_t& snapped) const {
-    // Tolerance in parameter units: the coordinate slack, and 2 pi times it for phi.
-    const auto [tu, tv_kind] = std::visit([&](const auto& k) { return k.parameter_slack({tol_x_, tol_y_}); },
-                                           domain_.shape());
+    // How far rounding may have moved the sample, in parameter units: a few
+    // float spacings of the coordinates (rounding_reach), at most the
+    // membership slack (2 pi times it for phi). Not the slack alone: cells of
+    // equal probability can be far narrower than it (a lobe of 1e-6 sr has
+    // rows 1e-7 apart in cos theta, the slack is 1e-5).
+    auto [tu, tv_kind] = std::visit([&](const auto& k) { return k.parameter_slack({tol_x_, tol_y_}); },
+                                    domain_.shape());
+    const std::array<double, 2> reach = rounding_reach(u, v);
+    tu = std::min(tu, reach[0]);
+    tv_kind = std::min(tv_kind, reach[1]);
     const double tv = dims_ == 1 ? 0.0 : tv_kind;
     static constexpr int kSteps[8][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
     for (const auto& s : kSteps) {
@@ -349,6 +515,7 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
         return clamp_index(fl, cols_);
     };
     const std::size_t cols = static_cast<std::size_t>(cols_);
+    const bool own_edges = !edges_.empty();
 
     // One loop per kind (std::visit outside it): NaN first, then membership,
     // then the cell. Azimuthal kinds get phi's column from the table or the
@@ -367,6 +534,25 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
                 if (!inside) { ++hist.outside; continue; }
                 if constexpr (Kind::kAzimuthal) {
                     const double v = kind.v_of(q);
+                    if (own_edges) {
+                        const int row = row_of(v);
+                        if (q[0] == 0.0 && q[1] == 0.0) {
+                            count_pole(hist, static_cast<std::size_t>(row));
+                            continue;
+                        }
+                        // The fast atan2 (within 3e-8 rad), and the exact one
+                        // within 1e-6 rad of the column's edges.
+                        double phi = fast_phi(q[0], q[1]);
+                        int col = column_of(row, phi);
+                        const std::vector<double>& e = edges_.cols[static_cast<std::size_t>(row)];
+                        const auto c = static_cast<std::size_t>(col);
+                        if (phi - e[c] < 1e-6 || e[c + 1] - phi < 1e-6) {
+                            phi = exact_phi(q[0], q[1]);
+                            col = column_of(row, phi);
+                        }
+                        add(static_cast<std::size_t>(row) * cols + static_cast<std::size_t>(col), phi, v, q);
+                        continue;
+                    }
                     const auto row = static_cast<std::size_t>(clamp_index((v - bounds_.v0) * inv_dv, rows_));
                     if (q[0] == 0.0 && q[1] == 0.0) {  // a pole: no azimuth (Histogram::poles)
                         count_pole(hist, row);
@@ -376,6 +562,11 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
                     add_phi(row * cols + col, q[0], q[1], v, q);
                 } else {
                     const auto [u, v] = kind.parameters_of(q, resolution_);
+                    if (own_edges) {
+                        const int row = dims_ == 1 ? 0 : row_of(v);
+                        add(static_cast<std::size_t>(row) * cols + static_cast<std::size_t>(column_of(row, u)), u, v, q);
+                        continue;
+                    }
                     const int c = interval_edges_.empty() ? clamp_index((u - bounds_.u0) * inv_du, cols_)
                                                           : interval_column(u);
                     const auto row = static_cast<std::size_t>(clamp_index((v - bounds_.v0) * inv_dv, rows_));
@@ -397,7 +588,7 @@ void Binning::bin(std::span<const DomainPoint> points, Histogram& hist, std::spa
 }
 
 std::optional<LanePlan> Binning::lane_plan() const {
-    if (octant_cols_ == 0 || octant_cols_ > LanePlan::kMaxOctantCols) return std::nullopt;
+    if (!edges_.empty() || octant_cols_ == 0 || octant_cols_ > LanePlan::kMaxOctantCols) return std::nullopt;
     LanePlan plan;
     if (domain_.is<SphericalCap>()) {
         plan.sphere = true;
@@ -454,6 +645,19 @@ BinResolution float_aware_resolution(const Domain& domain, BinResolution request
         }
     }
     return r;
+}
+
+void Binning::spread_poles(Histogram& hist) const {
+    if (hist.poles.empty()) return;
+    if (edges_.empty() || !domain_.azimuthal()) {
+        hist.spread_poles(cols_);
+        return;
+    }
+    std::vector<double> shares;
+    shares.reserve(cell_count());
+    for (const std::vector<double>& row : edges_.cols)
+        for (std::size_t c = 0; c + 1 < row.size(); ++c) shares.push_back(row[c + 1] - row[c]);
+    hist.spread_poles(cols_, shares);
 }
 
 std::string Binning::u_label() const {

@@ -55,6 +55,30 @@ struct Histogram {
     /// each and one more to the first n % cols (at most one sample from an
     /// even share), and clears `poles`.
     void spread_poles(int cols);
+    /// The same for columns of unequal azimuth: per row, `shares` (cols
+    /// weights each, row after row) deal its pole samples out in proportion,
+    /// the remainders one at a time to the largest fractions (ties to the
+    /// first column), and clears `poles`.
+    void spread_poles(int cols, std::span<const double> shares);
+};
+
+/// Cells with edges of their own instead of a uniform grid of the parameter
+/// rectangle: rows between `rows` (v edges, ascending, from the rectangle's
+/// v0 to its v1) and, in each row, columns between that row's `cols` (u
+/// edges, ascending, from u0 to u1), the same number in every row. A 1D
+/// domain has one row, rows = {v0, v1}. Cells of about equal probability are
+/// made this way (chi2/equal_probability.h); any edges may be given.
+struct CellEdges {
+    std::vector<double> rows;
+    std::vector<std::vector<double>> cols;
+    /// Optional, per cell (row-major): the rectangles the cell's density is
+    /// integrated over, which tile it (an empty list: the cell itself).
+    /// chi2/equal_probability.h cuts a cell where its mass was seen, so that
+    /// the cubature's nodes fall there: a cell that reaches from a lobe's edge
+    /// to the far side of the sphere holds its mass within 1e-5 of one end,
+    /// between any fixed rule's nodes.
+    std::vector<std::vector<ParamRect>> pieces;
+    bool empty() const { return rows.empty(); }
 };
 
 /// What a vectorised binning loop needs (validate/lanes/lane_cells.h): the constants
@@ -85,6 +109,12 @@ public:
     /// the domain gives p ~ 1e-6 with 2048 cells but ~1e-15 with 1024); fewer
     /// blur local ones. A uniform density gets ~1000 samples per cell.
     explicit Binning(const Domain& domain, BinResolution resolution = {});
+    /// Bins `domain` into the cells of `edges` (checked: ascending, spanning
+    /// the parameter rectangle, as many columns in every row); `resolution`
+    /// supplies only an unbounded line's half_line_scale and line_center. An
+    /// interval's interior column edges are rounded up to floats, as the
+    /// uniform cells' are (see interval_edges_).
+    Binning(const Domain& domain, BinResolution resolution, CellEdges edges);
 
     const Domain& domain() const { return domain_; }
     const BinResolution& resolution() const { return resolution_; }
@@ -99,9 +129,18 @@ public:
     /// coordinates): the resolution of a float sample along that axis there.
     double float_resolution(int axis, double u, double v) const;
 
+    /// Whether the cells have edges of their own (CellEdges) rather than a uniform grid.
+    bool has_own_edges() const { return !edges_.empty(); }
+    const CellEdges& edges() const { return edges_; }
+
     /// The parameter range; v is [0, 1] for 1D domains.
     ParamRect parameter_bounds() const { return bounds_; }
     ParamRect cell_rect(std::size_t cell) const;
+    /// The rectangles the density is integrated over for `cell`: the cell
+    /// itself, or its pieces (CellEdges::pieces).
+    std::vector<ParamRect> integration_pieces(std::size_t cell) const;
+    bool has_integration_pieces() const { return !edges_.pieces.empty(); }
+
     /// The cell's length, area or solid angle (infinite for a half-line's tail cell).
     double cell_measure(std::size_t cell) const;
 
@@ -120,6 +159,11 @@ public:
     std::ptrdiff_t cell_of(const DomainPoint& p) const;
     /// The cell at parameters (u, v), clamped into the grid (u wraps for phi).
     std::size_t cell_at_parameters(double u, double v) const;
+
+    /// Deals the pole samples of `hist` out over each row's columns, evenly
+    /// for uniform columns and in proportion to their azimuth otherwise (a
+    /// density continuous at the pole is uniform in the azimuth there).
+    void spread_poles(Histogram& hist) const;
 
     /// Adds `points` to `hist` (whose counts must have cell_count() entries).
     /// When `zero_cells` is not empty (one flag per cell), a sample that lands in
@@ -146,11 +190,20 @@ private:
     template <typename Point>
     void bin_impl(std::span<const Point> points, Histogram& hist, std::span<const unsigned char> zero_cells) const;
     void count_pole(Histogram& hist, std::size_t row) const;
+    void check_edges();
+    int row_of(double v) const;
+    int column_of(int row, double u) const;
     void build_interval_edges();
     void build_phi_table();
     bool on_parameter_boundary(double u, double v) const;
     std::size_t snap_from_zero_cell(double u, double v, std::size_t cell, std::span<const unsigned char> zero_cells,
                                     uint64_t& snapped) const;
+    /// How far each parameter moves when a coordinate of the point at (u, v)
+    /// moves kSnapFloatSteps float spacings of the domain's extent.
+    std::array<double, 2> rounding_reach(double u, double v) const;
+    /// A float warp's coordinates are within a few roundings of terms as large
+    /// as the domain (the consistency check's probe uses 4 such spacings).
+    static constexpr double kSnapFloatSteps = 4.0;
 
     Domain domain_;
     BinResolution resolution_;
@@ -176,6 +229,21 @@ private:
     // float of a narrow interval, drawn with the probability of its spacing).
     std::vector<double> interval_edges_;
     int interval_column(double x) const;
+    // Cells with edges of their own (empty: the uniform grid above), and a
+    // lookup for each list of edges: uniform buckets across its range, each
+    // naming the part that holds its start, so that a point's part is found
+    // by one multiplication and, where a bucket holds edges, a search among
+    // those alone.
+    CellEdges edges_;
+    struct EdgeLookup {
+        double lo = 0.0, scale = 0.0;
+        std::vector<uint32_t> first;  ///< per bucket, and one past the end
+        void build(const std::vector<double>& e, std::size_t buckets_per_part);
+        /// The largest i < e.size() - 1 with e[i] <= x (0 below e[1] and for NaN).
+        int find(const std::vector<double>& e, double x) const;
+    };
+    EdgeLookup row_lookup_;
+    std::vector<EdgeLookup> column_lookup_;
 };
 
 /// `requested` (zero fields: the domain's defaults, as Binning fills them in)

@@ -28,6 +28,10 @@ float step_floats(float c, int steps) {
     return std::bit_cast<float>(moved < 0 ? static_cast<int32_t>((-moved) | 0x80000000LL) : static_cast<int32_t>(moved));
 }
 
+/// The half-width of a cap's z band near a pole (|z| >= 1/2), where z is read
+/// off x and y: 5 steps 2^-24 of 1 - |z| (see the header).
+double polar_half_width(double z, double steps) { return 5.0 * steps * 0x1p-24 * (1.0 - std::abs(z)); }
+
 }  // namespace
 
 FloatResolution::FloatResolution(const Binning& binning, int axis, int steps)
@@ -39,8 +43,7 @@ FloatResolution::FloatResolution(const Binning& binning, int axis, int steps)
     if (d.is<Triangle>()) {
         kind_ = Kind::Probed;
     } else if (d.azimuthal()) {
-        kind_ = axis == 0 ? Kind::Azimuth : d.is<Disk>() ? Kind::RadiusSquared : Kind::Coordinate;
-        coordinate_ = 2;  // z = cos theta of spherical caps
+        kind_ = axis == 0 ? Kind::Azimuth : d.is<Disk>() ? Kind::RadiusSquared : Kind::PolarHeight;
     } else {
         coordinate_ = axis;  // x of lines and boxes, y of boxes
         mapped_ = d.unbounded_line();
@@ -57,6 +60,7 @@ double FloatResolution::value(const std::array<float, 3>& p) const {
     switch (kind_) {
         case Kind::Azimuth: return x == 0.0 && y == 0.0 ? std::nan("") : exact_phi(x, y);
         case Kind::RadiusSquared: return x * x + y * y;
+        case Kind::PolarHeight: return SphericalCap::polar_height({x, y, static_cast<double>(p[2])});
         case Kind::Probed: return binning_.parameters_of({x, y, 0.0})[static_cast<std::size_t>(axis_)];
         case Kind::Coordinate: break;
     }
@@ -77,6 +81,17 @@ ParameterBand FloatResolution::band(const std::array<float, 3>& p) const {
         }
         case Kind::RadiusSquared: {
             const double h = 2.0 * s * 0x1p-23 * b.value;
+            b.lo = b.value - h;
+            b.hi = b.value + h;
+            return b;
+        }
+        case Kind::PolarHeight: {
+            if (std::abs(p[2]) < 0.5f) {  // z itself (polar_height)
+                b.lo = static_cast<double>(step_floats(p[2], -steps_));
+                b.hi = static_cast<double>(step_floats(p[2], steps_));
+                return b;
+            }
+            const double h = polar_half_width(b.value, s);
             b.lo = b.value - h;
             b.hi = b.value + h;
             return b;
@@ -117,6 +132,14 @@ double FloatResolution::half_width_at(double t) const {
     switch (kind_) {
         case Kind::Azimuth: return s * 0x1p-23;
         case Kind::RadiusSquared: return 2.0 * s * 0x1p-23 * t;
+        case Kind::PolarHeight: {
+            if (std::abs(t) < 0.5) {
+                const auto z = static_cast<float>(t);
+                const double step = static_cast<double>(step_floats(std::abs(z), steps_)) - std::abs(z);
+                return std::max(step, std::abs(z) - static_cast<double>(step_floats(std::abs(z), -steps_)));
+            }
+            return polar_half_width(t, s);
+        }
         // Unbounded over the other parameter (a triangle's t near its first
         // vertex): no model, so every sample's band is probed.
         case Kind::Probed: return kInf;
@@ -146,6 +169,9 @@ std::string FloatResolution::describe() const {
     switch (kind_) {
         case Kind::Azimuth: return "phi within " + n + " 2^-23";
         case Kind::RadiusSquared: return "r^2 within " + n + " 2^-22 of itself";
+        case Kind::PolarHeight:
+            return "z within " + n + (steps_ == 1 ? " float step" : " float steps") + ", or near a pole 1 - |z| within " +
+                   std::to_string(5 * steps_) + " 2^-24 of itself (from x and y)";
         case Kind::Probed: return "x and y each within " + n + " float steps, probed";
         case Kind::Coordinate: break;
     }

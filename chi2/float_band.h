@@ -19,7 +19,12 @@
 //     x = y = 0 has no azimuth (its float neighbours point every way, and
 //     rounding puts a whole neighbourhood of the pole onto it: 0.3% of a
 //     0.25 degree cone's samples): its phi is NaN;
-//   - r^2 = x^2 + y^2 of the disk: |d(r^2)| <= 2 steps 2^-23 r^2, to first order.
+//   - r^2 = x^2 + y^2 of the disk: |d(r^2)| <= 2 steps 2^-23 r^2, to first order;
+//   - z = cos theta of spherical caps (SphericalCap::polar_height): where
+//     |z| < 1/2, z moved `steps` floats; nearer the poles, where it is read off
+//     x and y as +-(1 - t), t = (x^2 + y^2) / (1 + |z|):
+//     |dt| <= |d(x^2 + y^2)| / (1 + |z|) + t |dz| / (1 + |z|)
+//          <= t steps (2^-22 + 2^-24 / 1.5) <= 5 steps 2^-24 t, to first order.
 // The input's own quantisation (u on a float grid) moves a monotone warp's
 // CDF by at most one input step, 2^-24 of the mass: far below any test's
 // resolution up to 10^10 samples, and not modelled.
@@ -60,7 +65,7 @@ public:
     /// whose parameter is t, to float rounding): the larger side.
     double half_width_at(double t) const;
     /// Which float coordinate the parameter is a monotone map of (0, 1, 2), or
-    /// -1 when it combines two (phi, r^2, a triangle's parameters).
+    /// -1 when it combines two (phi, r^2, a cap's z, a triangle's parameters).
     int coordinate() const { return kind_ == Kind::Coordinate ? coordinate_ : -1; }
     int steps() const { return steps_; }
     /// How the band is set, for a result's text: e.g. "2 float steps of z".
@@ -69,7 +74,7 @@ public:
 private:
     /// Probed: a parameter that mixes both coordinates through a map with no
     /// closed-form band (a triangle's (s, t)); its band is probed per point.
-    enum class Kind { Coordinate, Azimuth, RadiusSquared, Probed };
+    enum class Kind { Coordinate, Azimuth, RadiusSquared, PolarHeight, Probed };
     ParameterBand probed_band(const std::array<float, 3>& p) const;
     double of_coordinate(float c) const;
 

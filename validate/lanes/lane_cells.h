@@ -26,7 +26,11 @@ WARPCHECK_LANE lanes::I64 lane_cells(const chi2::LanePlan& plan, lanes::F32 xf, 
     const F64 x = lanes::to_f64(xf), y = lanes::to_f64(yf), z = lanes::to_f64(zf);
     const F64 xy2 = x * x + y * y;
     const F64 len2 = plan.sphere ? xy2 + z * z : xy2;
-    const F64 v = plan.sphere ? z : xy2;
+    // v as Disk::v_of and SphericalCap::polar_height (z read off x and y near
+    // the poles), the same operations in the same order.
+    const F64 north = 1.0 - xy2 / (1.0 + z), south = -1.0 + xy2 / (1.0 - z);
+    const F64 height = z >= 0.5 ? north : (z <= -0.5 ? south : z);
+    const F64 v = plan.sphere ? height : xy2;
     // The phi column, as Binning::phi_column_by_table: the octant's column is the
     // number of its interior edges tan(k du) at or below t = min/max of |x|, |y|.
     const F64 ax = lanes::abs(x), ay = lanes::abs(y);
