@@ -192,7 +192,7 @@ Chi2Outcome evaluate_chi2(const Binning& binning, Histogram histogram, CellInteg
         throw std::invalid_argument("evaluate_chi2: histogram or integrals of another binning");
     Chi2Outcome out;
     out.samples = samples;
-    histogram.spread_poles(binning.cols());
+    binning.spread_poles(histogram);
     out.histogram = std::move(histogram);
     out.integrals = std::move(integrals);
     add_failures_without_level(out, binning, options);

@@ -95,12 +95,108 @@ double drift_for_power(UnbinnedTest test, double level, double power) {
 
 }  // namespace
 
-double pearson_noncentrality_for_power(double dof, double level, double power) {
-    if (!(dof >= 1.0) || !(level > 0.0 && level < 1.0) || !(power > level && power < 1.0)) return std::nan("");
-    const boost::math::chi_squared null(dof);
-    const double critical = boost::math::quantile(boost::math::complement(null, level));
+double pearson_noncentrality_for_power(double dof, double level, double power, double band_noncentrality) {
+    if (!(dof >= 1.0) || !(level > 0.0 && level < 1.0) || !(power > level && power < 1.0) ||
+        !(band_noncentrality >= 0.0) || !std::isfinite(band_noncentrality))
+        return std::nan("");
+    double critical = 0.0;
+    if (band_noncentrality > 0.0) {
+        const boost::math::non_central_chi_squared banded(dof, band_noncentrality);
+        critical = boost::math::quantile(boost::math::complement(banded, level));
+    } else {
+        const boost::math::chi_squared null(dof);
+        critical = boost::math::quantile(boost::math::complement(null, level));
+    }
     // The lambda at which the noncentral CDF at the critical value is 1 - power.
     return boost::math::non_central_chi_squared::find_non_centrality(dof, critical, 1.0 - power);
+}
+
+std::vector<double> tilt_gradient(const Binning& b, std::span<const double> probability, int axis) {
+    const std::size_t cells = b.cell_count();
+    std::vector<double> g(cells, 0.0);
+    if (probability.size() != cells) return g;
+    double total = 0.0;
+    for (double p : probability) total += std::max(p, 0.0);
+    if (!(total > 0.0)) return g;
+    const auto p = [&](std::size_t c) { return std::max(probability[c], 0.0) / total; };
+    const std::size_t cols = static_cast<std::size_t>(b.cols()), rows = static_cast<std::size_t>(b.rows());
+    if (b.parameter_dimension() == 1 || axis == 1) {
+        // Along the line (its cells in order) or along v (rows in order): F
+        // runs from a to a + P over a part of probability P, and its mean
+        // 2F - 1 there is 2a + P - 1.
+        const bool line = b.parameter_dimension() == 1;
+        const std::size_t parts = line ? cols : rows;
+        double below = 0.0;
+        for (std::size_t j = 0; j < parts; ++j) {
+            double part = 0.0;
+            if (line) part = p(j);
+            else
+                for (std::size_t c = 0; c < cols; ++c) part += p(j * cols + c);
+            const double mean = 2.0 * below + part - 1.0;
+            if (line) g[j] = p(j) * mean;
+            else
+                for (std::size_t c = 0; c < cols; ++c) g[j * cols + c] = p(j * cols + c) * mean;
+            below += part;
+        }
+        return g;
+    }
+    // Along u in 2D: F(u) = sum over cells of p times the share of the cell's
+    // u range below u, piecewise linear between the cells' u edges; a cell's
+    // mean of F by Simpson's rule on its range. F is swept once over the
+    // sorted edges (slope p / width between a cell's ends).
+    std::vector<ParamRect> rect(cells);
+    std::vector<std::pair<double, double>> slope_change;  // (u, change of dF/du)
+    for (std::size_t c = 0; c < cells; ++c) {
+        rect[c] = b.cell_rect(c);
+        const double w = rect[c].u1 - rect[c].u0;
+        if (!(w > 0.0)) continue;
+        slope_change.push_back({rect[c].u0, p(c) / w});
+        slope_change.push_back({rect[c].u1, -p(c) / w});
+    }
+    std::sort(slope_change.begin(), slope_change.end());
+    std::vector<std::pair<double, std::size_t>> at;  // (u, 3 c + k): the three Simpson points of each cell
+    for (std::size_t c = 0; c < cells; ++c) {
+        at.push_back({rect[c].u0, 3 * c});
+        at.push_back({0.5 * (rect[c].u0 + rect[c].u1), 3 * c + 1});
+        at.push_back({rect[c].u1, 3 * c + 2});
+    }
+    std::sort(at.begin(), at.end());
+    std::vector<double> F(3 * cells, 0.0);
+    double value = 0.0, slope = 0.0, position = slope_change.empty() ? 0.0 : slope_change.front().first;
+    std::size_t k = 0;
+    for (const auto& [u, index] : at) {
+        while (k < slope_change.size() && slope_change[k].first <= u) {
+            value += slope * (slope_change[k].first - position);
+            position = slope_change[k].first;
+            slope += slope_change[k].second;
+            ++k;
+        }
+        F[index] = value + slope * (u - position);
+    }
+    for (std::size_t c = 0; c < cells; ++c) {
+        const double mean = (F[3 * c] + 4.0 * F[3 * c + 1] + F[3 * c + 2]) / 6.0;
+        g[c] = p(c) * (2.0 * mean - 1.0);
+    }
+    return g;
+}
+
+double tilt_noncentrality(std::span<const double> gradient, std::span<const double> probability,
+                          std::span<const std::size_t> term_of_cell, uint64_t samples) {
+    if (gradient.size() != probability.size() || term_of_cell.size() != probability.size()) return std::nan("");
+    std::size_t terms = 0;
+    for (std::size_t t : term_of_cell)
+        if (t != static_cast<std::size_t>(-1)) terms = std::max(terms, t + 1);
+    std::vector<double> moved(terms, 0.0), mass(terms, 0.0);
+    for (std::size_t c = 0; c < probability.size(); ++c) {
+        const std::size_t t = term_of_cell[c];
+        if (t >= terms) continue;
+        moved[t] += gradient[c];
+        mass[t] += std::max(probability[c], 0.0);
+    }
+    double sum = 0.0;
+    for (std::size_t t = 0; t < terms; ++t)
+        if (mass[t] > 0.0) sum += moved[t] * moved[t] / mass[t];
+    return static_cast<double>(samples) * sum;
 }
 
 double pearson_tilt_for_noncentrality(double lambda, uint64_t n) {

@@ -8,16 +8,43 @@
 // claimed normalisation is right but whose slope is wrong along that marginal.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
+#include <vector>
 
+#include "chi2/binning.h"
 #include "chi2/unbinned.h"
 
 namespace warpcheck::chi2 {
 
 /// The noncentrality lambda at which Pearson's statistic with `dof` degrees of
 /// freedom exceeds its level-`level` critical value with probability `power`
-/// (the noncentral chi-square law; Boost.Math's find_non_centrality).
-double pearson_noncentrality_for_power(double dof, double level, double power = 0.9);
+/// (the noncentral chi-square law; Boost.Math's find_non_centrality). With
+/// `band_noncentrality` > 0 the critical value is the banded test's (the
+/// level-`level` quantile of the noncentral chi-square with that
+/// noncentrality, as chi2/pearson.h judges): the power of the test as it runs,
+/// against a deviation whose own noncentrality is lambda.
+double pearson_noncentrality_for_power(double dof, double level, double power = 0.9, double band_noncentrality = 0.0);
+
+/// Per cell, how a tilt of one marginal moves its probability, per unit of
+/// eps: the tilted law has density 1 + eps (2 F - 1) along the marginal's CDF
+/// F, so a cell gains eps times the integral of (2 F - 1) over it. Computed
+/// from the cells as binned: F along v from the rows' cumulative
+/// probabilities (1D domains: along u from the columns'), F along u from the
+/// cells' mass spread evenly over each one's u range; a cell's F is taken
+/// as even over its range (within its row, F along v is; along u, rows are
+/// assumed not to shift a cell's share of its column range). `axis`: 0 for u,
+/// 1 for v. Probabilities are normalised by their sum.
+std::vector<double> tilt_gradient(const Binning& binning, std::span<const double> probability, int axis);
+
+/// The noncentrality that a tilt eps = 1 gives Pearson's statistic over
+/// `samples` samples on the terms that pooling made (`term_of_cell`, as
+/// PearsonResult has it): n sum over terms (sum of gradient)^2 / (sum of
+/// probability). A marginal the cells do not resolve (a lobe in one row)
+/// gives almost none: its tilt cannot be seen.
+double tilt_noncentrality(std::span<const double> gradient, std::span<const double> probability,
+                          std::span<const std::size_t> term_of_cell, uint64_t samples);
 
 /// The tilt eps of one marginal that gives Pearson's statistic the
 /// noncentrality `lambda` with n samples: lambda = n eps^2 Var(2U - 1) = n eps^2 / 3.
