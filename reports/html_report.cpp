@@ -47,8 +47,11 @@ std::string verdict_class(Verdict v) {
     return "error";
 }
 
-std::string badge(Verdict v) {
-    return fmt::format("<span class=\"badge {}\">{}</span>", verdict_class(v), escaped(to_string(v)));
+/// A pass that could not have seen its stated effect reads "weak" (CheckResult::weak).
+std::string badge(const CheckResult& r) {
+    const bool weak = r.verdict == Verdict::Pass && !r.weak.empty();
+    return fmt::format("<span class=\"badge {}\"{}>{}</span>", weak ? "weak" : verdict_class(r.verdict),
+                       weak ? " title=\"" + escaped(r.weak) + "\"" : std::string(), escaped(verdict_word(r)));
 }
 
 std::string plural(std::size_t n, std::string_view one, std::string_view many) {
@@ -267,7 +270,7 @@ void append_row(std::string& html, const RunResult& run, std::size_t i, const Pa
                         "<span class=\"t\">{10}</span></summary>\n",
                         verdict_class(r.verdict), i, escaped(r.check_name),
                         r.message.empty() ? "" : " data-s=\"" + escaped(r.message) + "\"",
-                        open ? " open=\"open\"" : fmt::format(" data-p=\"{}\"", pack->second), badge(r.verdict),
+                        open ? " open=\"open\"" : fmt::format(" data-p=\"{}\"", pack->second), badge(r),
                         case_cell(r.case_name), margin_cell(r), escaped(r.summary), p_value_cell(r),
                         escaped(format_seconds(r.seconds)));
     if (open) html += "<div class=\"body\">\n" + html::row_body(run, i) + "</div>";

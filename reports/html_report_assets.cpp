@@ -75,7 +75,7 @@ summary .m { font-variant-numeric: tabular-nums; white-space: nowrap; font-size:
 .gauge i { display: block; height: 100%; background: #8a96a6; border-radius: 4px; }
 .gauge.near i { background: #d08a1a; } .gauge.over i { background: var(--fail); }
 .badge { display: inline-block; min-width: 40px; text-align: center; border-radius: 4px; padding: 0 5px; font-size: 11px; font-weight: 700; letter-spacing: 0.04em; color: #fff; }
-.badge.pass { background: var(--pass); } .badge.fail { background: var(--fail); } .badge.error { background: var(--error); } .badge.na { background: #8a939d; }
+.badge.pass { background: var(--pass); } .badge.fail { background: var(--fail); } .badge.error { background: var(--error); } .badge.na { background: #8a939d; } .badge.weak { background: #a66f00; }
 .body { padding: 6px 14px 14px 20px; border-left: 4px solid #e4e7eb; }
 .fail > .body { border-left-color: var(--fail); } .error > .body { border-left-color: var(--error); }
 .message { margin: 8px 0; padding: 7px 11px; border-radius: 6px; white-space: pre-wrap; overflow-wrap: anywhere; background: var(--soft); border: 1px solid var(--line); }

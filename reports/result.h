@@ -251,6 +251,12 @@ struct CheckResult {
     /// Why it failed or errored. On a pass, empty or a note worth reading that is
     /// not a failure (e.g. the bias an exhaustive sweep reports without failing it).
     std::string message;
+    /// Set on a pass that could not have seen the effect its check states it
+    /// can (a statistical test without the power to detect a 5% tilt of a
+    /// marginal, for its cells or its samples): what it could not see.
+    /// Reports show such a row as "weak", never as a plain pass; it is not a
+    /// failure. Empty otherwise.
+    std::string weak;
 
     std::vector<Figure> figures;  ///< every number worth keeping, by name
     /// Set by statistical checks. The runner turns it into the verdict with the
@@ -290,6 +296,7 @@ void fields(V& v, T& r) {
     v("verdict", r.verdict);
     v("summary", r.summary);
     v("message", r.message);
+    v("weak", r.weak);
     v("p_value", r.p_value);
     v("level", r.level);
     v.named_numbers("figures", r.figures);
@@ -305,6 +312,12 @@ void fields(V& v, T& r) {
     v("tables", r.tables);
     v("family_points", r.family_points);
     v("digest", r.digest);
+}
+
+/// The word a row's verdict is shown as: "weak" for a pass that could not
+/// have seen its stated effect (CheckResult::weak), else the verdict's.
+inline std::string_view verdict_word(const CheckResult& r) {
+    return r.verdict == Verdict::Pass && !r.weak.empty() ? std::string_view("weak") : to_string(r.verdict);
 }
 
 /// What a whole run was: settings, environment and totals.

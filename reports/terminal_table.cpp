@@ -19,10 +19,16 @@ constexpr std::size_t kVerdictWidth = 5;
 constexpr std::size_t kMinCaseWidth = 24;  ///< a narrow table still shows this much of a case name
 constexpr std::size_t kMinKeyWidth = 30;   ///< ... and this much of the key figure
 
-std::string verdict_cell(Verdict v, bool color) {
-    const std::string text = fmt::format("{:<{}}", to_string(v), kVerdictWidth);
+std::string verdict_cell(const CheckResult& r, bool color) {
+    const Verdict v = r.verdict;
+    const std::string text = fmt::format("{:<{}}", verdict_word(r), kVerdictWidth);
     if (!color) return text;
-    const char* code = v == Verdict::Pass ? "32" : v == Verdict::Fail ? "1;31" : v == Verdict::Error ? "1;35" : "2";
+    const bool weak = v == Verdict::Pass && !r.weak.empty();
+    const char* code = weak              ? "33"
+                       : v == Verdict::Pass ? "32"
+                       : v == Verdict::Fail ? "1;31"
+                       : v == Verdict::Error ? "1;35"
+                                             : "2";
     return fmt::format("\033[{}m{}\033[0m", code, text);
 }
 
@@ -90,7 +96,7 @@ void print_rows(const RunResult& run, std::ostream& out, const TableStyle& style
         if (!shown(r, style)) continue;
         const std::string name = fit_case_name(printable(r.case_name), w.case_name);
         const std::string key = printable(r.summary);
-        out << fmt::format("{}  {:<{}}  {}{}  {:<{}}  {}\n", verdict_cell(r.verdict, style.color), r.check_name,
+        out << fmt::format("{}  {:<{}}  {}{}  {:<{}}  {}\n", verdict_cell(r, style.color), r.check_name,
                            w.check, name, std::string(w.case_name - std::min(w.case_name, display_width(name)), ' '),
                            margin_cell(r), w.margin, w.key ? fit_columns(key, w.key) : key);
     }
@@ -184,8 +190,13 @@ std::string fit_case_name(const std::string& name, std::size_t columns) {
 void print_summary(const RunResult& run, std::ostream& out) {
     const auto& i = run.info;
     const int not_applicable = run.count(Verdict::NotApplicable);
-    out << fmt::format("{} checks: {} passed, {} failed, {} errors{} in {:.1f} s  (seed {}, {} samples, {} threads)\n",
-                       run.results.size(), run.count(Verdict::Pass), run.count(Verdict::Fail),
+    const auto weak = std::count_if(run.results.begin(), run.results.end(), [](const CheckResult& r) {
+        return r.verdict == Verdict::Pass && !r.weak.empty();
+    });
+    out << fmt::format("{} checks: {} passed{}, {} failed, {} errors{} in {:.1f} s  (seed {}, {} samples, {} threads)\n",
+                       run.results.size(), run.count(Verdict::Pass),
+                       weak > 0 ? fmt::format(" ({} weak: could not see a 5% tilt)", weak) : std::string(),
+                       run.count(Verdict::Fail),
                        run.count(Verdict::Error),
                        not_applicable > 0 ? fmt::format(", {} not applicable", not_applicable) : std::string(),
                        i.wall_seconds, i.seed, i.samples, i.threads);
@@ -259,6 +270,22 @@ void print_weakest(const RunResult& run, std::ostream& out, std::size_t count, s
         }
 }
 
+/// The passes that could not have seen their check's stated effect, each with what it could not see.
+void print_weak(const RunResult& run, std::ostream& out, std::size_t width) {
+    bool header = false;
+    for (const auto& r : run.results) {
+        if (r.verdict != Verdict::Pass || r.weak.empty()) continue;
+        if (!header) {
+            out << "\nWeak: passes that could not have seen a 5% tilt (not failures; more samples or finer cells "
+                   "would):\n";
+            header = true;
+        }
+        const std::string line =
+            fmt::format("  {} {}: {}", r.check_name, printable(r.case_name), printable(r.weak));
+        out << (width ? fit_columns(line, width) : line) << "\n";
+    }
+}
+
 void print_timings(const RunResult& run, std::ostream& out, std::size_t slowest) {
     double total = 0.0;
     std::map<std::string, std::pair<double, int>> by_check;
@@ -296,6 +323,7 @@ void print_table(const RunResult& run, std::ostream& out, const TableStyle& styl
     if (style.families && (any_shown || !style.failures_only) && several_families(run))
         print_family_summary(run, out, style.failures_only);
     if (style.weakest > 0 && !style.failures_only) print_weakest(run, out, style.weakest, style.width);
+    if (!style.failures_only) print_weak(run, out, style.width);
     print_failures(run, out);
     if (style.timings) print_timings(run, out);
     out << "\n";

@@ -103,6 +103,7 @@ void apply_multiple_test_correction(RunResult& run, double family_alpha, std::op
         r.figures.push_back({"level", level});
         if (r.verdict == Verdict::Pass && !(*r.p_value >= level)) {
             r.verdict = Verdict::Fail;
+            r.weak.clear();  // it saw a deviation: what it could not have seen no longer matters
             r.message = std::isnan(*r.p_value)
                             ? "p-value is NaN"
                             : fmt::format("p-value {:.3g} is below the corrected level {:.3g} (family-wise {} over {} "
