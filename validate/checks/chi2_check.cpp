@@ -10,7 +10,11 @@
 // where the density integrates to zero, a density that does not integrate to 1,
 // a non-finite statistic): the runner applies the Šidák-corrected level.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <string_view>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -18,9 +22,11 @@
 #include <fmt/format.h>
 
 #include "chi2/chi2_test.h"
+#include "chi2/equal_probability.h"
 #include "chi2/local_residual.h"
 #include "chi2/min_p.h"
 #include "chi2/power.h"
+#include "validate/checks/cell_power.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/line_resolution.h"
@@ -36,7 +42,14 @@ Plot heatmaps(const chi2::Binning& b, const chi2::Chi2Outcome& o, const std::str
     plot.title = "chi2 cells of " + case_name;
     plot.x_label = b.u_label();
     plot.y_label = b.v_label();
-    const chi2::ParamRect r = b.parameter_bounds();
+    chi2::ParamRect r = b.parameter_bounds();
+    if (b.has_own_edges()) {
+        // Cells of equal probability are drawn as the grid they are: rows by
+        // v's quantiles, columns by u's within each row.
+        plot.x_label = "column of equal probability in its row (" + b.u_label() + " ascending)";
+        plot.y_label = "row of equal probability (" + b.v_label() + " ascending)";
+        r = {0.0, static_cast<double>(b.cols()), 0.0, static_cast<double>(b.rows())};
+    }
     auto map = [&](std::string label, std::vector<double> values) {
         Heatmap h;
         h.label = std::move(label);
@@ -144,6 +157,23 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
                                ctx.executor());
 }
 
+/// Pilot samples come from the streams of chunks past any the test draws
+/// (2^40 chunks of 4096 samples): independent of the samples it counts.
+constexpr uint64_t kPilotChunkBase = uint64_t{1} << 40;
+
+/// The pilot sample that places the cells (chi2/equal_probability.h):
+/// chi2::kPilotPointsPerCell per cell of `grid`, whole chunks.
+std::vector<chi2::SamplePoint> draw_pilot(const WarpCase& warp, const CheckContext& ctx, const chi2::Binning& grid) {
+    const chi2::SampleChunk chunk = chi2_sample_chunks(warp, ctx);
+    const std::size_t size = chi2::Chi2Options{}.chunk_size;
+    const std::size_t chunks = (chi2::kPilotPointsPerCell * grid.cell_count() + size - 1) / size;
+    std::vector<chi2::SamplePoint> pilot(chunks * size);
+    ctx.parallel_for(chunks, [&](std::size_t c) {
+        chunk(kPilotChunkBase + c, std::span<chi2::SamplePoint>(pilot).subspan(c * size, size));
+    });
+    return pilot;
+}
+
 /// The largest band relative to its cell's Poisson deviation, sqrt(E).
 double band_in_sd(const chi2::Chi2Outcome& o) {
     double worst = 0.0;
@@ -184,6 +214,7 @@ void judge(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual
     r.summary = fmt::format("chi2 {:.1f} dof {} p {:.3g}; 90% power: tilt {:.2g}", o.statistic(), o.dof(),
                             o.p_value(), r.figure("power_tilt_eps").value_or(std::nan(""))) +
                 notes(o);
+    r.weak = weakness(r);
     if (!o.failures.empty()) {
         r.verdict = Verdict::Fail;
         r.summary = o.failures.front();
@@ -230,22 +261,21 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
         {"zero_expected_cells", static_cast<double>(o.zero_expected_cells)},
         {"snapped_at_support_edge", static_cast<double>(h.snapped)},
         {"samples", static_cast<double>(samples)},
+        {"equal_probability_cells", binning.has_own_edges() ? 1.0 : 0.0},
+        {"rows", static_cast<double>(binning.rows())},
+        {"columns", static_cast<double>(binning.cols())},
     };
     if (binning.domain().unbounded_line())
         r.figures.push_back({"half_line_scale", binning.resolution().half_line_scale});
     if (binning.domain().is<chi2::RealLine>())
         r.figures.push_back({"line_center", binning.resolution().line_center});
-    // The localised statistic (chi2/local_residual.h) and the stated power: the
-    // noncentrality, and the tilt of a marginal (chi2/power.h), that Pearson's
-    // statistic detects 90% of the time at the planned level (power_level.h).
-    const double level = (1.0 - chi2::kLocalLevelShare) * power_level(options, 1);
-    const double lambda = chi2::pearson_noncentrality_for_power(o.dof(), level);
+    // The localised statistic (chi2/local_residual.h) and the stated power of
+    // the test as it ran (validate/checks/cell_power.h), at the planned level
+    // less the largest residual's share.
     r.figures.insert(r.figures.end(), {{"local_max_residual", local.residual},
                                        {"local_cell", static_cast<double>(local.cell)},
-                                       {"local_p_value", local.p_value},
-                                       {"power_noncentrality", lambda},
-                                       {"power_tilt_eps", chi2::pearson_tilt_for_noncentrality(lambda, samples)},
-                                       {"power_level", level}});
+                                       {"local_p_value", local.p_value}});
+    add_cell_power(r, binning, o, (1.0 - chi2::kLocalLevelShare) * power_level(options, 1), samples);
 }
 
 /// The evidence part: heatmaps (2D) or count and residual curves (1D), and the
@@ -281,12 +311,26 @@ public:
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
-        const chi2::Binning binning(warp.domain(), chi2::float_aware_resolution(warp.domain(), line_resolution(warp),
-                                                                               ctx.options().samples));
+        // The uniform grid, or where a pilot sample uses less than half its
+        // cells, cells of equal probability placed by the pilot on the grid's
+        // counts (chi2/equal_probability.h).
+        const chi2::Binning grid(warp.domain(), chi2::float_aware_resolution(warp.domain(), line_resolution(warp),
+                                                                            ctx.options().samples));
+        const std::vector<chi2::SamplePoint> pilot = draw_pilot(warp, ctx, grid);
+        const double effective = chi2::effective_cells(grid, pilot);
+        chi2::EqualProbabilityCells cells;
+        if (effective < chi2::kMinEffectiveCellShare * static_cast<double>(grid.cell_count()))
+            cells = chi2::equal_probability_cells(grid, pilot, ctx.options().samples);
+        const chi2::Binning binning =
+            cells.edges.empty() ? grid : chi2::Binning(warp.domain(), grid.resolution(), cells.edges);
         const chi2::Chi2Outcome outcome = compute(warp, ctx, binning);
         CheckResult r;
         const chi2::LocalResidual local = local_residual(outcome, ctx.options().samples);
         add_figures(r, outcome, local, binning, ctx.options());
+        r.figures.insert(r.figures.end(), {{"pilot_effective_cells", effective},
+                                           {"pilot_samples_used", static_cast<double>(cells.pilot_used)},
+                                           {"rows_merged", static_cast<double>(cells.rows_merged)},
+                                           {"column_halvings", static_cast<double>(cells.column_halvings)}});
         judge(r, outcome, local);
         add_plots(r, outcome, binning, warp.name());
         r.phases = {{"integration", outcome.integration_seconds},

@@ -69,4 +69,13 @@ std::vector<WarpInput> edge_inputs(InputKind kind) {
     return inputs;
 }
 
+std::vector<WarpInput> pilot_inputs(const CheckContext& ctx, InputKind kind, std::size_t count) {
+    std::vector<WarpInput> inputs(count);
+    for (std::size_t first = 0, c = 0; first < count; first += kInputChunkSize, ++c) {
+        Pcg32 rng = ctx.chunk_rng(kPilotChunkBase + c);
+        draw_inputs(rng, kind, std::span<WarpInput>(inputs).subspan(first, std::min(kInputChunkSize, count - first)));
+    }
+    return inputs;
+}
+
 }  // namespace warpcheck

@@ -15,6 +15,15 @@ namespace warpcheck {
 
 inline constexpr std::size_t kInputChunkSize = std::size_t{1} << 16;
 
+/// Pilot samples (which place a check's cells or strips) come from the
+/// streams of chunks past any a check draws (2^40 chunks): independent of the
+/// samples it tests.
+inline constexpr uint64_t kPilotChunkBase = uint64_t{1} << 40;
+
+/// `count` inputs of `kind` from the pilot streams, chunk c of kInputChunkSize
+/// from ctx.chunk_rng(kPilotChunkBase + c), in order.
+std::vector<WarpInput> pilot_inputs(const CheckContext& ctx, InputKind kind, std::size_t count);
+
 /// The edge values of one uniform coordinate: 0, every power of two 2^-k down to
 /// the smallest denormal with its float neighbours, and the largest float below 1.
 std::vector<float> edge_values();

@@ -56,6 +56,15 @@ chi2::BinResolution line_resolution(const WarpCase& warp) {
     if (r.half_line_scale == 0.0) {
         const double anchor = d.is<chi2::HalfLine>() ? d.a() : d.is<chi2::LowerHalfLine>() ? d.b() : r.line_center;
         r.half_line_scale = inverse_density_at(warp, anchor);
+        // A density unbounded at the anchor (Weibull with shape below 1: its
+        // float value there is the largest float or infinite) gives no length
+        // scale; where 1/density is below a thousandth of the median's
+        // distance from the anchor, that distance is the scale (half the cells
+        // then lie within it, as the map intends).
+        if (!d.is<chi2::RealLine>()) {
+            const double median = std::abs(median_output(warp) - anchor);
+            if (std::isfinite(median) && median > 0.0 && r.half_line_scale < 1e-3 * median) r.half_line_scale = median;
+        }
     }
     return r;
 }
