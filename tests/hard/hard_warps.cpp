@@ -68,4 +68,5 @@ void warpcheck_register(warpcheck::Registry& registry) {
     hard::register_chance_rules(registry);
     hard::register_verdict_words(registry);
     hard::register_misses(registry);
+    hard::register_sharp_lobes(registry);
 }

@@ -90,5 +90,6 @@ void register_roundtrip_2d(warpcheck::Registry& registry);       // 6: 2D round 
 void register_chance_rules(warpcheck::Registry& registry);       // 7: rules that fail by chance
 void register_verdict_words(warpcheck::Registry& registry);      // 8: verdict words
 void register_misses(warpcheck::Registry& registry);             // the misses: quantised remap, azimuth gap
+void register_sharp_lobes(warpcheck::Registry& registry);        // issue 34: sharp lobes, small and thin supports, singular ends
 
 }  // namespace hard

@@ -10,5 +10,6 @@ int main(int argc, char** argv) {
     return warpcheck::fpr_main(argc, argv,
                                {.name = "hard_warps_fpr",
                                 .description = "Measures how often the correct-but-hard catalogue of issue 22 fails",
-                                .register_cases = warpcheck_register});
+                                .register_cases = warpcheck_register,
+                                .power_check = true});
 }

@@ -18,7 +18,7 @@ struct FprProgram {
     /// Adds the cases (the built-in checks are registered first, so it may
     /// mark a known flaw on one check). Cases marked as known flaws are left out.
     void (*register_cases)(Registry&) = register_builtin_cases;
-    /// Offers --power-check, which simulates stated tilts on two built-in cases.
+    /// Offers --power-check, which simulates the stated tilts of the selected rows.
     bool power_check = false;
 };
 

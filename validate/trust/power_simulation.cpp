@@ -6,7 +6,9 @@
 #include <thread>
 #include <vector>
 
+#include "chi2/binning.h"
 #include "chi2/multiple_testing.h"
+#include "sampling/pcg32.h"
 #include "validate/checks/power_level.h"
 #include "validate/run/runner.h"
 #include "validate/run/thread_pool.h"
@@ -73,6 +75,60 @@ std::unique_ptr<WarpCase> tilted_case(const WarpCase& base, int coordinate, doub
     // case is sampled through its own sample(), which tilts u first.
     info.lanes = nullptr;
     return std::make_unique<TiltedCase>(base, std::move(info), coordinate, eps);
+}
+
+std::optional<int> driving_coordinate(const WarpCase& warp, int axis) {
+    const InputKind kind = warp.input_kind();
+    const int dims = kind == InputKind::Uniform2D ? 2 : kind == InputKind::Uniform1D ? 1 : 0;
+    if (dims == 0 || warp.is_discrete()) return std::nullopt;
+    const chi2::Binning binning(warp.domain());
+    if (axis >= binning.parameter_dimension()) return std::nullopt;
+    const auto parameter = [&](const WarpOutput& x) {
+        return binning.parameters_of({x[0], x[1], x[2]})[static_cast<std::size_t>(axis)];
+    };
+    constexpr int kInputs = 256, kRedraws = 3;
+    Pcg32 rng(0x5eed, 0x77);
+    std::vector<WarpInput> in;
+    for (int i = 0; i < kInputs; ++i) {
+        WarpInput w{};
+        w.u[0] = rng.next_float();
+        w.u[1] = dims == 2 ? rng.next_float() : 0.0f;
+        in.push_back(w);
+        for (int r = 0; r < kRedraws && dims == 2; ++r) in.push_back(w);
+    }
+    for (int k = 0; k < dims; ++k) {
+        std::vector<WarpInput> trial = in;
+        for (std::size_t i = 0; i < trial.size(); ++i)
+            if (i % (kRedraws + 1) != 0 && dims == 2) trial[i].u[static_cast<std::size_t>(1 - k)] = rng.next_float();
+        std::vector<WarpOutput> out(trial.size());
+        try {
+            warp.sample(trial, out);
+        } catch (...) {
+            return std::nullopt;
+        }
+        std::vector<std::pair<float, double>> seen;  // (u_k, parameter)
+        double lo = INFINITY, hi = -INFINITY;
+        for (std::size_t i = 0; i < out.size(); ++i) {
+            const double p = parameter(out[i]);
+            if (!std::isfinite(p)) return std::nullopt;
+            lo = std::min(lo, p), hi = std::max(hi, p);
+            seen.push_back({trial[i].u[static_cast<std::size_t>(k)], p});
+        }
+        const double tolerance = 1e-6 * (hi - lo);
+        bool alone = hi > lo;
+        const std::size_t step = dims == 2 ? kRedraws + 1 : 1;
+        for (std::size_t i = 0; alone && dims == 2 && i < seen.size(); i += step)
+            for (std::size_t r = 1; r < step; ++r) alone = alone && std::abs(seen[i + r].second - seen[i].second) <= tolerance;
+        if (!alone) continue;
+        std::sort(seen.begin(), seen.end());
+        bool up = true, down = true;
+        for (std::size_t i = 1; i < seen.size(); ++i) {
+            up = up && seen[i].second >= seen[i - 1].second - tolerance;
+            down = down && seen[i].second <= seen[i - 1].second + tolerance;
+        }
+        if (up || down) return k;
+    }
+    return std::nullopt;
 }
 
 PowerSimulation simulate_stated_power(const WarpCase& base, const Check& check, int coordinate,
