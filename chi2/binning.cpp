@@ -147,6 +147,16 @@ double Binning::float_resolution(int axis, double u, double v) const {
     return step;
 }
 
+double Binning::reading_resolution(int axis, double u, double v) const {
+    double r = float_resolution(axis, u, v);
+    if (axis == 1 && domain_.is<SphericalCap>()) {
+        const auto z = static_cast<float>(ring(v)[1]);
+        r = std::max({r, static_cast<double>(std::nextafter(z, INFINITY)) - z,
+                      z - static_cast<double>(std::nextafter(z, -INFINITY))});
+    }
+    return r;
+}
+
 Binning::Binning(const Domain& domain, BinResolution resolution) : domain_(domain), resolution_(resolution) {
     if (resolution_.first < 0 || resolution_.second < 0) throw std::invalid_argument("bin resolution must be >= 0");
     if (resolution_.half_line_scale == 0.0) resolution_.half_line_scale = 1.0;
@@ -253,6 +263,32 @@ int Binning::EdgeLookup::find(const std::vector<double>& e, double x) const {
     const bool holds = (i == 0 || e[i] <= x) && (i + 1 == parts || x < e[i + 1]);
     if (holds || !(x == x)) return static_cast<int>(i);
     return static_cast<int>(std::upper_bound(e.begin() + 1, e.end() - 1, x) - (e.begin() + 1));
+}
+
+int Binning::uniform_phi_column(double x, double y) const {
+    // By the octant table, or else by the fast atan2, with the exact one within
+    // a safety margin of a cell edge (the fast one is within 3e-8 rad; the
+    // margin is 1e-6 rad).
+    if (octant_cols_ > 0) return phi_column_by_table(x, y);
+    const double inv_du = 1.0 / du_, edge_margin = 1e-6 * inv_du;
+    const double f = fast_phi(x, y) * inv_du;
+    const double fl = std::floor(f);
+    if (f - fl < edge_margin || fl + 1.0 - f < edge_margin) return clamp_index(exact_phi(x, y) * inv_du, cols_);
+    return clamp_index(fl, cols_);
+}
+
+int Binning::own_phi_column(int row, double x, double y, double& phi) const {
+    // The fast atan2 (within 3e-8 rad), and the exact one within 1e-6 rad of
+    // the column's edges.
+    phi = fast_phi(x, y);
+    int col = column_of(row, phi);
+    const std::vector<double>& e = edges_.cols[static_cast<std::size_t>(row)];
+    const auto c = static_cast<std::size_t>(col);
+    if (phi - e[c] < 1e-6 || e[c + 1] - phi < 1e-6) {
+        phi = exact_phi(x, y);
+        col = column_of(row, phi);
+    }
+    return col;
 }
 
 int Binning::row_of(double v) const {
@@ -476,7 +512,7 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
     if (!zero_cells.empty() && zero_cells.size() != cell_count())
         throw std::invalid_argument("Binning::bin: zero-cell mask of another binning");
     uint64_t* const counts = hist.counts.data();
-    const double inv_du = 1.0 / du_, inv_dv = 1.0 / dv_;
+    const double inv_dv = 1.0 / dv_;
     const bool check_zero = !zero_cells.empty();
     // A sample in a zero-expected cell moves to a neighbour within the domain
     // tolerance if it can; otherwise, if it lies exactly on the domain's
@@ -503,17 +539,6 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
         if (check_zero && zero_cells[cell]) add(cell, exact_phi(x, y), v, q);
         else ++counts[cell];
     };
-    // phi column: by the octant table, or else by the fast atan2, with the exact
-    // one within a safety margin of a cell edge (the fast one is within 3e-8
-    // rad; the margin is 1e-6 rad).
-    const double edge_margin = 1e-6 * inv_du;
-    auto phi_column = [&](double x, double y) {
-        if (octant_cols_ > 0) return phi_column_by_table(x, y);
-        const double f = fast_phi(x, y) * inv_du;
-        const double fl = std::floor(f);
-        if (f - fl < edge_margin || fl + 1.0 - f < edge_margin) return clamp_index(exact_phi(x, y) * inv_du, cols_);
-        return clamp_index(fl, cols_);
-    };
     const std::size_t cols = static_cast<std::size_t>(cols_);
     const bool own_edges = !edges_.empty();
 
@@ -534,43 +559,23 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
                 if (!inside) { ++hist.outside; continue; }
                 if constexpr (Kind::kAzimuthal) {
                     const double v = kind.v_of(q);
-                    if (own_edges) {
-                        const int row = row_of(v);
-                        if (q[0] == 0.0 && q[1] == 0.0) {
-                            count_pole(hist, static_cast<std::size_t>(row));
-                            continue;
-                        }
-                        // The fast atan2 (within 3e-8 rad), and the exact one
-                        // within 1e-6 rad of the column's edges.
-                        double phi = fast_phi(q[0], q[1]);
-                        int col = column_of(row, phi);
-                        const std::vector<double>& e = edges_.cols[static_cast<std::size_t>(row)];
-                        const auto c = static_cast<std::size_t>(col);
-                        if (phi - e[c] < 1e-6 || e[c + 1] - phi < 1e-6) {
-                            phi = exact_phi(q[0], q[1]);
-                            col = column_of(row, phi);
-                        }
-                        add(static_cast<std::size_t>(row) * cols + static_cast<std::size_t>(col), phi, v, q);
-                        continue;
-                    }
-                    const auto row = static_cast<std::size_t>(clamp_index((v - bounds_.v0) * inv_dv, rows_));
+                    const auto row = static_cast<std::size_t>(own_edges ? row_of(v)
+                                                                        : clamp_index((v - bounds_.v0) * inv_dv, rows_));
                     if (q[0] == 0.0 && q[1] == 0.0) {  // a pole: no azimuth (Histogram::poles)
                         count_pole(hist, row);
                         continue;
                     }
-                    const auto col = static_cast<std::size_t>(phi_column(q[0], q[1]));
-                    add_phi(row * cols + col, q[0], q[1], v, q);
-                } else {
-                    const auto [u, v] = kind.parameters_of(q, resolution_);
                     if (own_edges) {
-                        const int row = dims_ == 1 ? 0 : row_of(v);
-                        add(static_cast<std::size_t>(row) * cols + static_cast<std::size_t>(column_of(row, u)), u, v, q);
-                        continue;
+                        double phi = 0.0;
+                        const int col = own_phi_column(static_cast<int>(row), q[0], q[1], phi);
+                        add(row * cols + static_cast<std::size_t>(col), phi, v, q);
+                    } else {
+                        add_phi(row * cols + static_cast<std::size_t>(uniform_phi_column(q[0], q[1])), q[0], q[1], v, q);
                     }
-                    const int c = interval_edges_.empty() ? clamp_index((u - bounds_.u0) * inv_du, cols_)
-                                                          : interval_column(u);
-                    const auto row = static_cast<std::size_t>(clamp_index((v - bounds_.v0) * inv_dv, rows_));
-                    add(row * cols + static_cast<std::size_t>(c), u, v, q);
+                } else {
+                    // The same arithmetic as cell_at_parameters.
+                    const auto [u, v] = kind.parameters_of(q, resolution_);
+                    add(cell_at_parameters(u, v), u, v, q);
                 }
             }
         },

@@ -128,6 +128,12 @@ public:
     /// parameters (u, v) moves by one float step (the largest over the
     /// coordinates): the resolution of a float sample along that axis there.
     double float_resolution(int axis, double u, double v) const;
+    /// The same for a density that reads its point's coordinates as it
+    /// likes: on a spherical cap also z itself (a cap's pdf tests w.z >=
+    /// cos_max), whose float step near the pole is far coarser than cos theta
+    /// read off x and y. What a jump of the density at float points may move
+    /// by (chi2/quadrature.h's jump band).
+    double reading_resolution(int axis, double u, double v) const;
 
     /// Whether the cells have edges of their own (CellEdges) rather than a uniform grid.
     bool has_own_edges() const { return !edges_.empty(); }
@@ -193,6 +199,10 @@ private:
     void check_edges();
     int row_of(double v) const;
     int column_of(int row, double u) const;
+    /// The column of (x, y)'s azimuth on the uniform grid.
+    int uniform_phi_column(double x, double y) const;
+    /// The column of (x, y)'s azimuth in `row` of cells with own edges; sets phi.
+    int own_phi_column(int row, double x, double y, double& phi) const;
     void build_interval_edges();
     void build_phi_table();
     bool on_parameter_boundary(double u, double v) const;

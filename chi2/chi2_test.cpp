@@ -252,9 +252,22 @@ std::size_t reintegrate_missed_support(const Binning& binning, const Histogram& 
         uv[1] = std::clamp(uv[1], r.v0, r.v1);
         at[c].push_back(uv);
     }
+    // At most kMaxReintegratedCells, those with the most such samples first:
+    // a guided integration cuts down towards its samples (16 levels), and a
+    // sampler that lands in hundreds of cells where its density is zero
+    // (samples spilling beyond the pdf's support) would pay it hundreds of
+    // times for a verdict the first cells already decide; cells of equal
+    // probability, integrated where a pilot found their mass, leave a
+    // correct sampler few such cells (the sliver light of tests/hard: none).
+    std::vector<std::size_t> order;
+    for (std::size_t c = 0; c < at.size(); ++c)
+        if (!at[c].empty()) order.push_back(c);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return hist.counts[a] > hist.counts[b]; });
+    if (order.size() > kMaxReintegratedCells) order.resize(kMaxReintegratedCells);
+    std::sort(order.begin(), order.end());
     std::size_t redone = 0;
-    for (std::size_t c = 0; c < at.size(); ++c) {
-        if (at[c].empty()) continue;
+    for (std::size_t c : order) {
         const GuidedIntegral g = integrate_around(binning, binning.cell_rect(c), at[c], pdf, qo);
         q.total += g.value - q.probability[c];
         q.error_total += g.error - q.error[c];

@@ -129,6 +129,9 @@ struct Chi2Outcome {
 /// Per-cell zero flags: 1 where the probability is not positive.
 std::vector<unsigned char> zero_cells_of(const CellIntegrals& integrals);
 
+/// reintegrate_missed_support looks again at no more cells than this.
+inline constexpr std::size_t kMaxReintegratedCells = 64;
+
 /// The cells of `q` integrated as zero where samples of `hist` landed and
 /// `pdf` is positive at some of them (Histogram::zero_cell_points: a sliver
 /// of support between the cubature's nodes), integrated again around those

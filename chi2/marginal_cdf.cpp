@@ -63,6 +63,66 @@ Binning strip_binning(const Domain& domain, int axis, int strips, const BinResol
     return b;
 }
 
+Binning pilot_strip_binning(const Domain& domain, int axis, int strips, std::span<const double> values,
+                            const BinResolution& line) {
+    const Binning uniform = strip_binning(domain, axis, strips, line);
+    std::vector<double> v;
+    for (double x : values)
+        if (std::isfinite(x)) v.push_back(x);
+    if (static_cast<int>(v.size()) < strips || strips < 8) return uniform;
+    std::sort(v.begin(), v.end());
+    const ParamRect b = uniform.parameter_bounds();
+    const double lo = axis == 0 ? b.u0 : b.v0, hi = axis == 0 ? b.u1 : b.v1;
+    std::vector<double> coarse;
+    const int parts = strips / 4;
+    for (int k = 1; k < parts; ++k) {
+        coarse.push_back(lo + (hi - lo) * k / parts);
+        const std::size_t i = v.size() * static_cast<std::size_t>(k) / static_cast<std::size_t>(parts);
+        coarse.push_back(v[i - 1] + 0.5 * (v[i] - v[i - 1]));
+    }
+    // And cuts graded out from the pilot's range to the ends (a quarter of its
+    // spread, doubling): the strips next to where the samples are stay on
+    // their scale, so that mass the density has just beyond them (a cap the
+    // pdf claims 2% larger than the sampler draws) lies within the
+    // cubature's reach instead of between its nodes.
+    const double spread = std::max(v.back() - v.front(), (hi - lo) * 0x1p-40);
+    for (double step = 0.25 * spread, below = v.front() - step, above = v.back() + step;
+         below > lo || above < hi; step *= 2.0, below -= step, above += step) {
+        if (below > lo) coarse.push_back(below);
+        if (above < hi) coarse.push_back(above);
+    }
+    std::sort(coarse.begin(), coarse.end());
+    // An interval's cuts become floats (Binning rounds them up): siblings
+    // must stay apart by a few float steps.
+    const bool floats = domain.is<Interval>();
+    const auto apart = [&](double a, double c) {
+        const double step = floats ? 4.0 * 0x1p-23 * std::max(std::abs(a), std::abs(c)) : 0.0;
+        return c - a > step;
+    };
+    std::vector<double> edges{lo};
+    for (double c : coarse) {
+        if (!(c > lo && c < hi)) continue;
+        const double mid = edges.back() + 0.5 * (c - edges.back());
+        if (!(apart(edges.back(), mid) && apart(mid, c))) continue;  // too close to the last cut to halve
+        edges.push_back(mid);
+        edges.push_back(c);
+    }
+    const double mid = edges.back() + 0.5 * (hi - edges.back());
+    if (apart(edges.back(), mid) && apart(mid, hi)) edges.push_back(mid);
+    else edges.pop_back();  // the last strip's sibling joins it
+    edges.push_back(hi);
+    if (edges.size() % 2 == 0 || edges.size() < 3) return uniform;  // an odd number of edges: an even number of strips
+    CellEdges cells;
+    if (axis == 0) {
+        cells.rows = {uniform.parameter_dimension() == 1 ? 0.0 : b.v0, uniform.parameter_dimension() == 1 ? 1.0 : b.v1};
+        cells.cols = {edges};
+    } else {
+        cells.rows = edges;
+        cells.cols.assign(edges.size() - 1, {b.u0, b.u1});
+    }
+    return Binning(domain, uniform.resolution(), std::move(cells));
+}
+
 namespace {
 
 struct Strip {

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "chi2/binning.h"
@@ -125,6 +126,17 @@ inline double MarginalCdf::operator()(double t) const {
 /// `domain` (axis 1 needs a 2D domain). `line` supplies an unbounded line's
 /// half_line_scale and line_center (BinResolution); its cell counts are ignored.
 Binning strip_binning(const Domain& domain, int axis, int strips, const BinResolution& line = {});
+
+/// Strips across parameter `axis` of `domain` that follow where a pilot
+/// sample's mass lies: the cuts of strips / 4 uniform strips joined with the
+/// cuts at strips / 4 quantiles of `values` (the pilot's parameter values
+/// along the axis; NaN left out), each of those strips halved into two
+/// siblings of equal width (the refinement's error estimate compares
+/// siblings). A light of 5e-4 sr spans a few of the uniform strips and lies
+/// between their cubature nodes; its quantile strips hold it. With fewer
+/// than `strips` finite values, the uniform strips of strip_binning.
+Binning pilot_strip_binning(const Domain& domain, int axis, int strips, std::span<const double> values,
+                            const BinResolution& line = {});
 
 struct CdfRefinement {
     /// Split sibling strips whose interpolation error estimate (as a CDF

@@ -34,4 +34,14 @@ MeanTest mean_test(const Moments& m, double reference, double reference_uncertai
     return r;
 }
 
+MeanTest mean_test(const Moments& m, double reference, double reference_uncertainty, double band) {
+    if (!(band > 0.0)) return mean_test(m, reference, reference_uncertainty);
+    // The reference moved towards the mean by up to the band (NaN stays NaN).
+    const double d = m.mean - reference;
+    const double moved = std::abs(d) <= band ? m.mean : reference + (d > 0.0 ? band : -band);
+    MeanTest r = mean_test(m, std::isnan(d) ? reference : moved, reference_uncertainty);
+    r.reference = reference;
+    return r;
+}
+
 }  // namespace warpcheck::chi2

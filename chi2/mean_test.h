@@ -52,4 +52,11 @@ struct MeanTest {
 /// to +-e, or samples of zero variance, cannot fail by that alone.
 MeanTest mean_test(const Moments& m, double reference, double reference_uncertainty);
 
+/// The same test against a reference known only within +-band, a systematic
+/// bound (the float rounding of the density it integrates, which every sample
+/// shares rather than averages out): the part of the difference beyond the
+/// band is tested (t = 0 within it). `reference_uncertainty` is added to the
+/// standard error as above.
+MeanTest mean_test(const Moments& m, double reference, double reference_uncertainty, double band);
+
 }  // namespace warpcheck::chi2

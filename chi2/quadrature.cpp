@@ -228,9 +228,9 @@ public:
         const ParamRect& r = g.rect;
         const double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
         const double range = (g.f_max - std::max(g.f_min, 0.0)) * binning_.jacobian(uc, vc);
-        if (binning_.parameter_dimension() == 1) return range * binning_.float_resolution(0, uc, vc);
-        return range * (binning_.float_resolution(0, uc, vc) * (r.v1 - r.v0) +
-                        binning_.float_resolution(1, uc, vc) * (r.u1 - r.u0));
+        if (binning_.parameter_dimension() == 1) return range * binning_.reading_resolution(0, uc, vc);
+        return range * (binning_.reading_resolution(0, uc, vc) * (r.v1 - r.v0) +
+                        binning_.reading_resolution(1, uc, vc) * (r.u1 - r.u0));
     }
 
 private:

@@ -27,18 +27,26 @@ float steps_from(float c, int steps, float towards) {
 }
 
 TEST(FloatResolution, OneCoordinateParametersAreTheirFloatNeighbours) {
-    const Binning cap(Domain::spherical_cap(0.9999f), {4, 4});
+    // A cap's cos theta away from the poles is z itself, stepped as a float.
+    const Binning cap(Domain::sphere(), {4, 4});
     const FloatResolution z(cap, 1, 2);
-    EXPECT_EQ(z.coordinate(), 2);
-    const std::array<float, 3> p = {0.001f, 0.002f, 0.99995f};
+    EXPECT_EQ(z.coordinate(), -1);  // z, or near a pole x and y: not one coordinate
+    const std::array<float, 3> p = {0.8f, 0.5099f, 0.3f};
     const ParameterBand b = z.band(p);
     EXPECT_EQ(b.value, static_cast<double>(p[2]));
     EXPECT_EQ(b.lo, static_cast<double>(steps_from(p[2], 2, -kInf)));
     EXPECT_EQ(b.hi, static_cast<double>(steps_from(p[2], 2, kInf)));
-    // At z = 1 the float steps above are twice those below.
-    const ParameterBand top = z.band({0.0f, 0.0f, 1.0f});
-    EXPECT_EQ(top.value - top.lo, 0x1p-23);
-    EXPECT_EQ(top.hi - top.value, 0x1p-22);
+    // Near the pole it is read off x and y: 1 - cos theta within 5 2^-24 of
+    // itself per step, far finer than z's own float step (2^-24).
+    const double theta = 2e-3;
+    const std::array<float, 3> near = {static_cast<float>(std::sin(theta)), 0.0f, static_cast<float>(std::cos(theta))};
+    const ParameterBand n = z.band(near);
+    EXPECT_NEAR(1.0 - n.value, 1.0 - std::cos(theta), 1e-7 * (1.0 - std::cos(theta)));
+    EXPECT_NEAR((n.hi - n.value) / (2 * 5 * 0x1p-24 * (1.0 - n.value)), 1.0, 1e-3);
+    EXPECT_LT(n.hi - n.lo, 0x1p-24);
+    const ParameterBand top = z.band({0.0f, 0.0f, 1.0f});  // the pole itself: no width
+    EXPECT_EQ(top.value, 1.0);
+    EXPECT_EQ(top.hi, top.lo);
     EXPECT_FALSE(top.wraps);
 
     // A half-line's parameter t = d / (s + d) of the stepped floats.

@@ -46,12 +46,16 @@ struct HenyeyGreenstein {
     Vector3f forward{0.0f, 0.0f, 1.0f};
     float scale = 1.0f;
 
+    /// By inversion of the CDF, t = 1 - cos theta formed without cancellation
+    /// and sin theta from it (from the float cos theta, the samples would lie
+    /// on rings about the axis with 3e-4 of them exactly on it at g = 0.99:
+    /// a flaw the chi-square cells of equal probability see, issue 34).
     Vector3f sample(Point2f u) const {
-        const float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u.x);
-        const float cos_theta = std::clamp((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
-        const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+        const float q = 1.0f - g + 2.0f * g * u.x, s = (1.0f - g * g) / q;
+        const float t = std::min((1.0f - g) * (1.0f - u.x) * (s + 1.0f - g) / q, 2.0f);
+        const float sin_theta = std::sqrt(std::max(0.0f, t * (2.0f - t)));
         const float phi = 2.0f * kPi * u.y;
-        return Frame(forward).from_local(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
+        return Frame(forward).from_local(sin_theta * std::cos(phi), sin_theta * std::sin(phi), 1.0f - t);
     }
     float pdf(Vector3f w) const {
         const float c = forward.x * w.x + forward.y * w.y + forward.z * w.z;
@@ -69,21 +73,23 @@ inline std::unique_ptr<WarpCase> henyey_greenstein(const std::string& family, fl
                           HenyeyGreenstein{g, forward, scale});
 }
 
-/// Uniform directions in a cone of half-angle `degrees` about +z, by pbrt's
-/// formula cos = (1 - u) + u cos_max: a tiny cap ("a sun") has only a few
-/// hundred float values of cos theta, and cos theta rounds to exactly 1 (the
-/// pole) for a float's worth of inputs.
+/// Uniform directions in a cone of half-angle `degrees` about +z: 1 - cos =
+/// u (1 - cos_max), sin theta from it, so that x and y keep their resolution:
+/// a tiny cap ("a sun") has only a few hundred float values of cos theta.
+/// (pbrt's cos = (1 - u) + u cos_max with sin from the float cos puts its
+/// samples on as many rings, half a ring's mass exactly on the axis: a flaw
+/// now seen, issue 34.)
 struct SunCone {
     float cos_max;
     float sampled_one_minus = 0.0f;  ///< 1 - cos of the sampled cap (0: the claimed one)
     float azimuth_turn = 1.0f;       ///< the share of the turn the azimuth covers (the twin's 0.98)
 
     Vector3f sample(Point2f u) const {
-        const float c = sampled_one_minus > 0.0f ? 1.0f - sampled_one_minus : cos_max;
-        const float cos_theta = (1.0f - u.x) + u.x * c;
-        const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+        const float one_minus = sampled_one_minus > 0.0f ? sampled_one_minus : 1.0f - cos_max;
+        const float t = u.x * one_minus;
+        const float sin_theta = std::sqrt(std::max(0.0f, t * (2.0f - t)));
         const float phi = 2.0f * kPi * azimuth_turn * u.y;
-        return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+        return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), 1.0f - t};
     }
     float pdf(Vector3f w) const { return w.z >= cos_max ? 1.0f / (2.0f * kPi * (1.0f - cos_max)) : 0.0f; }
 };

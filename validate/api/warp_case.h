@@ -164,15 +164,19 @@ struct WarpCaseInfo {
     /// Whether the inverse is expected to be exact on raw bits (invert returns
     /// the first input that maps to x) rather than within a tolerance.
     bool exact_inverse = false;
-    /// Cells of the chi-square test; zero fields take the domain's defaults
-    /// (chi2/binning.h: 32 x 32 on 2D domains, 200 on lines). Rarely needed:
-    /// the check merges cells that are narrower than the float resolution
-    /// allows, integrates jumps with a verified bound and finds support its
-    /// first nodes miss around the samples, so a discontinuous density or a
-    /// small light needs no finer grid. A finer grid sees local deviations
-    /// better and broad ones worse (Binning's constructor says why ~1000
-    /// cells); a half-line's or the real line's length scale and centre are
-    /// chosen from the warp unless set here.
+    /// How many cells the chi-square checks use (columns, rows), and an
+    /// unbounded line's length scale and centre; zero fields take the
+    /// defaults (chi2/binning.h: 32 x 32 on 2D domains, 200 on lines; the
+    /// line's scale and centre from the warp). The counts are all it sets:
+    /// where the samples would fill under a quarter of a uniform grid of that
+    /// many cells (a sharp lobe, a small light), the cells move to the
+    /// quantiles of a pilot sample, each of about equal probability
+    /// (chi2/equal_probability.h); cells narrower than the float resolution
+    /// allows are merged. More cells see local deviations better and broad
+    /// ones worse (Binning's constructor says why ~1000), and every row
+    /// states the tilt its cells can see at 90% power: raise the counts only
+    /// to look for narrow features, with the samples to fill them
+    /// (--samples).
     chi2::BinResolution chi2_resolution{};
     /// The case's monotone 1D views, each tabulated by the tabulated check and,
     /// on 2D domains, tested by the unbinned check: e.g. cos theta and the

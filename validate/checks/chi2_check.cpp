@@ -26,53 +26,17 @@
 #include "chi2/local_residual.h"
 #include "chi2/min_p.h"
 #include "chi2/power.h"
+#include "validate/checks/cell_evidence.h"
 #include "validate/checks/cell_power.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
+#include "validate/checks/input_chunks.h"
 #include "validate/checks/line_resolution.h"
 #include "validate/checks/power_level.h"
 #include "validate/lanes/lane_sampling.h"
 
 namespace warpcheck {
 namespace {
-
-Plot heatmaps(const chi2::Binning& b, const chi2::Chi2Outcome& o, const std::string& case_name) {
-    Plot plot;
-    plot.kind = Plot::Kind::Heatmaps;
-    plot.title = "chi2 cells of " + case_name;
-    plot.x_label = b.u_label();
-    plot.y_label = b.v_label();
-    chi2::ParamRect r = b.parameter_bounds();
-    if (b.has_own_edges()) {
-        // Cells of equal probability are drawn as the grid they are: rows by
-        // v's quantiles, columns by u's within each row.
-        plot.x_label = "column of equal probability in its row (" + b.u_label() + " ascending)";
-        plot.y_label = "row of equal probability (" + b.v_label() + " ascending)";
-        r = {0.0, static_cast<double>(b.cols()), 0.0, static_cast<double>(b.rows())};
-    }
-    auto map = [&](std::string label, std::vector<double> values) {
-        Heatmap h;
-        h.label = std::move(label);
-        h.rows = b.rows();
-        h.cols = b.cols();
-        h.x_min = r.u0;
-        h.x_max = r.u1;
-        h.y_min = r.v0;
-        h.y_max = r.v1;
-        h.values = std::move(values);
-        return h;
-    };
-    std::vector<double> observed(o.histogram.counts.begin(), o.histogram.counts.end());
-    plot.heatmaps.push_back(map("observed", std::move(observed)));
-    plot.heatmaps.push_back(map("expected", o.expected));
-    Heatmap residual = map("residual (obs - exp) / sqrt(exp)", o.residual);
-    // Diverging around 0 and at least +-4 wide: the noise of a passing test stays
-    // pale, so a real deviation stands out instead of filling the scale.
-    residual.color_scale = Heatmap::ColorScale::Diverging;
-    residual.min_color_limit = 4.0;
-    plot.heatmaps.push_back(std::move(residual));
-    return plot;
-}
 
 std::vector<Plot> line_plots(const chi2::Binning& b, const chi2::Chi2Outcome& o, const std::string& case_name) {
     std::vector<double> x(b.cell_count());
@@ -91,38 +55,6 @@ std::vector<Plot> line_plots(const chi2::Binning& b, const chi2::Chi2Outcome& o,
     residual.y_label = "(obs - exp) / sqrt(exp)";
     residual.series.push_back({"residual", x, o.residual});
     return {std::move(counts), std::move(residual)};
-}
-
-/// The cells that deviate most, for the reader hunting a bug.
-Table worst_cells(const chi2::Binning& b, const chi2::Chi2Outcome& o) {
-    std::vector<std::size_t> order(b.cell_count());
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    auto badness = [&](std::size_t c) {
-        const double r = o.residual[c];
-        return std::isnan(r) ? (o.histogram.counts[c] > 0 ? HUGE_VAL : -1.0) : std::abs(r);
-    };
-    const std::size_t shown = std::min<std::size_t>(8, order.size());
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(shown), order.end(),
-                      [&](std::size_t a, std::size_t c) {
-                          const double ba = badness(a), bc = badness(c);
-                          return ba != bc ? ba > bc : a < c;
-                      });
-    const bool two_d = b.parameter_dimension() == 2;
-    Table t{"Cells with the largest residuals", {}, {}};
-    t.columns = {"cell", b.u_label() + " range"};
-    if (two_d) t.columns.push_back(b.v_label() + " range");
-    for (const char* c : {"observed", "expected", "residual"}) t.columns.emplace_back(c);
-    for (std::size_t k = 0; k < shown; ++k) {
-        const std::size_t c = order[k];
-        const chi2::ParamRect r = b.cell_rect(c);
-        std::vector<std::string> row = {std::to_string(c), fmt::format("[{:.5g}, {:.5g})", r.u0, r.u1)};
-        if (two_d) row.push_back(fmt::format("[{:.5g}, {:.5g})", r.v0, r.v1));
-        row.push_back(std::to_string(o.histogram.counts[c]));
-        row.push_back(fmt::format("{:.6g}", o.expected[c]));
-        row.push_back(fmt::format("{:.3g}", o.residual[c]));
-        t.rows.push_back(std::move(row));
-    }
-    return t;
 }
 
 /// The compute part: samples drawn chunk by chunk, binned, and the density
@@ -156,10 +88,6 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
     return chi2::run_chi2_test(binning, ctx.options().samples, chi2_sample_chunks(warp, ctx), pdf, options,
                                ctx.executor());
 }
-
-/// Pilot samples come from the streams of chunks past any the test draws
-/// (2^40 chunks of 4096 samples): independent of the samples it counts.
-constexpr uint64_t kPilotChunkBase = uint64_t{1} << 40;
 
 /// The pilot sample that places the cells (chi2/equal_probability.h):
 /// chi2::kPilotPointsPerCell per cell of `grid`, whole chunks.
@@ -282,7 +210,7 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
 /// cells that deviate most.
 void add_plots(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& binning, const std::string& name) {
     if (binning.parameter_dimension() == 2) {
-        r.plots.push_back(heatmaps(binning, o, name));
+        r.plots.push_back(cell_heatmaps(binning, o, "chi2 cells of " + name));
     } else {
         for (Plot& p : line_plots(binning, o, name)) r.plots.push_back(std::move(p));
     }

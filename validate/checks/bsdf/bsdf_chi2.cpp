@@ -41,6 +41,7 @@
 #include <fmt/format.h>
 
 #include "chi2/chi2_test.h"
+#include "chi2/equal_probability.h"
 #include "chi2/local_residual.h"
 #include "chi2/min_p.h"
 #include "chi2/power.h"
@@ -48,7 +49,9 @@
 #include "validate/checks/bsdf/bsdf_common.h"
 #include "validate/checks/bsdf/bsdf_evidence.h"
 #include "validate/checks/bsdf/bsdf_statistics.h"
+#include "validate/checks/cell_power.h"
 #include "validate/checks/evidence.h"
+#include "validate/checks/input_chunks.h"
 #include "validate/checks/power_level.h"
 
 namespace warpcheck::bsdf {
@@ -180,10 +183,9 @@ Normalisation normalisation(const chi2::CellIntegrals& q, const Draws& d, bool s
 }
 
 void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual& local, const Normalisation& n,
-                 const Draws& d, const RunOptions& options) {
+                 const Draws& d, const RunOptions& options, const chi2::Binning& binning) {
     r.samples = d.total;
     const double level = (1.0 - chi2::kLocalLevelShare - kLandingLevelShare) * power_level(options, 1);
-    const double lambda = chi2::pearson_noncentrality_for_power(o.dof(), level);
     r.figures = {{"statistic", o.statistic()},
                  {"dof", static_cast<double>(o.dof())},
                  {"pearson_p_value", o.p_value()},
@@ -209,8 +211,23 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
                  {"edge_band", o.edge_band_total},
                  {"verification_mismatches", static_cast<double>(o.integrals.verification_mismatches)},
                  {"quadrature_evaluations", static_cast<double>(o.integrals.evaluations)},
-                 {"power_tilt_eps", chi2::pearson_tilt_for_noncentrality(lambda, n.landed)},
-                 {"power_level", level}};
+                 {"equal_probability_cells", binning.has_own_edges() ? 1.0 : 0.0}};
+    // The stated power of the test as it ran, over the samples that landed
+    // (validate/checks/cell_power.h).
+    add_cell_power(r, binning, o, level, n.landed);
+}
+
+/// The continuous samples of a pilot drawn from the pilot streams
+/// (kPilotChunkBase): chi2::kPilotPointsPerCell per cell of `grid`.
+std::vector<chi2::SamplePoint> draw_pilot(const BsdfCase& bsdf, const CheckContext& ctx, const chi2::Binning& grid) {
+    const std::vector<WarpInput> in =
+        pilot_inputs(ctx, InputKind::Uniform3D, chi2::kPilotPointsPerCell * grid.cell_count());
+    std::vector<BsdfRecord> records(in.size());
+    bsdf.sample_bsdf(in, records);
+    std::vector<chi2::SamplePoint> pilot;
+    for (const BsdfRecord& r : records)
+        if (r.sampled() && !r.delta()) pilot.push_back(r.wi);
+    return pilot;
 }
 
 void judge(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual& local, const Normalisation& n) {
@@ -276,7 +293,17 @@ protected:
         chi2::Chi2Options options;
         options.resolution = chi2::float_aware_resolution(bsdf.domain(), bsdf_resolution(bsdf), ctx.options().samples);
         options.strict = ctx.options().strict;
-        const chi2::Binning binning(bsdf.domain(), options.resolution);
+        // The uniform grid, or cells of equal probability where a pilot of
+        // the continuous samples fills under a quarter of it, as the chi2
+        // check chooses (chi2/equal_probability.h).
+        const chi2::Binning grid(bsdf.domain(), options.resolution);
+        const std::vector<chi2::SamplePoint> pilot = draw_pilot(bsdf, ctx, grid);
+        chi2::EqualProbabilityCells cells;
+        if (chi2::effective_cells(grid, pilot) < chi2::kMinEffectiveCellShare * static_cast<double>(grid.cell_count()))
+            cells = chi2::equal_probability_cells(grid, pilot, ctx.options().samples);
+        const chi2::Binning binning =
+            cells.edges.empty() ? grid : chi2::Binning(bsdf.domain(), grid.resolution(), cells.edges);
+        options.resolution = binning.resolution();
         const Counted c = integrate_and_draw(bsdf, ctx, binning, options);
         const Draws& d = c.draws;
         const Normalisation n = normalisation(c.integrals, d, options.strict);
@@ -284,8 +311,9 @@ protected:
         o.reintegrated_cells = c.reintegrated_cells;
         const chi2::LocalResidual local = local_residual(o, n.landed);
         CheckResult r;
-        add_figures(r, o, local, n, d, ctx.options());
+        add_figures(r, o, local, n, d, ctx.options(), binning);
         judge(r, o, local, n);
+        if (r.verdict == Verdict::Pass) r.weak = weakness(r);
         r.plots.push_back(cell_heatmaps(binning, o, "wi cells of " + bsdf.name() + " (continuous lobes)"));
         r.tables.push_back(draw_table(d, n));
         r.tables.push_back(worst_cells(binning, o));

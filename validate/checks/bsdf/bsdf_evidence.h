@@ -7,16 +7,14 @@
 #include "chi2/binning.h"
 #include "chi2/chi2_test.h"
 #include "reports/result.h"
+#include "validate/checks/cell_evidence.h"
 
 namespace warpcheck::bsdf {
 
-/// Observed, expected and residual counts per cell of the sphere of wi, as
-/// heatmaps over (phi_i, cos theta_i); the residual on a diverging scale at
-/// least +-4 wide, so that noise stays pale.
+/// validate/checks/cell_evidence.h's, with the axes named for wi.
 Plot cell_heatmaps(const chi2::Binning& binning, const chi2::Chi2Outcome& o, const std::string& title);
 
-/// The eight cells with the largest |residual| (a sample in a cell of zero
-/// expectation first).
+/// validate/checks/cell_evidence.h's, with the axes named for wi.
 Table worst_cells(const chi2::Binning& binning, const chi2::Chi2Outcome& o);
 
 }  // namespace warpcheck::bsdf

@@ -63,7 +63,10 @@ TEST(BsdfChi2ZeroCells, NarrowLobeIsIntegratedAroundItsSamples) {
     for (uint64_t seed = 1; seed <= 3; ++seed) {
         const CheckResult r = bsdf_chi2_of(*band, seed);
         EXPECT_EQ(r.verdict, Verdict::Pass) << "seed " << seed << ": " << r.summary << " | " << r.message;
-        EXPECT_GT(figure(r, "reintegrated_cells"), 0.0) << "seed " << seed;
+        // Found either by cells of equal probability integrated where the
+        // pilot saw the band, or around the samples in the cells it missed.
+        EXPECT_TRUE(figure(r, "reintegrated_cells") > 0.0 || figure(r, "equal_probability_cells") == 1.0)
+            << "seed " << seed;
         EXPECT_GE(figure(r, "dof"), 1.0) << "seed " << seed;
     }
 }

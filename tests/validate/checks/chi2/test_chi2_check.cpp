@@ -68,8 +68,9 @@ TEST(Chi2Check, CorrectGeometricWarpsPass) {
 }
 
 TEST(Chi2Check, PeakedTrowbridgeReitzPasses) {
-    // alpha = 0.05: almost all mass within 1 - cos theta < 0.01; most cells expect
-    // almost nothing and are pooled, and the quadrature has to find the peak.
+    // alpha = 0.05: almost all mass within 1 - cos theta < 0.01, in the top
+    // rows of a uniform grid: the cells move to the quantiles of a pilot
+    // (equal probability, none pooled), and the quadrature finds the peak.
     const TrowbridgeReitz tr(0.05f);
     auto warp = make_warp_case(
         info("trowbridge_reitz_normals", chi2::Domain::hemisphere()),
@@ -78,7 +79,9 @@ TEST(Chi2Check, PeakedTrowbridgeReitzPasses) {
             .with_invert([](Vector3f) { return Point2f{}; }));
     const CheckResult r = run_chi2(*warp);
     expect_statistical_pass(r);
-    EXPECT_GT(*r.figure("pooled_cells"), 500.0);
+    EXPECT_EQ(*r.figure("equal_probability_cells"), 1.0);
+    EXPECT_LT(*r.figure("pooled_cells"), 10.0);
+    EXPECT_LT(*r.figure("power_tilt_eps"), 0.05);
     EXPECT_NEAR(*r.figure("integral"), 1.0, 1e-4);
     EXPECT_LE(*r.figure("integration_error_ratio"), 1.0);
 }
