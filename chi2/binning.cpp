@@ -520,6 +520,7 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
     // edges such as u = 0 (probability ~2^-24 per sample), where a density like
     // cos^n(theta) vanishes. The test caps how many it accepts (chi2_test.cpp).
     std::vector<Histogram::CellPoint> zero_points;  // samples left in zero cells (rare)
+    std::size_t compact_at = 4096;
     auto add = [&](std::size_t cell, double u, double v, const DomainPoint& q) {
         if (check_zero && zero_cells[cell]) {
             cell = snap_from_zero_cell(u, v, cell, zero_cells, hist.snapped);
@@ -529,7 +530,14 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
             }
             if (zero_cells[cell]) {
                 zero_points.push_back({cell, q});
-                if (zero_points.size() >= 4096) keep_extreme_points(zero_points, {});
+                // Compacted when it doubles (at least 4096): with hundreds of
+                // zero cells, what compaction keeps (six points a cell) is
+                // itself thousands, and compacting at a fixed size would sort
+                // them again at every sample.
+                if (zero_points.size() >= compact_at) {
+                    keep_extreme_points(zero_points, {});
+                    compact_at = std::max<std::size_t>(4096, 2 * zero_points.size());
+                }
             }
         }
         ++counts[cell];
