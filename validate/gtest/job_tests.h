@@ -4,6 +4,7 @@
 // runner's headers.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,16 @@ struct Settings {
 /// The defaults with the WARPCHECK_* variables applied; throws
 /// std::invalid_argument naming a variable whose value is not valid.
 Settings settings_from_environment();
+
+/// Where a failing test's HTML evidence goes: WARPCHECK_EVIDENCE_DIR (or
+/// warpcheck-evidence) / gtest / <test suite> / <stem>.html, the test suite's
+/// name with letters and digits kept and every other character '_'
+/// ("warpcheck/MyWarps" gives warpcheck_MyWarps; none outside a test). In its
+/// own folder, so that the ctest integration (ctest/<prefix>/) and other test
+/// programs never write the same file. A stem too long for a file name (255
+/// bytes with ".html") keeps its start, then '_' and 16 hex digits of a hash
+/// of the stem, then its last "__<check>".
+std::filesystem::path evidence_path(const Settings& settings, const std::string& test_suite, const std::string& stem);
 
 /// The test names of a suite's jobs, in order: "<case>__<check>", each name
 /// with its letters and digits kept and every other character '_' (trailing
