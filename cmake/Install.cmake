@@ -30,6 +30,9 @@ if(TARGET warpcheck_gtest)
 endif()
 
 install(TARGETS validate RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# One shard of a run on a cluster or CI engine, the index from the engine's
+# own variable (validate/cli/README.md, "Sharding on a cluster").
+install(PROGRAMS validate/cli/warpcheck_shard.sh DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME warpcheck_shard)
 install(TARGETS ${warpcheck_targets}
   EXPORT warpcheckTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

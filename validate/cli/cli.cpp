@@ -61,6 +61,7 @@ struct CliOptions {
     std::optional<std::string> shard_spec;
     Shard shard;
     std::vector<std::string> merge_paths;
+    bool missing_shards = false;
 };
 
 struct Output {
@@ -131,8 +132,13 @@ bool write_outputs(const std::vector<Output>& outputs, const RunResult& run, con
                 std::cout << out.render(run) << std::flush;
                 continue;
             }
-            write_file_atomically(out.target, out.render(run));
+            const std::string text = out.render(run);
+            write_file_atomically(out.target, text);
             notes << out.what << " written to " << *out.path << "\n";
+            // A shard's results too large for --merge to read: said now, not at the merge.
+            if (out.render == render_json && run.info.shard_count > 0)
+                if (const std::string warning = shard_size_warning(text.size(), run.info.shard_count); !warning.empty())
+                    std::cerr << program << ": warning: --json " << *out.path << ": " << warning << "\n";
         } catch (const std::exception& e) {
             std::cerr << program << ": " << out.option << ": " << e.what() << "\n";
             ok = false;
@@ -221,6 +227,9 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
                    "Combine the --json files of the shards of one run into its table and reports, then exit")
         ->type_name("FILE")
         ->expected(1, -1);
+    app.add_flag("--missing-shards", o.missing_shards,
+                 "With --merge: check the files given and list the shards of their run that are not among them "
+                 "(I/N, one per line; none when all are there), instead of merging: the ones to run again");
     app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
     app.add_flag("--include-flawed", o.run.include_flawed,
                  "Also run the cases that demonstrate known flaws (e.g. u * 2^-32 reaching 1.0); they fail");
@@ -343,6 +352,8 @@ std::string no_case_matches(const std::string& pattern, const Registry& registry
 
 /// What is wrong with the selection, or empty; reads --shard into o.shard.
 std::string selection_problem(CliOptions& o, const Registry& registry) {
+    if (o.missing_shards && o.merge_paths.empty())
+        return "--missing-shards lists what --merge lacks: give --merge FILE...";
     if (!o.merge_paths.empty())
         return o.all || !o.filters.empty() || o.list || o.list_jobs || o.shard_spec
                    ? "--merge takes the shards' results files, not a selection (--all, --filter, --list, --shard)"
@@ -450,7 +461,11 @@ int run_merge(const CliOptions& o, const std::vector<Output>& outputs, const std
     RunResult merged;
     try {
         for (const std::string& path : o.merge_paths) shards.push_back(read_shard_file(path));
-        merged = merge_shards(shards);
+        if (o.missing_shards) {
+            for (const std::string& shard : missing_shards(shards)) std::cout << shard << "\n";
+            return stdout_written(o.program_name, "the missing shards") ? kExitPass : kExitUsage;
+        }
+        merged = merge_shards(shards, o.run.program);
     } catch (const MergeError& e) {
         std::cerr << o.program_name << ": --merge: " << e.what() << "\n";
         return kExitUsage;
