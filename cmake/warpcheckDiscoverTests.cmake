@@ -21,9 +21,10 @@
 # to every test beside the check's name; PROPERTIES are set on every test
 # (e.g. TIMEOUT 600).
 #
-# As with the GoogleTest adapter, WARPCHECK_SEED, WARPCHECK_SAMPLES and
-# WARPCHECK_ALPHA in ctest's environment replace the seed, sample count and
-# alpha of EXTRA_ARGS (`WARPCHECK_SAMPLES=10M ctest`), and an invalid value
+# As with the GoogleTest adapter, WARPCHECK_SEED, WARPCHECK_SAMPLES,
+# WARPCHECK_ALPHA, WARPCHECK_TIME_BUDGET and WARPCHECK_MEMORY_LIMIT in ctest's
+# environment replace the seed, sample count, alpha, time budget and memory
+# limit of EXTRA_ARGS (`WARPCHECK_SAMPLES=10M ctest`), and an invalid value
 # fails every test with the variable's name and the reason. A failing test
 # writes its HTML report to WARPCHECK_EVIDENCE_DIR (default warpcheck-evidence
 # in the target's build folder), in ctest/<prefix>/ (the GoogleTest adapter

@@ -4,7 +4,9 @@
 // runner's headers.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +17,10 @@ namespace warpcheck::gtest {
 
 /// How the checks run inside a test.
 struct Settings {
-    RunOptions run;                                 ///< seed, samples, alpha, as in `validate`
+    RunOptions run;  ///< seed, samples, alpha and time budget, as in `validate`
+    /// WARPCHECK_MEMORY_LIMIT: what `validate --memory-limit` takes (MiB the
+    /// workers share; 0: none); unset, the machine's default.
+    std::optional<uint64_t> memory_limit_mib;
     std::string evidence_dir = "warpcheck-evidence";  ///< where failing cases' HTML goes
 };
 

@@ -72,6 +72,7 @@ RunResult run_part(const std::vector<Job>& jobs, int family_tests, const Setting
     options.family_tests = family_tests;
     Isolation isolation;
     isolation.enabled = true;
+    if (settings.memory_limit_mib) isolation.memory_budget = *settings.memory_limit_mib << 20;
     RunResult run = run_jobs(jobs, options, {}, isolation);
     run.info.tool_version = WARPCHECK_VERSION;
     run.info.command_line = "GoogleTest: " + gtest_rerun_command(settings);
@@ -211,7 +212,7 @@ std::shared_ptr<Suite> build_suite(void (*register_cases)(Registry&)) {
 
 Settings settings_from_environment() {
     Settings s;
-    if (const std::string problem = apply_environment_settings(s.run); !problem.empty())
+    if (const std::string problem = apply_environment_settings(s.run, &s.memory_limit_mib); !problem.empty())
         throw std::invalid_argument(problem);
     if (const char* dir = std::getenv("WARPCHECK_EVIDENCE_DIR"); dir && *dir) s.evidence_dir = dir;
     return s;
