@@ -30,6 +30,9 @@ if(TARGET warpcheck_gtest)
 endif()
 
 install(TARGETS validate RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# One shard of a run on a cluster or CI engine, the index from the engine's
+# own variable (validate/cli/README.md, "Sharding on a cluster").
+install(PROGRAMS validate/cli/warpcheck_shard.sh DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME warpcheck_shard)
 install(TARGETS ${warpcheck_targets}
   EXPORT warpcheckTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -43,6 +46,11 @@ foreach(header IN LISTS warpcheck_installed_headers)
   get_filename_component(folder "${header}" DIRECTORY)
   install(FILES "${header}" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/warpcheck/${folder})
 endforeach()
+# The include paths of 0.1 (<validate/external.h>, ...), kept for one release:
+# each forwards to its header in validate/api/ with a deprecation warning that
+# names it (validate/api/old_paths/, validate/api/CHANGELOG.md).
+file(GLOB warpcheck_old_path_headers CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/validate/api/old_paths/*.h")
+install(FILES ${warpcheck_old_path_headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/warpcheck/validate)
 install(FILES "${WARPCHECK_GENERATED_INCLUDE_DIR}/warpcheck/version.h"
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/warpcheck/warpcheck)
 install(EXPORT warpcheckTargets NAMESPACE warpcheck:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/warpcheck)

@@ -13,16 +13,23 @@
 # without reconfiguring. Test k of the N jobs runs `<target> EXTRA_ARGS
 # --shard k/N`: the one job, judged at the Šidák level of all N together, with
 # the figures of the whole run. Tests are named <prefix><check>/<case>, the
-# prefix being "<target>/" unless TEST_PREFIX says otherwise. LABELS are added
+# prefix being "<target>/" unless TEST_PREFIX says otherwise, and the case
+# written so that the name, given to `ctest -R`, selects its test: '[' and ']'
+# as '{' and '}', and each of ( ) * + ? | ^ $ \ ; as '_'
+# (power[n=4] is <prefix>chi2/power{n=4}); two cases that read alike then
+# carry 8 hex digits of a hash each (power{n=4}~1f7313ff). LABELS are added
 # to every test beside the check's name; PROPERTIES are set on every test
 # (e.g. TIMEOUT 600).
 #
-# As with the GoogleTest adapter, WARPCHECK_SEED, WARPCHECK_SAMPLES and
-# WARPCHECK_ALPHA in ctest's environment replace the seed, sample count and
-# alpha of EXTRA_ARGS (`WARPCHECK_SAMPLES=10M ctest`), and an invalid value
+# As with the GoogleTest adapter, WARPCHECK_SEED, WARPCHECK_SAMPLES,
+# WARPCHECK_ALPHA, WARPCHECK_TIME_BUDGET and WARPCHECK_MEMORY_LIMIT in ctest's
+# environment replace the seed, sample count, alpha, time budget and memory
+# limit of EXTRA_ARGS (`WARPCHECK_SAMPLES=10M ctest`), and an invalid value
 # fails every test with the variable's name and the reason. A failing test
 # writes its HTML report to WARPCHECK_EVIDENCE_DIR (default warpcheck-evidence
-# in the target's build folder) as <case>__<check>.html and names it.
+# in the target's build folder), in ctest/<prefix>/ (the GoogleTest adapter
+# writes in gtest/), as <case>__<check>.html (a name over 255 bytes shortened,
+# with a hash of the case), and names it.
 function(warpcheck_discover_tests target)
   cmake_parse_arguments(PARSE_ARGV 1 arg "" "TEST_PREFIX" "EXTRA_ARGS;LABELS;PROPERTIES")
   if(arg_UNPARSED_ARGUMENTS)

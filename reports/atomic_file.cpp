@@ -1,15 +1,19 @@
 #include "reports/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/types.h>
 #include <unistd.h>
 
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <string>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -92,6 +96,50 @@ fs::path follow_links(fs::path p) {
     return p;
 }
 
+/// Whether `p` is still a symbolic link after follow_links: the links loop,
+/// or are more than it follows.
+bool is_link(const fs::path& p) {
+    std::error_code ec;
+    return fs::is_symlink(fs::symlink_status(p, ec));
+}
+
+/// The process id in a temporary name of `target` (temporary_path_for:
+/// ".NAME.tmp-PID-N", NAME cut short where the whole is the longest name the
+/// folder takes), or 0 if `name` is not one.
+pid_t temporary_owner(const std::string& name, const fs::path& target) {
+    const std::size_t tmp = name.rfind(".tmp-");
+    if (tmp == std::string::npos || tmp < 1 || name[0] != '.') return 0;
+    const std::string stem = name.substr(1, tmp - 1), own = target.filename().string();
+    const bool cut_short = name.size() == longest_name(folder_of(target)) && own.starts_with(stem);
+    if (stem.empty() || (stem != own && !cut_short)) return 0;
+    const std::string rest = name.substr(tmp + 5);  // PID-N
+    const std::size_t dash = rest.find('-');
+    if (dash == 0 || dash == std::string::npos || dash + 1 == rest.size() ||
+        rest.find_first_not_of("0123456789-") != std::string::npos || rest.find('-', dash + 1) != std::string::npos ||
+        dash > 9)
+        return 0;
+    return static_cast<pid_t>(std::stol(rest.substr(0, dash)));
+}
+
+/// Removes the temporary files of `target` that writers killed before they
+/// could (SIGKILL, a power cut) left behind: those whose process is gone and
+/// that nothing wrote to for a minute (a writer in another PID namespace, on a
+/// shared folder, looks gone to this one). A live process's, and every other
+/// file, stay.
+void remove_stale_temporaries(const fs::path& target) {
+    std::error_code ec;
+    const auto stale_before = fs::file_time_type::clock::now() - std::chrono::minutes(1);
+    for (fs::directory_iterator it(folder_of(target), ec), end; !ec && it != end; it.increment(ec)) {
+        const pid_t pid = temporary_owner(it->path().filename().string(), target);
+        if (pid <= 0 || pid == ::getpid()) continue;
+        if (::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to know
+        std::error_code failed;
+        if (!fs::is_regular_file(fs::symlink_status(it->path(), failed)) || failed) continue;
+        const auto written = fs::last_write_time(it->path(), failed);
+        if (!failed && written < stale_before) fs::remove(it->path(), failed);
+    }
+}
+
 }  // namespace
 
 std::string resolved_output_path(const std::string& path) {
@@ -108,6 +156,8 @@ std::string output_path_problem(const std::string& path) {
     if (::stat(target.c_str(), &st) == 0) {
         if (S_ISDIR(st.st_mode)) return "it is a directory";
         if (!S_ISREG(st.st_mode)) return "it is not a regular file (a device, FIFO or socket)";
+    } else if (errno == ELOOP || is_link(target)) {
+        return "its symbolic links form a loop (or are too many to follow)";
     }
     const fs::path dir = folder_of(target);
     std::error_code ec;
@@ -144,6 +194,8 @@ void write_file_atomically(const std::string& path, std::string_view contents) {
     // Through a symbolic link to its target: the link is the user's, and stays.
     const fs::path target = follow_links(fs::path(path));
     std::error_code ec;
+    // A loop of links: writing would replace one of them with a regular file.
+    if (is_link(target)) fail(path, "its symbolic links form a loop (or are too many to follow)");
     if (fs::is_directory(target, ec)) fail(path, "is a directory");
     struct stat existing {};
     const bool exists = ::stat(target.c_str(), &existing) == 0;
@@ -178,6 +230,7 @@ void write_file_atomically(const std::string& path, std::string_view contents) {
     fs::rename(temporary.path, target, ec);
     if (ec) fail(path, ec.message());
     temporary.keep = true;
+    remove_stale_temporaries(target);
 }
 
 }  // namespace warpcheck

@@ -9,10 +9,13 @@
 namespace warpcheck {
 
 /// Replaces the file at `path` with `contents` atomically. A symbolic link is
-/// followed: its target is replaced and the link stays. An existing file keeps
-/// its permissions. On any failure the target is left as it was, the temporary
-/// file is removed, and ReportError (reports/outputs.h) is thrown:
-/// "cannot write <path>: <reason>" (a device, FIFO or socket is refused).
+/// followed: its target is replaced and the link stays (a loop of links is
+/// refused). An existing file keeps its permissions. On any failure the target
+/// is left as it was, the temporary file is removed, and ReportError
+/// (reports/outputs.h) is thrown: "cannot write <path>: <reason>" (a device,
+/// FIFO or socket is refused). After a write, the temporary files of `path`
+/// that killed writers left (".NAME.tmp-PID-N" of a process that is gone,
+/// untouched for a minute) are removed.
 void write_file_atomically(const std::string& path, std::string_view contents);
 
 /// Where a write to `path` lands: the path with its symbolic links followed
@@ -20,7 +23,8 @@ void write_file_atomically(const std::string& path, std::string_view contents);
 std::string resolved_output_path(const std::string& path);
 
 /// Empty if `path` could be written by write_file_atomically (its folder exists
-/// and is writable; it is not a folder, device, FIFO or socket), else why not.
+/// and is writable; it is not a folder, device, FIFO, socket or loop of
+/// symbolic links), else why not.
 std::string output_path_problem(const std::string& path);
 
 /// Installs SIGINT, SIGTERM, SIGHUP and SIGQUIT handlers that remove the

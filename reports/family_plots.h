@@ -23,6 +23,11 @@ struct FamilyPlot {
 /// "label" or "label, group"), its points in order of x (ties in row order),
 /// with error bars where a value has an interval (low <= high), and the
 /// points' limits. The labels of the axes and log_y come from the first point.
+/// A limit named "<quantity> bound" bounds the curves labelled "<quantity> ...":
+/// where the plot has other curves too, those curves and their bound are a plot
+/// of their own, next to it ("energy albedo against theta_o" under "energy
+/// bound", apart from "albedo against theta_o": a radiance albedo may exceed
+/// 1 across an interface, and is not judged against that bound).
 std::vector<FamilyPlot> family_plots(const std::vector<CheckResult>& rows);
 
 }  // namespace warpcheck

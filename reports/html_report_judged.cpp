@@ -175,8 +175,10 @@ void chi2_p_lines(const CheckResult& r, double level, std::vector<JudgedLine>& o
     out.push_back(p_line(fmt::format("Pearson X\u00b2 = {:.4g} on {} dof: p-value", r.figure("statistic").value_or(NAN),
                                      general(r.figure("dof").value_or(NAN))),
                          *pearson, (1.0 - kLocalShare) * level, fmt::format(" ({} \u00d7 level)", 1.0 - kLocalShare)));
+    const auto cell = ringed_cell(r);
     out.push_back(p_line(fmt::format("largest cell residual {:+.2f} (cell {}): p-value over the cells",
-                                     r.figure("local_max_residual").value_or(NAN), general(r.figure("local_cell").value_or(NAN))),
+                                     cell ? cell->residual : NAN,
+                                     cell ? general(static_cast<double>(cell->index)) : format_number(NAN)),
                          *local, kLocalShare * level, fmt::format(" ({} \u00d7 level)", kLocalShare)));
 }
 
@@ -191,8 +193,9 @@ void bsdf_chi2_p_lines(const CheckResult& r, double level, std::vector<JudgedLin
     out.push_back(p_line(fmt::format("Pearson X\u00b2 = {:.4g} on {} dof: p-value", r.figure("statistic").value_or(NAN),
                                      general(r.figure("dof").value_or(NAN))),
                          *pearson, 0.7 * level, " (0.7 \u00d7 level)"));
+    const auto cell = ringed_cell(r);
     out.push_back(p_line(fmt::format("largest cell residual {:+.2f}: p-value over the cells",
-                                     r.figure("local_max_residual").value_or(NAN)),
+                                     cell ? cell->residual : NAN),
                          *local, kLocalShare * level, fmt::format(" ({} \u00d7 level)", kLocalShare)));
     out.push_back(p_line(fmt::format("share of draws that landed ({} of {}): binomial p-value",
                                      general(r.figure("continuous_samples").value_or(NAN)),

@@ -52,6 +52,18 @@ CheckLegend check_legend(std::string_view check);
 /// rest. The report uses it only where a row's p-value agrees with it.
 inline constexpr double kChi2LocalShare = 0.2;
 
+/// The cell a chi-square row's evidence rings as its largest residual, and
+/// that residual: the check's (figures local_cell and local_max_residual: the
+/// cell of the smallest per-cell p-value). Where that p-value underflowed to 0
+/// (local_p_value 0), every cell at 0 ties and the check's is only the first
+/// of them: the ring then goes to the cell of the largest |residual| of the
+/// row's plotted residuals, the departure the table of cells lists first.
+struct RingedCell {
+    std::size_t index = 0;  ///< the cell: a residual heatmap's value index, or the residual series' point
+    double residual = 0.0;
+};
+std::optional<RingedCell> ringed_cell(const CheckResult& r);
+
 /// The judged test of each marginal of an unbinned row, from the check's table
 /// of tests (columns "marginal", "test", "judged"): (marginal label, short
 /// test name: "ad", "kuiper", "ks").

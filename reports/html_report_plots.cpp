@@ -6,6 +6,8 @@
 // Read from the result's figures, tables and series.
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -98,18 +100,29 @@ std::optional<std::size_t> local_cell(const CheckResult& r) {
     return static_cast<std::size_t>(*cell);
 }
 
-std::string residual_label(const CheckResult& r) {
-    return fmt::format("largest |r|: {:+.2f}", r.figure("local_max_residual").value_or(NAN));
+/// The residuals a chi-square row plots, one per cell: its residual heatmap's
+/// values, or its residual series' y. Empty if it plots none.
+std::span<const double> plotted_residuals(const CheckResult& r) {
+    for (const Plot& plot : r.plots) {
+        for (const Heatmap& h : plot.heatmaps)
+            if (h.label.starts_with("residual")) return h.values;
+        if (plot.kind == Plot::Kind::Points && !plot.series.empty() && plot.series.front().label == "residual")
+            return plot.series.front().y;
+    }
+    return {};
 }
 
+std::string residual_label(const RingedCell& cell) { return fmt::format("largest |r|: {:+.2f}", cell.residual); }
+
 void annotate_chi2_heatmaps(const CheckResult& r, const Plot& plot, SvgOptions& options) {
-    const auto cell = local_cell(r);
+    const auto cell = ringed_cell(r);
     for (std::size_t i = 0; i < plot.heatmaps.size(); ++i) {
         const Heatmap& h = plot.heatmaps[i];
         if (!h.label.starts_with("residual") || h.cols <= 0) continue;
-        if (cell && *cell < h.values.size())
-            options.cells.push_back({i, static_cast<int>(*cell / static_cast<std::size_t>(h.cols)),
-                                     static_cast<int>(*cell % static_cast<std::size_t>(h.cols)), residual_label(r)});
+        if (cell && cell->index < h.values.size())
+            options.cells.push_back({i, static_cast<int>(cell->index / static_cast<std::size_t>(h.cols)),
+                                     static_cast<int>(cell->index % static_cast<std::size_t>(h.cols)),
+                                     residual_label(*cell)});
         if (const auto z = single_cell_limit(r))
             options.scale_marks.push_back({i, *z, fmt::format("|r| = {:.1f}: one cell alone fails", *z)});
     }
@@ -122,8 +135,9 @@ void annotate_chi2_residuals(const CheckResult& r, const Plot& plot, SvgOptions&
         options.limits.push_back({false, -*z, fmt::format("\u2212{:.1f}", *z)});
     }
     const Series& s = plot.series.front();
-    const auto cell = local_cell(r);
-    if (cell && *cell < s.y.size() && *cell < s.x.size()) options.highlights.push_back({s.x[*cell], s.y[*cell], residual_label(r)});
+    const auto cell = ringed_cell(r);
+    if (cell && cell->index < s.y.size() && cell->index < s.x.size())
+        options.highlights.push_back({s.x[cell->index], s.y[cell->index], residual_label(*cell)});
 }
 
 // ---- exhaustive -------------------------------------------------------------
@@ -154,6 +168,19 @@ void annotate_exhaustive(const CheckResult& r, const Plot& plot, SvgOptions& opt
 }
 
 }  // namespace
+
+std::optional<RingedCell> ringed_cell(const CheckResult& r) {
+    const auto cell = local_cell(r);
+    if (!cell) return std::nullopt;
+    RingedCell ringed{*cell, r.figure("local_max_residual").value_or(NAN)};
+    if (r.figure("local_p_value") != 0.0) return ringed;
+    // Underflowed: the tie among the cells at p = 0 goes to the largest |residual|.
+    const std::span<const double> residuals = plotted_residuals(r);
+    for (std::size_t c = 0; c < residuals.size(); ++c)
+        if (std::abs(residuals[c]) > std::abs(ringed.residual) || (c == ringed.index && std::isnan(ringed.residual)))
+            ringed = {c, residuals[c]};
+    return ringed;
+}
 
 void annotate_plot(const CheckResult& r, std::size_t index, SvgOptions& options) {
     if (index >= r.plots.size()) return;

@@ -17,7 +17,7 @@ namespace {
 
 constexpr std::size_t kVerdictWidth = 5;
 constexpr std::size_t kMinCaseWidth = 24;  ///< a narrow table still shows this much of a case name
-constexpr std::size_t kMinKeyWidth = 30;   ///< ... and this much of the key figure
+constexpr std::size_t kMinKeyWidth = 16;   ///< ... and this much of the key figure
 
 std::string verdict_cell(const CheckResult& r, bool color) {
     const Verdict v = r.verdict;
@@ -68,13 +68,21 @@ struct Widths {
     std::size_t check = 5, case_name = 4, margin = 6, key = 0;  ///< key 0: no limit
 };
 
+/// The columns of a case name's parameters, "[...]" (0 without them).
+std::size_t params_width(const std::string& name) {
+    const std::size_t bracket = name.find('[');
+    return bracket == std::string::npos ? 0 : display_width(std::string_view(name).substr(bracket));
+}
+
 Widths column_widths(const RunResult& run, const TableStyle& style) {
     Widths w;
-    std::size_t longest_case = 4;
+    std::size_t longest_case = 4, longest_params = 0;
     for (const auto& r : run.results) {
         if (!shown(r, style)) continue;
+        const std::string name = printable(r.case_name);
         w.check = std::max(w.check, display_width(r.check_name));
-        longest_case = std::max(longest_case, display_width(r.case_name));
+        longest_case = std::max(longest_case, display_width(name));
+        longest_params = std::max(longest_params, params_width(name));
         w.margin = std::max(w.margin, margin_cell(r).size());
     }
     w.case_name = std::min<std::size_t>(longest_case, 64);
@@ -82,8 +90,13 @@ Widths column_widths(const RunResult& run, const TableStyle& style) {
     // verdict, check, case, margin, key figure: four gaps of two columns.
     const std::size_t fixed = kVerdictWidth + w.check + w.margin + 8;
     const std::size_t room = style.width > fixed ? style.width - fixed : 0;
-    // The case takes up to 45% of what is left, the key figure the rest.
-    w.case_name = std::min(w.case_name, std::max(kMinCaseWidth, room * 45 / 100));
+    // The case takes 45% of what is left, and more where a case's parameters
+    // need it, which tell a family's rows apart and are never cut (the family
+    // is: to a lone "…" at the least); the key figure takes the rest, which it
+    // fills up to its end (a table only wider than `width` where even
+    // kMinKeyWidth columns of it do not fit).
+    const std::size_t whole_params = std::min(longest_case, longest_params + 1);
+    w.case_name = std::max(std::min(w.case_name, std::max(kMinCaseWidth, room * 45 / 100)), whole_params);
     w.key = std::max(kMinKeyWidth, room > w.case_name ? room - w.case_name : 0);
     return w;
 }
@@ -162,7 +175,7 @@ RowMargin row_margin(const CheckResult& r) {
             keep_largest(m, fraction(name.ends_with("integral") ? f.value - 1.0 : f.value, *tolerance), f.name);
     }
     if (const auto tolerance = r.figure("tolerance")) {
-        for (const char* name : {"max_error", "max_relative_difference"})
+        for (const char* name : {"max_error", "max_relative_difference", "max_relative_error"})
             if (const auto error = r.figure(name)) keep_largest(m, fraction(*error, *tolerance), name);
         if (const auto sum = r.figure("sum")) keep_largest(m, fraction(*sum - 1.0, *tolerance), "sum");
     }
@@ -180,25 +193,27 @@ std::string margin_text(const RowMargin& m) {
 std::string fit_case_name(const std::string& name, std::size_t columns) {
     if (display_width(name) <= columns) return name;
     const std::size_t bracket = name.find('[');
-    const std::size_t params = bracket == std::string::npos ? 0 : display_width(name.substr(bracket));
-    // Keep the parameters whole when at least four columns of the family fit beside them.
-    if (bracket != std::string::npos && params + 4 <= columns)
+    const std::size_t params = params_width(name);
+    // The parameters whole, the family cut in its middle to what is left of
+    // the columns (a lone "…" at the least).
+    if (bracket != std::string::npos && params + 1 <= columns)
         return fit_middle(name.substr(0, bracket), columns - params) + name.substr(bracket);
     return fit_columns(name, columns);
 }
 
 void print_summary(const RunResult& run, std::ostream& out) {
     const auto& i = run.info;
+    // The checks that ran, as the progress display counts them; the n/a rows apart.
     const int not_applicable = run.count(Verdict::NotApplicable);
+    const std::size_t ran = run.results.size() - static_cast<std::size_t>(not_applicable);
     const auto weak = std::count_if(run.results.begin(), run.results.end(), [](const CheckResult& r) {
         return r.verdict == Verdict::Pass && !r.weak.empty();
     });
     out << fmt::format("{} checks: {} passed{}, {} failed, {} errors{} in {:.1f} s  (seed {}, {} samples, {} threads)\n",
-                       run.results.size(), run.count(Verdict::Pass),
+                       ran, run.count(Verdict::Pass),
                        weak > 0 ? fmt::format(" ({} weak: could not see a 5% tilt)", weak) : std::string(),
-                       run.count(Verdict::Fail),
-                       run.count(Verdict::Error),
-                       not_applicable > 0 ? fmt::format(", {} not applicable", not_applicable) : std::string(),
+                       run.count(Verdict::Fail), run.count(Verdict::Error),
+                       not_applicable > 0 ? fmt::format("; {} n/a, not run", not_applicable) : std::string(),
                        i.wall_seconds, i.seed, i.samples, i.threads);
     if (i.statistical_tests > 0)
         out << fmt::format("Statistical tests: {} at per-test level {:.3g} (family-wise alpha {} with Sidak correction)\n",
@@ -251,8 +266,8 @@ void print_weakest(const RunResult& run, std::ostream& out, std::size_t count, s
             by_tolerance.push_back({-*m.of_tolerance, &r, compact(*m.of_tolerance) + " of tol", m.tolerance_figure});
     }
     if (by_p.empty() && by_tolerance.empty()) return;
-    out << "\nClosest to their limits, of the rows that passed (p-value over the per-test level; error over its "
-           "tolerance):\n";
+    // (Within 100 columns, as the rows are.)
+    out << "\nClosest to their limits, of the passing rows (p-value / per-test level; error / tolerance):\n";
     std::size_t margin_width = 0, check_width = 0;
     for (auto* list : {&by_p, &by_tolerance}) {
         std::stable_sort(list->begin(), list->end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });

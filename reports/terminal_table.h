@@ -16,8 +16,9 @@ struct TableStyle {
     bool color = false;          ///< ANSI colours for verdicts (only on a terminal)
     bool failures_only = false;  ///< print only rows that did not pass
     bool timings = false;        ///< after the table, where the run's time went (print_timings)
-    /// Columns the rows fit in: long case names and key figures are cut, the
-    /// cut marked by "…" (the JSON and HTML reports keep them whole). 0: no limit.
+    /// Columns the rows fit in: long case names (their families, never their
+    /// parameters) and key figures are cut, the cut marked by "…" (the JSON
+    /// and HTML reports keep them whole). 0: no limit.
     std::size_t width = 120;
     bool families = true;        ///< the summary per warp family
     std::size_t weakest = 3;     ///< passing rows listed per kind of limit as closest to it (0: none)
@@ -29,9 +30,9 @@ struct TableStyle {
 /// tolerance (its largest error over that tolerance: it fails above 1; the
 /// largest of those a row has, named by `tolerance_figure`). Read from the
 /// figures' names: `*_over_tolerance` as it is; `X` beside `X_tolerance` as
-/// |X| (|X - 1| for an integral) over it; `max_error`, `max_relative_difference`
-/// and a pmf's `sum` (|sum - 1|) over `tolerance`. A tolerance of 0 (an exact
-/// rule) gives no fraction.
+/// |X| (|X - 1| for an integral) over it; `max_error`, `max_relative_difference`,
+/// `max_relative_error` (bsdf_reciprocity's) and a pmf's `sum` (|sum - 1|) over
+/// `tolerance`. A tolerance of 0 (an exact rule) gives no fraction.
 struct RowMargin {
     std::optional<double> p_over_level;
     std::optional<double> of_tolerance;
@@ -43,9 +44,10 @@ RowMargin row_margin(const CheckResult& r);
 /// the row has neither.
 std::string margin_text(const RowMargin& m);
 
-/// A case name cut to `columns`: the family is shortened in its middle before
-/// the parameters, which tell a family's rows apart, are touched:
-/// "trowbr…visible[ax=0.3,ay=0.05,theta_o=60]".
+/// A case name cut to `columns`: the family is shortened in its middle, to a
+/// lone "…" if need be, and the parameters, which tell a family's rows apart,
+/// are kept whole: "trowbr…visible[ax=0.3,ay=0.05,theta_o=60]". Only when
+/// "…" and the parameters do not fit is the name cut at its end.
 std::string fit_case_name(const std::string& name, std::size_t columns);
 
 /// Prints the table, then the summaries, the failures with their rerun

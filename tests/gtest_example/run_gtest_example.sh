@@ -30,7 +30,8 @@ jobs=$(wc -l < "$work/jobs.txt")
 (cd "$b" && ctest -N -R '^validate_power_warps/') > "$work/listed.txt"
 listed=$(grep -c 'Test *#' "$work/listed.txt" || true)
 [ "$jobs" -gt 0 ] && [ "$listed" -eq "$jobs" ] || fail "ctest -N lists $listed tests for $jobs jobs"
-grep -q 'validate_power_warps/chi2/power\[n=4\]$' "$work/listed.txt" || fail "no test validate_power_warps/chi2/power[n=4]"
+# (Named as ctest -R reads it: power[n=4] is listed power{n=4}, a name that selects itself.)
+grep -q 'validate_power_warps/chi2/power{n=4}$' "$work/listed.txt" || fail "no test validate_power_warps/chi2/power{n=4}"
 chi2_jobs=$(grep -c "^chi2	" "$work/jobs.txt")
 (cd "$b" && ctest -L '^chi2$' -LE wrong -j2 --output-junit "$work/chi2.xml" > "$work/ctest_chi2.log") ||
   { cat "$work/ctest_chi2.log"; fail "ctest -L chi2 failed"; }
@@ -63,7 +64,7 @@ grep -q "	power\[n=0.3\]$" "$work/jobs.txt" || fail "n = 0.3f is not named power
 
 # Settings from ctest's environment: counts as people write them, and an invalid
 # value fails every test of both integrations with the variable and the reason.
-(cd "$b" && WARPCHECK_SAMPLES=1e5 ctest -R 'validate_power_warps/chi2/power\[n=4\]$' -V > "$work/env.log") ||
+(cd "$b" && WARPCHECK_SAMPLES=1e5 ctest -R 'validate_power_warps/chi2/power{n=4}$' -V > "$work/env.log") ||
   { cat "$work/env.log"; fail "WARPCHECK_SAMPLES=1e5 ctest failed"; }
 grep -q '(seed 1, 100000 samples' "$work/env.log" || { cat "$work/env.log"; fail "WARPCHECK_SAMPLES=1e5 was not used"; }
 status=0
@@ -81,9 +82,9 @@ status=0
 (cd "$b" && WARPCHECK_EVIDENCE_DIR="$work/ctest_evidence" ctest -R 'wrong/chi2/power_wrong' --output-on-failure \
   > "$work/wrong_ctest.log" 2>&1) || status=$?
 [ "$status" -ne 0 ] || fail "the wrong warp's ctest test passed"
-grep -q "HTML report written to $work/ctest_evidence/power_wrong_n_2__chi2.html" "$work/wrong_ctest.log" ||
+grep -q "HTML report written to $work/ctest_evidence/ctest/wrong/power_wrong_n_2__chi2.html" "$work/wrong_ctest.log" ||
   { cat "$work/wrong_ctest.log"; fail "the failing ctest test does not name its evidence"; }
-grep -q "power_wrong\[n=2\]" "$work/ctest_evidence/power_wrong_n_2__chi2.html" || fail "no HTML evidence from ctest"
+grep -q "power_wrong\[n=2\]" "$work/ctest_evidence/ctest/wrong/power_wrong_n_2__chi2.html" || fail "no HTML evidence from ctest"
 
 # Names that would collide get a hash suffix each, and every test runs.
 "$b/awkward_registration_test" > "$work/awkward.txt" 2>&1 || { cat "$work/awkward.txt"; fail "awkward_registration_test failed"; }
@@ -122,10 +123,10 @@ for line in "warpcheck: chi2 failed on power_wrong\[n=2\]" "^FAIL  *chi2  *power
             "FAIL chi2 power_wrong\[n=2\]: " "p-value .* is below the corrected level" \
             "chi2 power_wrong\[n=2\]: p-value .* at level " \
             "rerun: WARPCHECK_SEED=1 WARPCHECK_SAMPLES=200000 WARPCHECK_ALPHA=0.01 .*power_warps_test_wrong --gtest_filter='warpcheck/PowerWarps.Passes/power_wrong_n_2__chi2'" \
-            "evidence: $work/evidence/power_wrong_n_2__chi2.html"; do
+            "evidence: $work/evidence/gtest/warpcheck_PowerWarps/power_wrong_n_2__chi2.html"; do
   grep -q -- "$line" "$work/wrong.txt" || fail "the failure text lacks: $line"
 done
-grep -q "power_wrong\[n=2\]" "$work/evidence/power_wrong_n_2__chi2.html" || fail "no HTML evidence"
+grep -q "power_wrong\[n=2\]" "$work/evidence/gtest/warpcheck_PowerWarps/power_wrong_n_2__chi2.html" || fail "no HTML evidence"
 # Located at the user's WARPCHECK_TEST_SUITE line, never in warpcheck's own source.
 grep -q "power_warps_test.cpp:$suite_line: Failure" "$work/wrong.txt" || fail "the failure is not at power_warps_test.cpp:$suite_line"
 ! grep -q "warpcheck_gtest.cpp" "$work/wrong.txt" || fail "a failure names warpcheck's own source"
@@ -139,7 +140,7 @@ WARPCHECK_EVIDENCE_DIR="$work/evidence" "$b/power_warps_test_wrong" --gtest_filt
   > "$work/wrong_lobe.txt" 2>&1 && fail "EXPECT_WARP_PASSES passed the wrong warp"
 for line in "warpcheck: warpcheck::make_warp_case(lobe(2), WrongPowerWarp{}) (power_lobe\[n=2\]) failed checks:" \
             "FAIL chi2 power_lobe\[n=2\]: p-value" "rerun: .*--gtest_filter='PowerWarp.WrongLobe'" \
-            "evidence: $work/evidence/power_lobe_n_2.html"; do
+            "evidence: $work/evidence/gtest/PowerWarp/power_lobe_n_2.html"; do
   grep -q -- "$line" "$work/wrong_lobe.txt" || { cat "$work/wrong_lobe.txt"; fail "EXPECT_WARP_PASSES's text lacks: $line"; }
 done
 lobe_line=$(grep -n 'WrongPowerWarp{}' "$example_dir/power_warps_test.cpp" | cut -d: -f1)
@@ -160,7 +161,7 @@ for check in bsdf_weight bsdf_albedo bsdf_reciprocity; do
   ! grep -q "warpcheck: $check failed on diffuse_uniform_sampled" "$work/wrong_bsdf.txt" ||
     fail "$check failed the wrong BSDF, whose weights agree with f() and pdf()"
 done
-chi2_evidence="$work/evidence/diffuse_uniform_sampled_theta_o_60__bsdf_chi2.html"
+chi2_evidence="$work/evidence/gtest/warpcheck_PowerWarps/diffuse_uniform_sampled_theta_o_60__bsdf_chi2.html"
 grep -q "evidence: $chi2_evidence" "$work/wrong_bsdf.txt" && grep -q 'residual (obs - exp) / sqrt(exp)' "$chi2_evidence" ||
   fail "no map of the sphere in the wrong BSDF's bsdf_chi2 evidence"
 # EXPECT_BSDF_PASSES on it: every BSDF check in one run, at the user's line,
@@ -172,13 +173,13 @@ sed -n '/failed checks:/,/evidence:/p' "$work/wrong_bsdf_assert.txt"
 echo "---"
 for line in "warpcheck: wrong (diffuse_uniform_grazing\[theta_o=85\]) failed checks:" "FAIL bsdf_chi2 diffuse_uniform_grazing\[theta_o=85\]: " \
             "FAIL bsdf_unbinned diffuse_uniform_grazing\[theta_o=85\]: " \
-            "evidence: $work/evidence/diffuse_uniform_grazing_theta_o_85.html"; do
+            "evidence: $work/evidence/gtest/DiffuseBsdf/diffuse_uniform_grazing_theta_o_85.html"; do
   grep -q -- "$line" "$work/wrong_bsdf_assert.txt" || { cat "$work/wrong_bsdf_assert.txt"; fail "EXPECT_BSDF_PASSES's text lacks: $line"; }
 done
 bsdf_line=$(grep -n 'EXPECT_BSDF_PASSES(wrong)' "$example_dir/power_warps_test.cpp" | cut -d: -f1)
 grep -q "power_warps_test.cpp:$bsdf_line: Failure" "$work/wrong_bsdf_assert.txt" ||
   fail "EXPECT_BSDF_PASSES's failure is not at its line"
-grep -q "Across the family: albedo against theta_o" "$work/evidence/diffuse_uniform_grazing_theta_o_85.html" ||
+grep -q "Across the family: albedo against theta_o" "$work/evidence/gtest/DiffuseBsdf/diffuse_uniform_grazing_theta_o_85.html" ||
   fail "no albedo against theta_o in EXPECT_BSDF_PASSES's evidence"
 
 # The same figures and level as the validate program of the same warps and seed,

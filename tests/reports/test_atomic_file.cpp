@@ -1,6 +1,10 @@
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
+#include <string>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -90,6 +94,62 @@ TEST(AtomicFile, SymlinkIsWrittenThroughAndKept) {
     write_file_atomically((dir.path() / "dangling.txt").string(), "made");
     EXPECT_EQ(read_file((dir.path() / "made.txt").string()), "made");
     EXPECT_TRUE(fs::is_symlink(dir.path() / "dangling.txt"));
+}
+
+// A loop of links given as an output: refused by the check before a run and
+// by the write, the links left as they were (it was replaced by a regular file).
+TEST(AtomicFile, ALoopOfSymlinksIsRefused) {
+    TempDir dir;
+    const fs::path a = dir.path() / "a.json", b = dir.path() / "b.json";
+    fs::create_symlink("b.json", a);
+    fs::create_symlink("a.json", b);
+    EXPECT_THAT(output_path_problem(a.string()), HasSubstr("symbolic links form a loop"));
+    try {
+        write_file_atomically(a.string(), "x");
+        FAIL() << "a loop of links was written";
+    } catch (const ReportError& e) {
+        EXPECT_THAT(e.what(), HasSubstr("symbolic links form a loop"));
+    }
+    EXPECT_TRUE(fs::is_symlink(a));
+    EXPECT_TRUE(fs::is_symlink(b));
+    EXPECT_EQ(entries(dir.path()), 2u);
+}
+
+/// The id of a process that has ended (a child, reaped).
+pid_t ended_process() {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return child;
+}
+
+// A writer killed mid-write (SIGKILL) leaves its temporary file; the next
+// write of the same file removes it, once its writer is gone and it is a
+// minute old. A live writer's, a fresh one's and other files stay.
+TEST(AtomicFile, StaleTemporaryFilesOfEndedWritersAreRemoved) {
+    TempDir dir;
+    const fs::path target = dir.path() / "r.json";
+    const auto old = fs::file_time_type::clock::now() - std::chrono::hours(1);
+    const auto temporary = [&](pid_t pid, int n, bool stale) {
+        const fs::path p = dir.path() / (".r.json.tmp-" + std::to_string(pid) + "-" + std::to_string(n));
+        write_file_atomically(dir.file("scratch"), "");
+        fs::rename(dir.path() / "scratch", p);
+        if (stale) fs::last_write_time(p, old);
+        return p;
+    };
+    const pid_t ended = ended_process();
+    const fs::path dead = temporary(ended, 0, true), fresh = temporary(ended, 1, false),
+                   alive = temporary(::getppid(), 2, true);
+    const fs::path other = dir.path() / (".other.json.tmp-" + std::to_string(ended) + "-0");
+    fs::copy_file(dead, other);
+    fs::last_write_time(other, old);
+    write_file_atomically(target.string(), "results");
+    EXPECT_FALSE(fs::exists(dead)) << "the ended writer's temporary file stays";
+    EXPECT_TRUE(fs::exists(fresh)) << "a temporary file written to within the minute is removed";
+    EXPECT_TRUE(fs::exists(alive)) << "a live writer's temporary file is removed";
+    EXPECT_TRUE(fs::exists(other)) << "another file's temporary file is removed";
+    EXPECT_EQ(read_file(target.string()), "results");
 }
 
 TEST(AtomicFile, ReplacedFileKeepsItsPermissions) {

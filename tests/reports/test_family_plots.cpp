@@ -36,6 +36,38 @@ const Series* series_labelled(const Plot& plot, const std::string& label) {
     return nullptr;
 }
 
+// A transmitting BSDF in radiance transport: its albedo (radiance) reaches
+// 2.1 across the interface, and only its energy albedo is bounded by 1. The
+// bound is drawn against the energy albedo, in a plot of its own, never
+// against the radiance albedo it does not apply to.
+TEST(FamilyPlots, ABoundIsDrawnAgainstTheQuantityItBounds) {
+    std::vector<CheckResult> rows;
+    for (const double theta_o : {0.0, 60.0}) {
+        CheckResult r = sample_bsdf_albedo(0.3, theta_o, 2.1, 2.1, 1e-3);
+        r.case_name = "rough_dielectric[alpha=0.3,theta_o=" + std::to_string(int(theta_o)) + "]";
+        for (FamilyPoint& p : r.family_points) p.family = "rough_dielectric";
+        r.family_points[0].values.push_back({"energy albedo", 0.93});
+        rows.push_back(std::move(r));
+    }
+    const std::vector<FamilyPlot> plots = family_plots(rows);
+    ASSERT_EQ(plots.size(), 3u);
+    EXPECT_EQ(plots[0].plot.title, "albedo against theta_o");
+    EXPECT_TRUE(plots[0].limits.empty()) << "the radiance albedo is not judged against the energy bound";
+    EXPECT_TRUE(series_labelled(plots[0].plot, "albedo, alpha=0.3"));
+    EXPECT_FALSE(series_labelled(plots[0].plot, "energy albedo, alpha=0.3"));
+    EXPECT_EQ(plots[1].plot.title, "energy albedo against theta_o");
+    ASSERT_EQ(plots[1].limits.size(), 1u);
+    EXPECT_EQ(plots[1].limits[0].name, "energy bound");
+    ASSERT_EQ(plots[1].plot.series.size(), 1u);
+    EXPECT_EQ(plots[1].plot.series[0].label, "energy albedo, alpha=0.3");
+    EXPECT_EQ(plots[2].plot.title, "mean weight minus albedo against theta_o");
+    // A reflecting BSDF's albedo is its energy albedo: one plot, under the bound.
+    const std::vector<FamilyPlot> reflecting = family_plots(sample_bsdf_family());
+    ASSERT_EQ(reflecting.size(), 2u);
+    ASSERT_EQ(reflecting[0].limits.size(), 1u);
+    EXPECT_EQ(reflecting[0].limits[0].name, "energy bound");
+}
+
 TEST(FamilyPlots, GatherTheRowsPointsIntoCurvesPerValueAndGroupInOrderOfX) {
     const std::vector<FamilyPlot> plots = family_plots(sample_bsdf_family());
     ASSERT_EQ(plots.size(), 2u);

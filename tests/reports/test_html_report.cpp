@@ -351,6 +351,38 @@ TEST(PlotAnnotations, Chi2MapRingsTheLargestResidualAndMarksWhereOneCellAloneFai
     EXPECT_THAT(xml_problem(svg), IsEmpty());
 }
 
+// Once per-cell p-values underflow to 0, every cell at 0 ties and the check
+// names the first of them (-43.35 here, where the table lists -109 first):
+// the ring and the Judged line go to the largest |residual|.
+TEST(PlotAnnotations, Chi2RingsTheTrulyLargestResidualWhenPValuesUnderflow) {
+    CheckResult r = chi2_row(0.0, 0.0);
+    for (Figure& f : r.figures) {
+        if (f.name == "local_max_residual") f.value = -43.35;
+        if (f.name == "local_cell") f.value = 5;
+    }
+    std::vector<double>& residuals = r.plots[0].heatmaps[1].values;
+    residuals[5] = -43.35;
+    residuals[700] = 60.0;
+    residuals[713] = -109.0;
+    residuals[800] = std::nan("");
+    SvgOptions options;
+    html::annotate_plot(r, 0, options);
+    ASSERT_EQ(options.cells.size(), 1u);
+    EXPECT_EQ(options.cells[0].row, 713 / 32);
+    EXPECT_EQ(options.cells[0].col, 713 % 32);
+    EXPECT_EQ(options.cells[0].label, "largest |r|: -109.00");
+    const std::vector<html::JudgedLine> lines = html::judged_lines(r);
+    EXPECT_TRUE(line_starting(lines, "largest cell residual -109.00 (cell 713)"));
+    // A p-value that did not underflow decides the cell itself: the check's stays.
+    for (Figure& f : r.figures)
+        if (f.name == "local_p_value") f.value = 1e-300;
+    SvgOptions kept;
+    html::annotate_plot(r, 0, kept);
+    ASSERT_EQ(kept.cells.size(), 1u);
+    EXPECT_EQ(kept.cells[0].col, 5);
+    EXPECT_EQ(kept.cells[0].label, "largest |r|: -43.35");
+}
+
 TEST(PlotAnnotations, RoundTripHistogramShowsItsToleranceEvenBeyondEveryError) {
     CheckResult r = sample_roundtrip_pass();  // errors 1e-12 .. 1e-7 by decade
     r.plots[0].log_x = false;

@@ -47,7 +47,8 @@ TEST(NotApplicable, TerminalTableShowsTheRowButNotAsAFailure) {
     EXPECT_THAT(out.str(), HasSubstr("n/a    roundtrip  visible_normals[alpha=0.3]"));
     EXPECT_THAT(out.str(), HasSubstr("not applicable: the warp has no inverse"));
     EXPECT_THAT(out.str(), Not(HasSubstr("What failed")));
-    EXPECT_THAT(out.str(), HasSubstr("2 checks: 1 passed, 0 failed, 0 errors, 1 not applicable"));
+    // The checks that ran, as the progress display counts them, and the n/a rows apart.
+    EXPECT_THAT(out.str(), HasSubstr("1 checks: 1 passed, 0 failed, 0 errors; 1 n/a, not run in "));
 }
 
 TEST(NotApplicable, JsonSaysSoAndAgreesWithTheSchema) {

@@ -1,6 +1,7 @@
 // The terminal table: fits its width, says how far each key figure is from its
 // limit, summarises by family, lists the weakest passes, and says so when
 // --failures-only has nothing to show.
+#include <algorithm>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -145,6 +146,30 @@ TEST(TerminalTable, WeakestPassesAreListed) {
     EXPECT_THAT(list, Not(HasSubstr("uniform_float_interval"))) << "an exact rule has no fraction to list";
 }
 
+// bsdf_reciprocity judges its largest relative error against its tolerance:
+// a rough dielectric at 0.996 of it is among the closest to their limits.
+TEST(TerminalTable, ReciprocityRowsHaveAMargin) {
+    RunResult run = long_run();
+    run.results.push_back(result("rough_dielectric[alpha=0.3,eta=1.5,theta_o=85]", "bsdf_reciprocity", Verdict::Pass,
+                                 "max rel. error 0.000243 over 67990 pairs, 35 at float resolution",
+                                 {{"max_relative_error", 0.996 * 0x1p-12}, {"tolerance", 0x1p-12}}));
+    const RowMargin m = row_margin(run.results.back());
+    ASSERT_TRUE(m.of_tolerance);
+    EXPECT_NEAR(*m.of_tolerance, 0.996, 1e-12);
+    EXPECT_EQ(m.tolerance_figure, "max_relative_error");
+    std::ostringstream out;
+    print_table(run, out);
+    const std::string text = out.str();
+    const std::size_t at = text.find("Closest to their limits");
+    ASSERT_NE(at, std::string::npos) << text;
+    const std::vector<std::string> listed = lines(text.substr(at));
+    const auto row = std::find_if(listed.begin(), listed.end(),
+                                  [](const std::string& l) { return l.find("bsdf_reciprocity") != std::string::npos; });
+    ASSERT_NE(row, listed.end()) << text;
+    EXPECT_TRUE(row->starts_with("  1 of tol ")) << *row;
+    EXPECT_THAT(*row, HasSubstr("(max_relative_error)"));
+}
+
 TEST(TerminalTable, FamilySummaryCountsVerdicts) {
     RunResult run = long_run();
     run.results.push_back(statistical("trowbridge_reitz_visible[ax=1,ay=1,theta_o=0]", 1e-9, 7.28e-05));
@@ -210,9 +235,66 @@ TEST(TerminalTable, CaseNamesAreCutSensibly) {
     EXPECT_EQ(fit_case_name("trowbridge_reitz_visible[ax=0.3,ay=0.05,theta_o=60]", 40),
               "trowbr…isible[ax=0.3,ay=0.05,theta_o=60]");
     EXPECT_EQ(display_width(fit_case_name("trowbridge_reitz_visible[ax=0.3,ay=0.05,theta_o=60]", 40)), 40u);
-    // Parameters too long to keep whole: the end gives way.
+    // The family gives way to a lone "…" before a parameter is cut.
+    EXPECT_EQ(fit_case_name("rough_conductor[alpha=0.05,theta_o=85]", 24), "…[alpha=0.05,theta_o=85]");
+    EXPECT_EQ(fit_case_name("rough_conductor[alpha=0.05,theta_o=85]", 25), "r…[alpha=0.05,theta_o=85]");
+    EXPECT_EQ(fit_case_name("rough_conductor[alpha=0.05,theta_o=85]", 26), "r…r[alpha=0.05,theta_o=85]");
+    // Parameters too long to keep whole even so: the end gives way.
     EXPECT_EQ(fit_case_name("f[a_very_long_parameter_list=1]", 12), "f[a_very_lo…");
     EXPECT_EQ(fit_case_name("no_parameters_at_all", 8), "no_para…");
+}
+
+/// Rows of the widest built-in names, checks and margins: the longest
+/// parameters (plastic's), five rough_conductor cases told apart only by
+/// theirs, exhaustive_roundtrip, a hostile name and an n/a row.
+RunResult widest_run() {
+    RunResult run;
+    const std::string key = "max rel. weight diff 6.88e-07, max ||wi| - 1| 5.96e-08 over 1000000 samples, 0 excused";
+    for (const char* name :
+         {"plastic[kd=0.8,eta=1.5,alpha=0.2,theta_o=60]", "rough_conductor[alpha=0.05,theta_o=0]",
+          "rough_conductor[alpha=0.05,theta_o=30]", "rough_conductor[alpha=0.05,theta_o=60]",
+          "rough_conductor[alpha=0.05,theta_o=85]", "rough_conductor[alpha=0.3,theta_o=85]",
+          "rough_conductor_aniso[ax=0.3,ay=0.05,theta_o=60,phi_o=45]"})
+        run.results.push_back(result(name, "bsdf_weight", Verdict::Pass, key,
+                                     {{"max_relative_difference", 1e-9}, {"tolerance", 1.0}}));
+    run.results.push_back(statistical("uniform_float_interval[a=0.999,b=1.001]", 0.3, 7.28e-05));
+    run.results.push_back(result("unit_float_mul32[a=1]", "exhaustive_roundtrip", Verdict::Pass, key,
+                                 {{"max_error", 0.0078}, {"tolerance", 1.0}}));
+    run.results.push_back(result("hostile_name\x1b[2J\x1b]0;owned\x07\r\n", "roundtrip", Verdict::Fail, key));
+    run.results.push_back(result("smooth_dielectric[eta=1.5,theta_o=60]", "bsdf_reciprocity",
+                                 Verdict::NotApplicable, "not applicable: only delta lobes: f is 0 everywhere"));
+    return run;
+}
+
+// In a pipe (120 columns) and on a terminal of 100, every row fits and keeps
+// its case's parameters whole: the five rough_conductor rows read apart.
+TEST(TerminalTable, ParametersStayWholeInAPipeAndAtOneHundredColumns) {
+    const RunResult run = widest_run();
+    for (const std::size_t width : {std::size_t{120}, std::size_t{100}}) {
+        TableStyle style;
+        style.width = width;
+        std::ostringstream out;
+        print_table(run, out, style);
+        const std::vector<std::string> all = lines(out.str());
+        for (const CheckResult& r : run.results) {
+            const std::string name = printable(r.case_name);
+            const std::string params = name.substr(std::min(name.find('['), name.size()));
+            const auto row = std::find_if(all.begin(), all.end(), [&](const std::string& line) {
+                return line.find("  " + r.check_name + "  ") != std::string::npos &&
+                       line.find(params + " ") != std::string::npos;
+            });
+            EXPECT_NE(row, all.end()) << width << " columns: no row of " << name << " with " << params << "\n"
+                                      << out.str();
+        }
+        // Every line but the failures' messages and rerun commands, which are printed whole.
+        bool failures = false;
+        for (const std::string& line : all) {
+            failures = failures || line.starts_with("What failed");
+            if (failures && (line.starts_with("  ") || line.starts_with("What failed"))) continue;
+            failures = false;
+            EXPECT_LE(display_width(line), width) << line;
+        }
+    }
 }
 
 TEST(Text, ColumnsAndClock) {

@@ -21,6 +21,7 @@
 #include "validate/api/case_grid.h"
 #include "validate/api/exhaustive_sweep.h"
 #include "validate/api/float_template_warp.h"
+#include "validate/api/positional_cases.h"
 #include "validate/api/registry.h"
 #include "validate/api/warp_case.h"
 
@@ -105,6 +106,43 @@ std::unique_ptr<WarpCase> make_u64_float_case(WarpCaseInfo info, U64Subrange sub
     auto call = [warp](uint64_t u) -> float { return warp.sample(u); };
     return detail::u64_sweep(make_warp_case(std::move(info), std::move(warp)),
                              u64_block_fn(call, subrange.shift, subrange.low_bits), subrange, monotone);
+}
+
+// Deprecated: 0.1's float-sampler cases from callables (validate/api/positional_cases.h).
+
+template <typename Sample, typename Pdf>
+[[deprecated("make_u32_float_case(info, monotone, sample, pdf) is deprecated (validate/api/CHANGELOG.md): use "
+             "make_u32_float_case(info, monotone, warp_of(sample).with_pdf(pdf)), or a warp object")]]
+std::unique_ptr<WarpCase> make_u32_float_case(WarpCaseInfo info, Monotone monotone, Sample sample, Pdf pdf) {
+    return make_u32_float_case(std::move(info), monotone, warp_of(std::move(sample)).with_pdf(std::move(pdf)));
+}
+
+template <typename Sample, typename Pdf, typename Invert>
+[[deprecated("make_u32_float_case(info, monotone, sample, pdf, invert) is deprecated (validate/api/CHANGELOG.md): "
+             "use make_u32_float_case(info, monotone, warp_of(sample).with_pdf(pdf).with_invert(invert))")]]
+std::unique_ptr<WarpCase> make_u32_float_case(WarpCaseInfo info, Monotone monotone, Sample sample, Pdf pdf,
+                                              Invert invert) {
+    return make_u32_float_case(std::move(info), monotone,
+                               warp_of(std::move(sample)).with_pdf(std::move(pdf)).with_invert(std::move(invert)));
+}
+
+template <typename Sample, typename Pdf>
+[[deprecated("make_u64_float_case(info, subrange, monotone, sample, pdf) is deprecated (validate/api/CHANGELOG.md): "
+             "use make_u64_float_case(info, subrange, monotone, warp_of(sample).with_pdf(pdf))")]]
+std::unique_ptr<WarpCase> make_u64_float_case(WarpCaseInfo info, U64Subrange subrange, Monotone monotone,
+                                              Sample sample, Pdf pdf) {
+    return make_u64_float_case(std::move(info), subrange, monotone,
+                               warp_of(std::move(sample)).with_pdf(std::move(pdf)));
+}
+
+template <typename Sample, typename Pdf, typename Invert>
+[[deprecated("make_u64_float_case(info, subrange, monotone, sample, pdf, invert) is deprecated "
+             "(validate/api/CHANGELOG.md): use make_u64_float_case(info, subrange, monotone, "
+             "warp_of(sample).with_pdf(pdf).with_invert(invert))")]]
+std::unique_ptr<WarpCase> make_u64_float_case(WarpCaseInfo info, U64Subrange subrange, Monotone monotone,
+                                              Sample sample, Pdf pdf, Invert invert) {
+    return make_u64_float_case(std::move(info), subrange, monotone,
+                               warp_of(std::move(sample)).with_pdf(std::move(pdf)).with_invert(std::move(invert)));
 }
 
 }  // namespace warpcheck

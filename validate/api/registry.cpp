@@ -80,8 +80,10 @@ bool glob_match(std::string_view text, std::string_view pattern) {
 }  // namespace
 
 bool name_matches(std::string_view name, std::string_view pattern) {
-    if (pattern.find_first_of("*?") != std::string_view::npos) return glob_match(name, pattern);
-    return name.find(pattern) != std::string_view::npos;
+    // Contained as it is written, or matched as a glob: a case whose own name
+    // holds '*' or '?' is found by a part of its name too.
+    if (name.find(pattern) != std::string_view::npos) return true;
+    return pattern.find_first_of("*?") != std::string_view::npos && glob_match(name, pattern);
 }
 
 }  // namespace warpcheck

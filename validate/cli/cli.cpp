@@ -14,10 +14,12 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <new>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -61,6 +63,7 @@ struct CliOptions {
     std::optional<std::string> shard_spec;
     Shard shard;
     std::vector<std::string> merge_paths;
+    bool missing_shards = false;
 };
 
 struct Output {
@@ -131,8 +134,13 @@ bool write_outputs(const std::vector<Output>& outputs, const RunResult& run, con
                 std::cout << out.render(run) << std::flush;
                 continue;
             }
-            write_file_atomically(out.target, out.render(run));
+            const std::string text = out.render(run);
+            write_file_atomically(out.target, text);
             notes << out.what << " written to " << *out.path << "\n";
+            // A shard's results too large for --merge to read: said now, not at the merge.
+            if (out.render == render_json && run.info.shard_count > 0)
+                if (const std::string warning = shard_size_warning(text.size(), run.info.shard_count); !warning.empty())
+                    std::cerr << program << ": warning: --json " << *out.path << ": " << warning << "\n";
         } catch (const std::exception& e) {
             std::cerr << program << ": " << out.option << ": " << e.what() << "\n";
             ok = false;
@@ -221,6 +229,9 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
                    "Combine the --json files of the shards of one run into its table and reports, then exit")
         ->type_name("FILE")
         ->expected(1, -1);
+    app.add_flag("--missing-shards", o.missing_shards,
+                 "With --merge: check the files given and list the shards of their run that are not among them "
+                 "(I/N, one per line; none when all are there), instead of merging: the ones to run again");
     app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
     app.add_flag("--include-flawed", o.run.include_flawed,
                  "Also run the cases that demonstrate known flaws (e.g. u * 2^-32 reaching 1.0); they fail");
@@ -229,11 +240,10 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
                  "that returns 1 for u within a float of 1, fails instead of passing with its size and count");
 }
 
-// The limits, stated once here and in validate/cli/cli_input.h (samples and
-// alpha, shared with the WARPCHECK_* variables); validate/cli/README.md says them too.
+// The limits, stated once here and in validate/cli/cli_input.h (samples,
+// alpha, time budget and memory limit, shared with the WARPCHECK_* variables);
+// validate/cli/README.md says them too.
 constexpr unsigned kMaxThreads = 1024;
-constexpr double kMinBudget = 0.1, kMaxBudget = 86400.0;
-constexpr uint64_t kMaxMemoryMib = uint64_t{1} << 30;
 
 void add_run_options(CLI::App& app, CliOptions& o) {
     app.add_option("--seed", o.run.seed, "Global seed, 0 to 2^64-1; every (case, check) stream derives from it")
@@ -285,8 +295,10 @@ void add_run_options(CLI::App& app, CliOptions& o) {
         ->type_name("R")
         ->check(real_in(1.0, 1e6));
     app.add_flag("--settings-from-environment", o.settings_from_environment,
-                 "WARPCHECK_SEED, WARPCHECK_SAMPLES and WARPCHECK_ALPHA, where set, replace --seed, --samples and "
-                 "--alpha (an invalid value is an error naming the variable); what warpcheck_discover_tests runs");
+                 "WARPCHECK_SEED, WARPCHECK_SAMPLES, WARPCHECK_ALPHA, WARPCHECK_TIME_BUDGET and "
+                 "WARPCHECK_MEMORY_LIMIT, where set, replace --seed, --samples, --alpha, --time-budget and "
+                 "--memory-limit (an invalid value is an error naming the variable); what warpcheck_discover_tests "
+                 "runs");
 }
 
 void add_output_options(CLI::App& app, CliOptions& o) {
@@ -343,6 +355,8 @@ std::string no_case_matches(const std::string& pattern, const Registry& registry
 
 /// What is wrong with the selection, or empty; reads --shard into o.shard.
 std::string selection_problem(CliOptions& o, const Registry& registry) {
+    if (o.missing_shards && o.merge_paths.empty())
+        return "--missing-shards lists what --merge lacks: give --merge FILE...";
     if (!o.merge_paths.empty())
         return o.all || !o.filters.empty() || o.list || o.list_jobs || o.shard_spec
                    ? "--merge takes the shards' results files, not a selection (--all, --filter, --list, --shard)"
@@ -450,7 +464,11 @@ int run_merge(const CliOptions& o, const std::vector<Output>& outputs, const std
     RunResult merged;
     try {
         for (const std::string& path : o.merge_paths) shards.push_back(read_shard_file(path));
-        merged = merge_shards(shards);
+        if (o.missing_shards) {
+            for (const std::string& shard : missing_shards(shards)) std::cout << shard << "\n";
+            return stdout_written(o.program_name, "the missing shards") ? kExitPass : kExitUsage;
+        }
+        merged = merge_shards(shards, o.run.program);
     } catch (const MergeError& e) {
         std::cerr << o.program_name << ": --merge: " << e.what() << "\n";
         return kExitUsage;
@@ -503,17 +521,60 @@ int run_selection(const CliOptions& o, const Registry& registry, const std::vect
     return present(run, o, outputs);
 }
 
+/// The widest line --help prints: its descriptions are wrapped to fit.
+constexpr std::size_t kHelpWidth = 100;
+
+/// `text` broken at spaces into lines of at most `width` characters (a word
+/// longer than that on a line of its own).
+std::string wrap_words(const std::string& text, std::size_t width) {
+    std::string out, line;
+    std::istringstream words(text);
+    for (std::string word; words >> word;) {
+        if (!line.empty() && line.size() + 1 + word.size() > width) {
+            out += line + "\n";
+            line.clear();
+        }
+        line += (line.empty() ? "" : " ") + word;
+    }
+    return out + line;
+}
+
+/// CLI11's help with each option's description wrapped, continued under its
+/// first line (CLI11 2.1 prints a description on one line, up to 357 columns).
+class WrappingFormatter : public CLI::Formatter {
+public:
+    std::string make_option_desc(const CLI::Option* option) const override {
+        return wrap_words(CLI::Formatter::make_option_desc(option), kHelpWidth - get_column_width());
+    }
+};
+
 /// The unknown options CLI11 left over, each with the closest known option.
 std::string unknown_options(const CLI::App& app) {
     std::vector<std::string> known;
     for (const CLI::Option* option : app.get_options())
         for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
     std::string text;
+    const auto add = [&](const std::string& problem) { text += (text.empty() ? "" : "; ") + problem; };
+    bool after_unknown_option = false;
     for (const std::string& arg : app.remaining()) {
-        if (arg.size() < 2 || arg[0] != '-') continue;  // a value given to an unknown option
-        const std::string typed = arg.substr(0, arg.find('='));
-        text += fmt::format("{}unknown option '{}'{}", text.empty() ? "" : "; ", typed,
-                            did_you_mean(closest_names(typed, known)));
+        if (arg.size() >= 2 && arg[0] == '-') {
+            const std::string typed = arg.substr(0, arg.find('='));
+            add(fmt::format("unknown option '{}'{}", typed, did_you_mean(closest_names(typed, known))));
+            after_unknown_option = true;
+            continue;
+        }
+        // A word without dashes: an option's name typed as a word (`validate
+        // all`), or, after an unknown option, that option's value.
+        const std::string word = arg.substr(0, arg.find('='));
+        if (std::find(known.begin(), known.end(), "--" + word) != known.end()) {
+            add(fmt::format("'{}' is not an argument: options start with '--' (did you mean '--{}'?)",
+                            terminal_text(arg), terminal_text(word)));
+        } else if (!after_unknown_option) {
+            add(fmt::format("unexpected argument '{}': {} takes options only (a case goes after --filter, e.g. "
+                            "--filter '{}')",
+                            terminal_text(arg), app.get_name(), terminal_text(arg)));
+        }
+        after_unknown_option = false;
     }
     return text;
 }
@@ -537,9 +598,14 @@ std::optional<int> parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
         return kExitUsage;
     }
     if (o.settings_from_environment) {
-        if (const std::string problem = apply_environment_settings(o.run); !problem.empty()) {
+        std::optional<uint64_t> memory_limit_mib;
+        if (const std::string problem = apply_environment_settings(o.run, &memory_limit_mib); !problem.empty()) {
             std::cerr << o.program_name << ": " << problem << "\n";
             return kExitUsage;
+        }
+        if (memory_limit_mib) {
+            o.memory_limit_mib = *memory_limit_mib;
+            o.memory_limit_set = true;
         }
     }
     return std::nullopt;
@@ -564,6 +630,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
                      ": statistical and exhaustive checks of sampling routines (warps).\n"
                      "Exit status: 0 all passed, 1 a check failed or errored, 2 bad usage.",
                  o.program_name};
+    app.formatter(std::make_shared<WrappingFormatter>());
     add_selection_options(app, o);
     add_run_options(app, o);
     add_output_options(app, o);

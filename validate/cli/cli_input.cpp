@@ -178,11 +178,11 @@ std::size_t substring_edit_distance(std::string_view pattern, std::string_view t
 std::vector<std::string> closest_names(std::string_view typed, const std::vector<std::string>& candidates,
                                        bool substring, std::size_t limit) {
     const std::size_t allowed = std::max<std::size_t>(1, typed.size() / 3);
-    std::size_t best = allowed + 1;
+    std::size_t best = allowed;
     std::vector<std::pair<std::size_t, std::string>> near;  // (whole-name distance, name) at the best distance
     for (const std::string& c : candidates) {
         const std::size_t d = substring ? substring_edit_distance(typed, c) : edit_distance(typed, c);
-        if (d > best) continue;
+        if (d > best) continue;  // beyond the allowed distance, or farther than one already found
         if (d < best) near.clear();
         best = d;
         if (std::none_of(near.begin(), near.end(), [&](const auto& n) { return n.second == c; }))
@@ -195,7 +195,7 @@ std::vector<std::string> closest_names(std::string_view typed, const std::vector
     return names;
 }
 
-std::string apply_environment_settings(RunOptions& run) {
+std::string apply_environment_settings(RunOptions& run, std::optional<uint64_t>* memory_limit_mib) {
     const auto variable = [](const char* name) -> std::optional<std::string> {
         const char* value = std::getenv(name);
         if (!value || !*value) return std::nullopt;
@@ -209,7 +209,10 @@ std::string apply_environment_settings(RunOptions& run) {
     };
     if (const auto text = variable("WARPCHECK_SEED")) {
         const ParsedCount c = parse_count(*text);
-        if (!c.problem.empty()) return problem("WARPCHECK_SEED", *text, c.problem);
+        // As --seed says it: a seed is not "a count".
+        if (!c.problem.empty())
+            return fmt::format("WARPCHECK_SEED='{}' is not a seed: give a whole number from 0 to {}", *text,
+                               format_count(UINT64_MAX));
         run.seed = c.value;
     }
     if (const auto text = variable("WARPCHECK_SAMPLES")) {
@@ -221,6 +224,17 @@ std::string apply_environment_settings(RunOptions& run) {
         const ParsedReal r = parse_real_in(*text, kMinAlpha, kMaxAlpha);
         if (!r.problem.empty()) return problem("WARPCHECK_ALPHA", *text, r.problem);
         run.alpha = r.value;
+    }
+    if (const auto text = variable("WARPCHECK_TIME_BUDGET")) {
+        const ParsedReal r = parse_real_in(*text, kMinBudget, kMaxBudget);
+        if (!r.problem.empty()) return problem("WARPCHECK_TIME_BUDGET", *text, r.problem + " (seconds)");
+        run.check_time_budget = r.value;
+        run.time_budget_set = true;
+    }
+    if (const auto text = variable("WARPCHECK_MEMORY_LIMIT"); text && memory_limit_mib) {
+        const ParsedCount c = parse_count_in(*text, 0, kMaxMemoryMib);
+        if (!c.problem.empty()) return problem("WARPCHECK_MEMORY_LIMIT", *text, c.problem + " (MiB)");
+        *memory_limit_mib = c.value;
     }
     return "";
 }

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,6 +19,8 @@ struct RunOptions;
 /// variables alike.
 inline constexpr uint64_t kMinSamples = 1000, kMaxSamples = 10'000'000'000;
 inline constexpr double kMinAlpha = 1e-12, kMaxAlpha = 0.5;
+inline constexpr double kMinBudget = 0.1, kMaxBudget = 86400.0;     ///< --time-budget, seconds
+inline constexpr uint64_t kMaxMemoryMib = uint64_t{1} << 30;        ///< --memory-limit, MiB
 
 /// A whole number as people type it: digits with '_' or '\'' between them
 /// (1_000_000), a decimal or an exponent whose value is whole (1e6, 2.5e6),
@@ -66,10 +69,12 @@ std::vector<std::string> closest_names(std::string_view typed, const std::vector
 /// " (did you mean 'a'?)", " (did you mean 'a', 'b' or 'c'?)", or "" for none.
 std::string did_you_mean(const std::vector<std::string>& suggestions);
 
-/// Applies WARPCHECK_SEED, WARPCHECK_SAMPLES and WARPCHECK_ALPHA, each where it
-/// is set and not empty, to `run`, read as the options --seed, --samples and
-/// --alpha read them. Returns the problem with the first invalid one, e.g.
+/// Applies WARPCHECK_SEED, WARPCHECK_SAMPLES, WARPCHECK_ALPHA and
+/// WARPCHECK_TIME_BUDGET, each where it is set and not empty, to `run`, read
+/// as the options --seed, --samples, --alpha and --time-budget read them; and
+/// WARPCHECK_MEMORY_LIMIT (--memory-limit, MiB) to `memory_limit_mib`, where
+/// given. Returns the problem with the first invalid one, e.g.
 /// "WARPCHECK_SAMPLES='lots' is not a count (...)", or "" when all are valid.
-std::string apply_environment_settings(RunOptions& run);
+std::string apply_environment_settings(RunOptions& run, std::optional<uint64_t>* memory_limit_mib = nullptr);
 
 }  // namespace warpcheck

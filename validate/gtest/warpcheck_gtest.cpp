@@ -46,15 +46,20 @@ std::string gtest_rerun_command(const Settings& settings) {
                        test->name());
 }
 
-/// Writes the run's HTML report as `file` in the evidence folder; says where,
-/// or why it could not.
-std::string write_evidence(const RunResult& run, const Settings& settings, const std::string& file) {
+/// The gtest test suite running now ("warpcheck/MyWarps", "MyWarps"), or empty outside a test.
+std::string current_test_suite() {
+    const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    return test ? test->test_suite_name() : "";
+}
+
+/// Writes the run's HTML report as evidence_path(settings, current suite,
+/// stem); says where, or why it could not.
+std::string write_evidence(const RunResult& run, const Settings& settings, const std::string& stem) {
     try {
-        const std::filesystem::path dir = std::filesystem::absolute(settings.evidence_dir);
-        std::filesystem::create_directories(dir);
-        const std::string path = (dir / file).string();
-        write_html_report(run, path);
-        return "evidence: " + path;
+        const std::filesystem::path path = evidence_path(settings, current_test_suite(), stem);
+        std::filesystem::create_directories(path.parent_path());
+        write_html_report(run, path.string());
+        return "evidence: " + path.string();
     } catch (const std::exception& e) {
         return fmt::format("evidence: not written ({})", e.what());
     }
@@ -67,6 +72,7 @@ RunResult run_part(const std::vector<Job>& jobs, int family_tests, const Setting
     options.family_tests = family_tests;
     Isolation isolation;
     isolation.enabled = true;
+    if (settings.memory_limit_mib) isolation.memory_budget = *settings.memory_limit_mib << 20;
     RunResult run = run_jobs(jobs, options, {}, isolation);
     run.info.tool_version = WARPCHECK_VERSION;
     run.info.command_line = "GoogleTest: " + gtest_rerun_command(settings);
@@ -75,8 +81,8 @@ RunResult run_part(const std::vector<Job>& jobs, int family_tests, const Setting
 
 /// Success, or the lines `validate` prints for the failures, the p-value and
 /// level of each failure that the p-value decided (none where no test was
-/// done), and the evidence written to `evidence_file`.
-::testing::AssertionResult judge(RunResult run, const Settings& settings, const std::string& evidence_file) {
+/// done), and the evidence written under the name `evidence_stem`.
+::testing::AssertionResult judge(RunResult run, const Settings& settings, const std::string& evidence_stem) {
     if (run.all_passed()) return ::testing::AssertionSuccess();
     if (const std::string rerun = gtest_rerun_command(settings); !rerun.empty())
         for (CheckResult& r : run.results) r.rerun_command = rerun;
@@ -95,7 +101,7 @@ RunResult run_part(const std::vector<Job>& jobs, int family_tests, const Setting
         if (r.verdict != Verdict::Pass && r.p_value && r.level && !(*r.p_value >= *r.level))
             text << fmt::format("{} {}: p-value {:.4g} at level {:.4g}\n", r.check_name, r.case_name, *r.p_value,
                                 *r.level);
-    text << write_evidence(run, settings, evidence_file) << "\n";
+    text << write_evidence(run, settings, evidence_stem) << "\n";
     return ::testing::AssertionFailure() << text.str();
 }
 
@@ -134,7 +140,7 @@ public:
                                       job.not_applicable),
                           ::testing::TestPartResult::kSkip);
         const ::testing::AssertionResult verdict =
-            judge(run_part({job}, suite_->family_tests, suite_->settings), suite_->settings, name_ + ".html");
+            judge(run_part({job}, suite_->family_tests, suite_->settings), suite_->settings, name_);
         if (!verdict)
             fail(fmt::format("warpcheck: {} failed on {}:\n{}", job.check->name(), job.warp->name(), verdict.message()));
     }
@@ -206,7 +212,7 @@ std::shared_ptr<Suite> build_suite(void (*register_cases)(Registry&)) {
 
 Settings settings_from_environment() {
     Settings s;
-    if (const std::string problem = apply_environment_settings(s.run); !problem.empty())
+    if (const std::string problem = apply_environment_settings(s.run, &s.memory_limit_mib); !problem.empty())
         throw std::invalid_argument(problem);
     if (const char* dir = std::getenv("WARPCHECK_EVIDENCE_DIR"); dir && *dir) s.evidence_dir = dir;
     return s;
@@ -227,7 +233,7 @@ Settings settings_from_environment() {
         if (check->runs_by_default(settings.run) && check_is_for(*check, warp) && check->applicability(warp).applies())
             jobs.push_back({&warp, check.get()});
     const ::testing::AssertionResult verdict =
-        judge(run_part(jobs, statistical_tests(jobs), settings), settings, identifier(warp.name()) + ".html");
+        judge(run_part(jobs, statistical_tests(jobs), settings), settings, identifier(warp.name()));
     if (verdict) return verdict;
     return ::testing::AssertionFailure() << "warpcheck: " << expression << " (" << warp.name()
                                          << ") failed checks:\n" << verdict.message();
@@ -249,6 +255,24 @@ Settings settings_from_environment() {
 ::testing::AssertionResult BsdfCasePasses(const char* expression, const std::unique_ptr<WarpCase>& bsdf) {
     if (!bsdf) return ::testing::AssertionFailure() << "warpcheck: " << expression << " is a null BSDF case";
     return BsdfCasePasses(expression, *bsdf);
+}
+
+std::filesystem::path evidence_path(const Settings& settings, const std::string& test_suite, const std::string& stem) {
+    std::filesystem::path dir = std::filesystem::absolute(settings.evidence_dir) / "gtest";
+    if (const std::string folder = identifier(test_suite); !folder.empty()) dir /= folder;
+    // A file name has at most 255 bytes: a longer stem keeps its start and
+    // ends with 16 hex digits of a hash of the whole, before its last part
+    // (the check, after "__"), so that names stay distinct and say their check.
+    constexpr std::size_t kMaxName = 255, kExtension = 5;  // ".html"
+    std::string name = stem;
+    if (name.size() + kExtension > kMaxName) {
+        const std::size_t check_at = name.rfind("__");
+        const std::string check = check_at == std::string::npos ? "" : name.substr(check_at);
+        const std::string hash = fmt::format("_{:016x}", hash_string(stem));
+        const std::size_t keep = kMaxName - kExtension - hash.size() - std::min(check.size(), std::size_t{64});
+        name = name.substr(0, keep) + hash + check.substr(0, 64);
+    }
+    return dir / (name + ".html");
 }
 
 std::vector<std::string> job_test_names(const std::vector<Job>& jobs) {

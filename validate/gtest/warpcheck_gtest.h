@@ -32,7 +32,10 @@
 // Settings come from the environment, so that a test binary needs no flags:
 //   WARPCHECK_SEED (default 1), WARPCHECK_SAMPLES (default 1000000; 1e6, 10M
 //   and 1_000_000 are read), WARPCHECK_ALPHA (family-wise, default 0.01),
-//   WARPCHECK_EVIDENCE_DIR (default warpcheck-evidence, in the working directory).
+//   WARPCHECK_TIME_BUDGET (CPU seconds per check, as validate --time-budget),
+//   WARPCHECK_MEMORY_LIMIT (MiB the workers share, as --memory-limit),
+//   WARPCHECK_EVIDENCE_DIR (default warpcheck-evidence, in the working
+//   directory; the files go in its gtest/<test suite>/ folder).
 // An invalid value fails every test of the suite with its name and the reason;
 // so does a registration function that throws (and a run in which, for that
 // reason, no test at all is selected).

@@ -15,6 +15,7 @@
 #include "chi2/multiple_testing.h"
 #include "reports/json_input.h"
 #include "validate/run/run_digest.h"
+#include "validate/run/runner.h"
 
 namespace warpcheck {
 namespace {
@@ -130,7 +131,9 @@ bool same_run(const RunInfo& a, const RunInfo& b, std::string& what) {
 /// How many of the whole run's jobs shard `index` of `count` holds.
 uint64_t jobs_in_shard(uint64_t jobs, unsigned index, unsigned count) { return (jobs + count - index) / count; }
 
-void check_shards(const std::vector<ShardFile>& shards) {
+/// Checks each shard and that they are parts of one run, each once; returns
+/// the indices they hold.
+std::set<unsigned> check_present_shards(const std::vector<ShardFile>& shards) {
     if (shards.empty()) throw MergeError("no shard files given");
     const RunInfo& first = shards.front().run.info;
     std::set<unsigned> seen;
@@ -148,10 +151,14 @@ void check_shards(const std::vector<ShardFile>& shards) {
                                        info.shard_count, info.run_jobs, s.run.results.size(),
                                        jobs_in_shard(info.run_jobs, info.shard_index, info.shard_count)));
     }
+    return seen;
+}
+
+void check_shards(const std::vector<ShardFile>& shards) {
     std::string missing;
-    for (unsigned i = 1; i <= first.shard_count; ++i)
-        if (!seen.count(i)) missing += fmt::format("{}{}/{}", missing.empty() ? "" : ", ", i, first.shard_count);
-    if (!missing.empty()) throw MergeError("shards missing: " + missing);
+    for (const std::string& shard : missing_shards(shards)) missing += (missing.empty() ? "" : ", ") + shard;
+    if (!missing.empty())
+        throw MergeError("shards missing: " + missing + " (run them, or list them with --missing-shards)");
 }
 
 /// The merged run's rows in the unsharded order, each (case, check) once.
@@ -169,7 +176,33 @@ std::vector<CheckResult> interleave(const std::vector<ShardFile>& shards, uint64
     return rows;
 }
 
+/// The program a shard's rerun command names, where it reads as rerun_command
+/// writes one (a plain word, or one in single quotes, before " --filter "):
+/// the shard's program reruns its rows. Otherwise `fallback`, the merging
+/// program. Only the program is taken: the rest is made again.
+std::string rerun_program(const std::string& command, const std::string& fallback) {
+    const std::size_t end = command.find(" --filter ");
+    if (end == std::string::npos || end == 0) return fallback;
+    const std::string word = command.substr(0, end);
+    if (word.size() >= 2 && word.front() == '\'' && word.back() == '\'') {
+        const std::string inner = word.substr(1, word.size() - 2);
+        return inner.empty() || inner.find('\'') != std::string::npos ? fallback : inner;
+    }
+    const bool plain = word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+./:=@%,") ==
+                       std::string::npos;
+    return plain ? word : fallback;
+}
+
 }  // namespace
+
+std::vector<std::string> missing_shards(const std::vector<ShardFile>& shards) {
+    const std::set<unsigned> seen = check_present_shards(shards);
+    const unsigned count = shards.front().run.info.shard_count;
+    std::vector<std::string> missing;
+    for (unsigned i = 1; i <= count; ++i)
+        if (!seen.count(i)) missing.push_back(fmt::format("{}/{}", i, count));
+    return missing;
+}
 
 ShardFile read_shard_file(const std::string& path) {
     const std::string text = read_bounded(path);
@@ -181,7 +214,7 @@ ShardFile read_shard_file(const std::string& path) {
     }
 }
 
-RunResult merge_shards(const std::vector<ShardFile>& shards) {
+RunResult merge_shards(const std::vector<ShardFile>& shards, const std::string& program) {
     check_shards(shards);
     RunResult merged;
     merged.info = shards.front().run.info;
@@ -200,7 +233,21 @@ RunResult merge_shards(const std::vector<ShardFile>& shards) {
                                                 "list ({}): a setting or a name was changed after the run",
                                                 merged.info.digest, run_digest(merged.info, jobs)));
     merged.info.shard_index = merged.info.shard_count = 0;
+    for (CheckResult& r : merged.results) {
+        r.rerun_command = rerun_command(rerun_program(r.rerun_command, program), r.case_name, r.check_name,
+                                        merged.info.seed, merged.info.samples, merged.info.max_float_bias);
+        r.digest = row_digest(r, merged.info.digest);
+    }
     return merged;
+}
+
+std::string shard_size_warning(uint64_t json_bytes, unsigned shard_count) {
+    if (json_bytes <= kMaxShardFileBytes) return {};
+    const uint64_t mib = uint64_t{1} << 20;
+    const uint64_t needed = (json_bytes * shard_count + kMaxShardFileBytes - 1) / kMaxShardFileBytes;
+    return fmt::format("this shard's JSON results are {} MiB, over the {} MiB that --merge reads: run the selection "
+                       "in at least {} shards (--shard I/{})",
+                       (json_bytes + mib - 1) / mib, kMaxShardFileBytes >> 20, needed, needed);
 }
 
 }  // namespace warpcheck

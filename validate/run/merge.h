@@ -50,6 +50,21 @@ ShardFile read_shard_file(const std::string& path);
 /// - the shards are all there, each once, with the number of rows the run's
 ///   job count gives it, no (case, check) in two of them, and the whole job
 ///   list and settings give their digest.
-RunResult merge_shards(const std::vector<ShardFile>& shards);
+/// Each row's rerun command is made again from its case, check and the run's
+/// settings (runner.h, rerun_command), with the program the shard's command
+/// names where it reads as one (a plain or single-quoted word), else
+/// `program`: a command in a shard file is never printed as it is given.
+RunResult merge_shards(const std::vector<ShardFile>& shards, const std::string& program = "validate");
+
+/// The shards of the run that `shards` are parts of and that are not among
+/// them, as "I/N", in order (none when all are there): after a partial run on
+/// a cluster, the ones to run again. The shards given are checked as
+/// merge_shards checks them (MergeError).
+std::vector<std::string> missing_shards(const std::vector<ShardFile>& shards);
+
+/// A warning for a shard whose JSON results take `json_bytes`: empty when
+/// they fit the kMaxShardFileBytes that --merge reads, else what to do (more
+/// shards). `shard_count` is the run's.
+std::string shard_size_warning(uint64_t json_bytes, unsigned shard_count);
 
 }  // namespace warpcheck

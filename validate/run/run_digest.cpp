@@ -14,6 +14,15 @@ namespace {
 
 std::string hex(uint64_t h) { return fmt::format("{:016x}", h); }
 
+/// `text` as the JSON report holds it, and as the merge reads it back: each
+/// byte that is not valid UTF-8 replaced by U+FFFD (render_json's error
+/// handler). The digest hashes these bytes, so that a shard with such a case
+/// name merges; a valid name is its own bytes, and its digest unchanged.
+std::string as_json_holds(const std::string& text) {
+    const std::string quoted = ResultJson(text).dump(-1, ' ', false, ResultJson::error_handler_t::replace);
+    return ResultJson::parse(quoted).get<std::string>();
+}
+
 }  // namespace
 
 std::string run_digest(const RunInfo& info, const std::vector<JobName>& whole_run) {
@@ -21,7 +30,8 @@ std::string run_digest(const RunInfo& info, const std::vector<JobName>& whole_ru
                              info.samples, std::bit_cast<uint64_t>(info.family_alpha), info.strict ? 1 : 0,
                              std::bit_cast<uint64_t>(info.max_float_bias), info.statistical_tests, whole_run.size());
     for (const JobName& job : whole_run)
-        h = hash_combine(hash_combine(h, hash_string(job.case_name)), hash_string(job.check_name));
+        h = hash_combine(hash_combine(h, hash_string(as_json_holds(job.case_name))),
+                         hash_string(as_json_holds(job.check_name)));
     return hex(h);
 }
 

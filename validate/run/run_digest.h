@@ -1,7 +1,8 @@
 // Digests that let `validate --merge` check its shards (validate/run/merge.h). A
 // run's digest covers what decides its figures and verdicts: the tool version,
 // seed, sample count, family alpha, --strict, --max-float-bias, the number of
-// statistical tests and the whole run's (case, check) list in order, all shards
+// statistical tests and the whole run's (case, check) list in order (each name
+// as the JSON report holds it: invalid UTF-8 as U+FFFD), all shards
 // together; so every shard of one run has the same digest and shards of
 // different selections or settings differ. A row's digest covers the row, all
 // but its timings (seconds, phases: they differ from run to run), with its

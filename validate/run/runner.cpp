@@ -280,6 +280,14 @@ std::vector<CheckResult> run_jobs_in_process(const std::vector<Job>& jobs, const
 
 }  // namespace
 
+std::string rerun_command(const std::string& program, const std::string& case_name, const std::string& check_name,
+                          uint64_t seed, uint64_t samples, double max_float_bias) {
+    std::string command = fmt::format("{} --filter {} --check {} --seed {} --samples {}", shell_word(program),
+                                      shell_quote(case_name), shell_word(check_name), seed, samples);
+    if (max_float_bias > 0.0) command += fmt::format(" --max-float-bias {}", max_float_bias);
+    return command;
+}
+
 RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, const ProgressCallback& progress,
                    const Isolation& isolation) {
     const auto start = Clock::now();
@@ -323,9 +331,8 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
         r.check_name = jobs[i].check->name();
         r.stream_seed = stream.seed;
         r.stream_sequence = stream.sequence;
-        r.rerun_command = fmt::format("{} --filter {} --check {} --seed {} --samples {}", shell_word(options.program),
-                                      shell_quote(r.case_name), r.check_name, options.seed, options.samples);
-        if (options.max_float_bias > 0.0) r.rerun_command += fmt::format(" --max-float-bias {}", options.max_float_bias);
+        r.rerun_command = rerun_command(options.program, r.case_name, r.check_name, options.seed, options.samples,
+                                        options.max_float_bias);
     }
     apply_multiple_test_correction(run, options.alpha, options.family_tests.value_or(statistical_tests(jobs)));
     run.info.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -44,6 +44,14 @@ struct Shard {
     unsigned count = 1;
 };
 
+/// The one command that reruns a row: `program` (quoted where the shell
+/// would not take it as it is) --filter '<case>' --check <check> --seed S
+/// --samples N, and --max-float-bias R where R > 0. Every rerun line comes
+/// from here (a merge rebuilds its rows' from their names and settings
+/// instead of printing what a shard file says).
+std::string rerun_command(const std::string& program, const std::string& case_name, const std::string& check_name,
+                          uint64_t seed, uint64_t samples, double max_float_bias);
+
 /// Reads "I/N" (1 <= I <= N <= 1000000), or returns nullopt.
 std::optional<Shard> parse_shard(std::string_view spec);
 

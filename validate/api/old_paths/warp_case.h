@@ -1,0 +1,13 @@
+// The include path of warpcheck 0.1, kept for one release: this header is now
+// <validate/api/warp_case.h> (validate/api/CHANGELOG.md). Installed as
+// <validate/warp_case.h>; it goes in 0.3. The message is a #pragma message for GCC
+// (a note, shown from an installed -isystem header too, and never an error
+// under -Werror) and a #warning for Clang (the one diagnostic Clang shows
+// from a system header).
+#pragma once
+#if defined(__clang__)
+#warning "<validate/warp_case.h> is deprecated: include <validate/api/warp_case.h> instead (warpcheck's headers moved to validate/api/; see validate/api/CHANGELOG.md)"
+#else
+#pragma message("<validate/warp_case.h> is deprecated: include <validate/api/warp_case.h> instead (warpcheck's headers moved to validate/api/; see validate/api/CHANGELOG.md)")
+#endif
+#include "validate/api/warp_case.h"
