@@ -124,10 +124,10 @@ TEST(AdaptiveCells, EqualCountsAndTiesStayTogether) {
     std::vector<AdaptiveCells::Point> same(50, {0.5, 0.5});
     const AdaptiveCells tied(same, same, 2, 4, 4);
     const std::vector<uint64_t> counts = tied.counts(same);
-    uint64_t total = 0;
-    for (uint64_t c : counts) total += c;
+    uint64_t total = 0, nonzero = 0;
+    for (uint64_t c : counts) total += c, nonzero += c > 0;
     EXPECT_EQ(total, 50u);
-    EXPECT_EQ(counts[0], 50u);
+    EXPECT_EQ(nonzero, 1u);
 }
 
 }  // namespace
