@@ -22,8 +22,7 @@ run=(--filter "$case_name" --check consistency --check chi2 --check unbinned --s
 fail() { echo "FAIL: $*" >&2; exit 1; }
 # The figures of each row of a JSON results file, as "case check name=value" lines.
 figures() {
-  "$validate" --merge "$1" --json - --progress none 2>/dev/null |
-    tr -d '\n' | grep -o '"case":"[^"]*","check":"[^"]*"\|"figures":{[^}]*}' | paste -d ' ' - -
+  tr -d '\n' <"$1" | grep -o '"case":"[^"]*","check":"[^"]*"\|"figures":{[^}]*}' | paste -d ' ' - -
 }
 
 echo "== 1. in-process, and the device's normal build replayed"
@@ -48,9 +47,13 @@ for build in fma double; do
     --json "ulps_$build.json" >"ulps_$build.txt" || status=$?
   [ $status -le 1 ] || fail "--compare did not run: $(cat "ulps_$build.txt")"
   head -2 "ulps_$build.txt"
+  # The same in ulps of 1 below 1 (the directions' scale): what a renderer would read.
+  "$validate" --compare x_normal.npy "x_$build.npy" --ulp-floor 1 --filter "$case_name" --color never --wide |
+    sed -n 2p || true
   grep -q '"title":"Distance histogram"' "ulps_$build.json" || fail "no ulp histogram in the $build comparison"
-  grep -o '"title":"Distance histogram","columns":\["ulps","outputs"\],"rows":\[[^]]*\]*\]' "ulps_$build.json" | head -c 600
-  echo
+  echo "ulp histogram (ulps: outputs):"
+  grep -oE '"title":"Distance histogram","columns":\["ulps","outputs"\],"rows":\[(\["[^"]*","[0-9]+"\],?)*\]' \
+    "ulps_$build.json" | grep -oE '\["[^"]*","[0-9]+"\]' | tr -d '[]"' | tr ',' ' ' | paste -sd ';' -
   "$validate" "${run[@]}" --replay u.npy "x_$build.npy" >"replay_$build.txt" ||
     fail "the $build build's outputs did not pass the checks: $(cat "replay_$build.txt")"
 done

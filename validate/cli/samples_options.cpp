@@ -47,6 +47,11 @@ void add_samples_options(CLI::App& app, SamplesOptions& o) {
     app.add_option("--max-ulps", o.max_ulps,
                    "With --compare: the largest distance in ulps that counts as agreement (default 0: bit for bit)")
         ->type_name("K");
+    app.add_option("--ulp-floor", o.ulp_floor,
+                   "With --compare: count values smaller than S in ulps of S (e.g. 1 for directions: near 0 a "
+                   "coordinate's rounding is absolute); default 0, the float grid itself")
+        ->type_name("S")
+        ->check(CLI::Range(0.0f, 1e30f));
     app.add_option("--two-sample", o.two_sample,
                    "Test whether two sets of independent samples come from one distribution (chi-square "
                    "homogeneity and Anderson-Darling); a selected case gives the domain")
@@ -153,6 +158,7 @@ CheckResult compare(const SamplesOptions& o, const Files& files, const WarpCase*
     const NumericArray a = files.read(o.compare[0]), b = files.read(o.compare[1]);
     UlpComparison how;
     how.max_ulps = o.max_ulps;
+    how.floor = o.ulp_floor;
     how.dimension = warp ? std::max(1, warp->signature().output_dimension) : static_cast<int>(a.cols);
     how.label_a = label_of(o.compare[0]);
     how.label_b = label_of(o.compare[1]);
@@ -188,8 +194,11 @@ std::string combination_problem(const SamplesOptions& o) {
                       (!o.compare.empty() || !o.two_sample.empty());
     if (modes > 1)
         return "--record-inputs, --replay, --judge-samples and --compare/--two-sample are separate runs: give one";
+    if (modes == 0) return "--record-outputs, --inputs, --max-ulps, --ulp-floor and --raw-layout go with a run of samples "
+                           "from elsewhere: --record-inputs, --replay, --judge-samples, --compare or --two-sample";
     if (!o.record_outputs.empty() && o.record_inputs.empty()) return "--record-outputs goes with --record-inputs";
-    if ((!o.compare_inputs.empty() || o.max_ulps > 0) && o.compare.empty()) return "--inputs and --max-ulps go with --compare";
+    if ((!o.compare_inputs.empty() || o.max_ulps > 0 || o.ulp_floor > 0) && o.compare.empty())
+        return "--inputs, --max-ulps and --ulp-floor go with --compare";
     return {};
 }
 

@@ -28,13 +28,15 @@ struct SamplesOptions {
     std::vector<std::string> two_sample;        ///< --two-sample A B (independent draws)
     std::string compare_inputs;                 ///< --inputs FILE (the inputs of --compare's rows)
     uint64_t max_ulps = 0;                      ///< --max-ulps K
+    float ulp_floor = 0.0f;                     ///< --ulp-floor S
     std::string raw_layout;                     ///< --raw-layout 3[,planar]
     bool isolation = true;                      ///< from --no-isolation (set by the caller)
 
-    /// Whether any of these modes was asked for.
+    /// Whether any of these options was given (a mode, or an option that goes with one).
     bool any() const {
-        return !record_inputs.empty() || !replay.empty() || !judge_samples.empty() || !compare.empty() ||
-               !two_sample.empty();
+        return !record_inputs.empty() || !record_outputs.empty() || !replay.empty() || !judge_samples.empty() ||
+               !compare.empty() || !two_sample.empty() || !compare_inputs.empty() || max_ulps > 0 ||
+               ulp_floor > 0.0f || !raw_layout.empty();
     }
 };
 

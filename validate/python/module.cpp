@@ -218,7 +218,7 @@ int dimension_of(const NumericArray& a, const WarpCase* warp) {
     return warp ? std::max(1, warp->signature().output_dimension) : static_cast<int>(a.cols);
 }
 
-RunResult compare(const py::handle& a, const py::handle& b, uint64_t max_ulps, const py::handle& inputs,
+RunResult compare(const py::handle& a, const py::handle& b, uint64_t max_ulps, float floor, const py::handle& inputs,
                   const std::shared_ptr<CaseSpec>& spec, const std::string& label_a, const std::string& label_b,
                   const std::string& command) {
     const std::unique_ptr<Registry> registry = spec ? registry_of({spec}) : nullptr;
@@ -226,6 +226,8 @@ RunResult compare(const py::handle& a, const py::handle& b, uint64_t max_ulps, c
     const NumericArray na = numeric_array(a, label_a), nb = numeric_array(b, label_b);
     UlpComparison how;
     how.max_ulps = max_ulps;
+    if (!(floor >= 0.0f)) throw py::value_error("floor: give 0 (the float grid) or a positive scale");
+    how.floor = floor;
     how.dimension = dimension_of(na, warp);
     how.label_a = label_a;
     how.label_b = label_b;
@@ -327,7 +329,8 @@ PYBIND11_MODULE(_warpcheck, m) {
     m.def("replay", &replay, py::arg("case"), py::arg("inputs"), py::arg("outputs"), py::arg("values"),
           py::arg("checks"), py::arg("settings"), py::arg("command"));
     m.def("judge_samples", &judge_samples, py::arg("case"), py::arg("samples"), py::arg("settings"), py::arg("command"));
-    m.def("compare_same_inputs", &compare, py::arg("a"), py::arg("b"), py::arg("max_ulps"), py::arg("inputs"),
+    m.def("compare_same_inputs", &compare, py::arg("a"), py::arg("b"), py::arg("max_ulps"), py::arg("floor"),
+          py::arg("inputs"),
           py::arg("case"), py::arg("label_a"), py::arg("label_b"), py::arg("command"));
     m.def("two_sample", &two_sample, py::arg("a"), py::arg("b"), py::arg("case"), py::arg("domain"),
           py::arg("label_a"), py::arg("label_b"), py::arg("settings"), py::arg("command"));

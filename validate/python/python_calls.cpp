@@ -38,10 +38,7 @@ struct KeptThreadState {
 
 }  // namespace
 
-bool CallGil::keep_thread_state() {
-    thread_local const KeptThreadState state;
-    return state.kept;
-}
+void CallGil::keep_thread_state() { thread_local const KeptThreadState state; }
 
 PyRef::PyRef(py::object object) {
     if (!object.is_none()) holder_ = std::make_shared<Holder>(std::move(object));

@@ -49,12 +49,13 @@ private:
 /// per value): a check's thread keeps the state it gets at its first call until
 /// the thread ends.
 class CallGil {
-public:
-    CallGil() : kept_(keep_thread_state()) {}
-
 private:
-    static bool keep_thread_state();
-    bool kept_;
+    static void keep_thread_state();
+    /// Constructed first: the state is kept before the GIL is taken.
+    struct KeepThreadState {
+        KeepThreadState() { keep_thread_state(); }
+    };
+    KeepThreadState keep_;
     py::gil_scoped_acquire gil_;
 };
 

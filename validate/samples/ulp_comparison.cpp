@@ -26,6 +26,13 @@ uint64_t ulp_distance(float a, float b) {
     return static_cast<uint64_t>(d < 0 ? -d : d);
 }
 
+uint64_t ulp_distance(float a, float b, float floor) {
+    if (std::isnan(a) || std::isnan(b) || !(floor > 0.0f) || !(std::max(std::abs(a), std::abs(b)) < floor))
+        return ulp_distance(a, b);  // NaN gets the grid's answer: the largest
+    const double spacing = static_cast<double>(std::nextafter(floor, HUGE_VALF)) - static_cast<double>(floor);
+    return static_cast<uint64_t>(std::ceil(std::abs(static_cast<double>(a) - static_cast<double>(b)) / spacing));
+}
+
 namespace {
 
 /// Histogram bins: 0, 1, 2, then (2^(k-1), 2^k] for k = 2 .. 31, and one for NaN.
@@ -54,7 +61,7 @@ Distances tally(std::span<const WarpOutput> a, std::span<const WarpOutput> b, co
         uint64_t d = 0;
         for (int c = 0; c < how.dimension; ++c) {
             const auto k = static_cast<std::size_t>(c);
-            d = std::max(d, ulp_distance(a[i][k], b[i][k]));
+            d = std::max(d, ulp_distance(a[i][k], b[i][k], how.floor));
             t.max_abs = std::max(t.max_abs, std::abs(static_cast<double>(a[i][k]) - static_cast<double>(b[i][k])));
         }
         const bool is_nan = d == std::numeric_limits<uint64_t>::max();
@@ -103,6 +110,7 @@ CheckResult compare_same_inputs(std::span<const WarpOutput> a, std::span<const W
     const double numeric = n - static_cast<double>(t.nan);
     r.figures = {{"max_ulps", static_cast<double>(t.worst)},
                  {"ulps_tolerance", static_cast<double>(how.max_ulps)},
+                 {"ulp_floor", static_cast<double>(how.floor)},
                  {"mean_ulps", numeric > 0 ? t.sum / numeric : 0.0},
                  {"identical_fraction", n > 0 ? static_cast<double>(t.identical) / n : 0.0},
                  {"over_tolerance", static_cast<double>(t.over)},
@@ -130,6 +138,7 @@ CheckResult compare_same_inputs(std::span<const WarpOutput> a, std::span<const W
     r.summary = fmt::format("max {} ulps, {:.4g}% identical, {} over {} ulps", t.worst, 100.0 * (n > 0 ? t.identical / n : 0),
                             t.over, how.max_ulps);
     if (t.nan > 0) r.summary += fmt::format(", {} NaN", t.nan);
+    if (how.floor > 0.0f) r.summary += fmt::format(" (below {:g}: ulps of {:g})", how.floor, how.floor);
     r.verdict = t.over == 0 && a.size() > 0 ? Verdict::Pass : Verdict::Fail;
     if (a.empty()) r.message = "no samples to compare";
     else if (t.over > 0)

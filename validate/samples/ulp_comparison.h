@@ -19,12 +19,22 @@ namespace warpcheck {
 /// Floats strictly between a and b, plus one (0 when equal, +0 and -0 equal);
 /// UINT64_MAX when either is NaN.
 uint64_t ulp_distance(float a, float b);
+/// The same, except that values smaller than `floor` in magnitude are compared
+/// on the float grid at `floor`: |a - b| in ulps of floor, rounded up (0 < floor).
+uint64_t ulp_distance(float a, float b, float floor);
 
 struct UlpComparison {
     /// The largest distance, in ulps, that still counts as agreement: what the
     /// two builds claim (0: bit for bit). It is the claim under test, so the
     /// caller states it; the row repeats it.
     uint64_t max_ulps = 0;
+    /// 0: ulps on the float grid itself. Otherwise values below it in
+    /// magnitude count in ulps of it: a warp's coordinate near 0 is often a
+    /// difference of unit-size terms (x = r cos phi near phi = pi / 2), whose
+    /// rounding is absolute, and on the grid near 0 a difference of 1e-9
+    /// is 10^8 ulps. The outputs' scale (1 for directions) reads differences
+    /// as a renderer does; the row names the floor it used.
+    float floor = 0.0f;
     int dimension = 3;       ///< coordinates per output
     std::string label_a = "a", label_b = "b";
     /// The inputs both were given (empty: not known; the worst rows then show

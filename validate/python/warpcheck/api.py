@@ -236,10 +236,11 @@ def judge_samples(case, samples, *, alpha=0.01, strict=False):
     return _core.judge_samples(case, x, _settings(1, max(len(x), 1000), alpha, 0, strict, False, None), _program())
 
 
-def compare_same_inputs(a, b, *, max_ulps=0, inputs=None, case=None, labels=("a", "b")):
+def compare_same_inputs(a, b, *, max_ulps=0, floor=0.0, inputs=None, case=None, labels=("a", "b")):
     """Compares two implementations' outputs for the same inputs, row for row: the ulps
-    between them (histogram, worst inputs), failing where any exceeds max_ulps or is NaN."""
-    return _core.compare_same_inputs(np.asarray(a), np.asarray(b), int(max_ulps),
+    between them (histogram, worst inputs), failing where any exceeds max_ulps or is NaN.
+    floor > 0 counts values smaller than it in ulps of it (1 for directions)."""
+    return _core.compare_same_inputs(np.asarray(a), np.asarray(b), int(max_ulps), float(floor),
                                      None if inputs is None else np.asarray(inputs), case, labels[0], labels[1],
                                      _program())
 
