@@ -29,18 +29,18 @@ void add_samples_options(CLI::App& app, SamplesOptions& o) {
                    "With --record-inputs: also write the case's own outputs for those inputs to FILE (.npy)")
         ->type_name("FILE");
     app.add_option("--replay", o.replay,
-                   "With one case selected: run its checks with sample answered from another program's outputs "
-                   "(OUTPUTS, row for row) for the recorded INPUTS")
-        ->type_name("INPUTS OUTPUTS")
+                   "INPUTS OUTPUTS, with one case selected: run its checks with sample answered from another "
+                   "program's OUTPUTS, row for row those of the recorded INPUTS")
+        ->type_name("FILE")
         ->expected(2);
     app.add_option("--judge-samples", o.judge_samples,
                    "With one case selected: judge independent samples (FILE, one per row) against its pdf: "
                    "samples_consistency and samples_chi2")
         ->type_name("FILE");
     app.add_option("--compare", o.compare,
-                   "Compare two implementations' outputs for the same inputs, row for row, in ulps (--max-ulps); "
+                   "A B: compare two implementations' outputs for the same inputs, row for row, in ulps (--max-ulps); "
                    "a selected case gives the dimension")
-        ->type_name("A B")
+        ->type_name("FILE")
         ->expected(2);
     app.add_option("--inputs", o.compare_inputs, "With --compare: the inputs both were given, shown with the worst rows")
         ->type_name("FILE");
@@ -51,11 +51,11 @@ void add_samples_options(CLI::App& app, SamplesOptions& o) {
                    "With --compare: count values smaller than S in ulps of S (e.g. 1 for directions: near 0 a "
                    "coordinate's rounding is absolute); default 0, the float grid itself")
         ->type_name("S")
-        ->check(CLI::Range(0.0f, 1e30f));
+        ->check(CLI::Range(0.0f, 1e30f).description(""));
     app.add_option("--two-sample", o.two_sample,
-                   "Test whether two sets of independent samples come from one distribution (chi-square "
+                   "A B: test whether two sets of independent samples come from one distribution (chi-square "
                    "homogeneity and Anderson-Darling); a selected case gives the domain")
-        ->type_name("A B")
+        ->type_name("FILE")
         ->expected(2);
     app.add_option("--raw-layout", o.raw_layout,
                    "How a sample file that is not .npy holds its float32: N floats per sample (1-3), interleaved "
