@@ -144,3 +144,20 @@ def test_reports_are_the_same_views_as_validate_writes(tmp_path):
     assert "<html" in result.html() and "<testsuite" in result.junit()
     result.write_json(str(tmp_path / "r.json"))
     assert (tmp_path / "r.json").stat().st_size > 100
+
+
+def test_raw_bits_and_discrete_choices():
+    # 32 random bits to a float of [0, 1): the top 24 bits, scaled.
+    unit = wc.Warp("numpy_unit_float", lambda bits: (bits >> np.uint32(8)).astype(np.float32) * np.float32(2**-24),
+                   pdf=lambda x: np.where((x >= 0) & (x < 1), 1.0, 0.0), input="bits32",
+                   domain=wc.Domain.interval(0, 1))
+    wc.assert_passes(unit, samples=N, checks=["consistency", "chi2"])
+    pmf = np.array([0.1, 0.2, 0.3, 0.4])
+
+    def choice(pmf_claimed):
+        cdf = np.cumsum(pmf)
+        return wc.Warp("numpy_choice" if pmf_claimed is pmf else "numpy_choice_swapped",
+                       lambda u: np.minimum(np.searchsorted(cdf, u, side="right"), 3), pdf=lambda i: pmf_claimed[i],
+                       input="uniform1d", returns="index", categories=4)
+    wc.assert_passes(choice(pmf), samples=N, checks=["pmf", "discrete_chi2"])
+    wc.assert_fails(choice(pmf[::-1].copy()), "discrete_chi2", samples=N, checks=["discrete_chi2"])

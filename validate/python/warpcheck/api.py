@@ -23,7 +23,7 @@ def Warp(family, sample, *, pdf=None, invert=None, eval=None, domain=None, param
     bits uint32/uint64 (n,) for "bits32"/"bits64"; x is (n,) on a line, (n, 2) in the plane,
     (n, 3) on the sphere (float64 is rounded to float32, as a warp returns floats). With
     returns="pdf" or "weight", sample returns (x, value); with returns="index", category
-    indices (n,) and `categories` is their number. pdf(x) -> (n,), invert(x) -> u and
+    indices (n,) and `categories` is their number (a discrete choice takes no domain). pdf(x) -> (n,), invert(x) -> u and
     eval(x) -> (n,) as they exist: a part that is missing makes the checks that need it n/a.
     params: a dict of the parameter values, in the order of the name
     family[name=value,...]. Refused with ValueError where the declaration contradicts itself.
