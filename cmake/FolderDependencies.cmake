@@ -8,8 +8,8 @@
 # Inside validate/, each room (subfolder) may include only the rooms below it
 # (validate/README.md says what each room holds):
 #   api -> (nothing)   lanes -> api   checks -> lanes, api   cases -> lanes, api
-#   run -> checks, api   cli -> run, checks, api   trust -> run, checks, api
-#   gtest -> cli, run, checks, api
+#   run -> checks, api   samples -> run, checks, api   cli -> samples, run, checks, api
+#   trust -> run, checks, api   gtest -> cli, run, checks, api   python -> samples, cli, run, checks, api
 # A file at validate/'s top level, or in a room without a rule here, fails.
 cmake_minimum_required(VERSION 3.25)
 set(allowed_sampling sampling)
@@ -23,9 +23,11 @@ set(rooms_lanes lanes api)
 set(rooms_checks checks lanes api)
 set(rooms_cases cases lanes api)
 set(rooms_run run checks api)
-set(rooms_cli cli run checks api)
+set(rooms_samples samples run checks api)
+set(rooms_cli cli samples run checks api)
 set(rooms_trust trust run checks api)
 set(rooms_gtest gtest cli run checks api)
+set(rooms_python python samples cli run checks api)
 
 set(problems "")
 foreach(folder sampling chi2 reports validate)

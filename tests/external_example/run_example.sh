@@ -110,4 +110,12 @@ expect_fail "phong_cxx17_wrong[n=20]" weight_mean
 expect_fail unit_float_cxx17_swapped exhaustive
 expect_fail one_to_two_cxx17_swapped exhaustive
 expect_fail "diffuse_cxx17_weight_no_cos[theta_o=70]" bsdf_weight
+# The Python package installs with the rest, where the build made it (cmake/Python.cmake),
+# and imports from the prefix with the interpreter it was built for.
+python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build_dir/CMakeCache.txt")
+if [ -e "$build_dir/validate/python/warpcheck/__init__.py" ]; then
+  PYTHONPATH="$work/prefix/lib/python3/dist-packages" "$python" -c \
+    'import warpcheck; assert "chi2" in warpcheck.check_names(); print("python package installed:", warpcheck.__file__)' \
+    || { echo "the installed Python package does not import"; exit 1; }
+fi
 echo "external example: built against the installed package and passed"

@@ -33,6 +33,7 @@
 #include "reports/progress.h"
 #include "reports/terminal_table.h"
 #include "validate/cli/cli_input.h"
+#include "validate/cli/samples_options.h"
 #include "validate/run/merge.h"
 #include "validate/run/run_digest.h"
 #include "validate/run/runner.h"
@@ -64,6 +65,7 @@ struct CliOptions {
     Shard shard;
     std::vector<std::string> merge_paths;
     bool missing_shards = false;
+    SamplesOptions samples;  ///< samples from elsewhere (validate/cli/samples_options.h)
 };
 
 struct Output {
@@ -634,9 +636,20 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     add_selection_options(app, o);
     add_run_options(app, o);
     add_output_options(app, o);
+    add_samples_options(app, o.samples);
     app.set_version_flag("--version", "warpcheck " + o.program_name + " " WARPCHECK_VERSION);
     if (const auto done = parse(app, o, argc, argv)) return *done;
     const std::vector<Output> outputs = requested_outputs(o);
+    if (o.samples.any()) {  // samples from elsewhere: a run of their own (validate/cli/samples_options.h)
+        o.samples.isolation = !o.no_isolation;
+        if (const std::string bad = output_problem(outputs, {}); !bad.empty()) {
+            std::cerr << o.program_name << ": " << bad << "\n";
+            return kExitUsage;
+        }
+        const auto run = run_samples_mode(o.samples, registry, o.filters, o.checks, o.run, command_line(argc, argv),
+                                          o.program_name, std::cerr);
+        return run ? present(*run, o, outputs) : kExitUsage;
+    }
     std::string problem = selection_problem(o, registry);
     if (problem.empty()) problem = output_problem(outputs, o.merge_paths);
     if (!problem.empty()) {

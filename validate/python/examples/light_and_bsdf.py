@@ -1,0 +1,132 @@
+"""A light and a BSDF written with NumPy, each with a wrong twin.
+
+The light: a sphere light seen from a reference point, sampled uniformly in the
+cone of directions it subtends; sample(ref, u) returns (wi, pdf) per solid angle
+and pdf(ref, wi) is the density of any direction. It is checked at a grid of
+reference points, each a case on the sphere. The twin draws the cone's angle
+uniformly instead of its cosine, a classic slip: its pdf no longer describes it.
+
+The BSDF: Lambertian reflection, sampled cosine-weighted on wo's side; its twin
+forgets the 1/pi of f, so that it reflects pi times the energy it receives.
+"""
+
+import functools
+
+import numpy as np
+
+import warpcheck as wc
+
+CENTRE = np.array([0.0, 0.0, 2.0])
+RADIUS = 1.6  # the light subtends a cone of half-angle acos(0.6) from the origin
+# Reference points on the light's axis: the cone's rim then runs along the
+# chi-square cells, and the test stays quick. A point off the axis,
+# (0.7, -0.4, 0.2), passes too, in ~10 s: the quadrature of a rim that cuts
+# the cells obliquely calls pdf some 50,000 times, each a Python call.
+POINTS = [(0.0, 0.0, 0.0), (0.0, 0.0, 0.2)]
+
+
+def _cone(ref):
+    """The unit axis towards the light, cos of the cone's half-angle, and a frame:
+    per reference point, computed once (the checks call pdf many times per point)."""
+    return _cone_at(tuple(float(c) for c in ref))
+
+
+@functools.lru_cache(maxsize=64)
+def _cone_at(ref):
+    to_centre = CENTRE - np.asarray(ref, dtype=np.float64)
+    d = np.linalg.norm(to_centre)
+    axis = to_centre / d
+    cos_max = np.sqrt(1.0 - (RADIUS / d) ** 2)
+    helper = np.array([1.0, 0.0, 0.0]) if abs(axis[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    t = np.cross(axis, helper)
+    t /= np.linalg.norm(t)
+    return axis, cos_max, t, np.cross(axis, t)
+
+
+def light_pdf(ref, wi):
+    axis, cos_max, _, _ = _cone(ref)
+    # Inside the cone, within 2^-22 of its rim: a float32 direction rounds its
+    # cosine by about 2^-24 per coordinate, and the density's integral moves by
+    # 2^-22 / (1 - cos_max) = 6e-7, inside chi2's 2^-20 normalisation allowance.
+    inside = wi.astype(np.float64) @ axis >= cos_max - 2**-22
+    return np.where(inside, 1.0 / (2 * np.pi * (1.0 - cos_max)), 0.0)
+
+
+def _light_sample(ref, u, uniform_angle):
+    axis, cos_max, t, b = _cone(ref)
+    u = u.astype(np.float64)
+    if uniform_angle:  # the twin's bug
+        cos_theta = np.cos(u[:, 0] * np.arccos(cos_max))
+    else:
+        cos_theta = 1.0 - u[:, 0] * (1.0 - cos_max)
+    sin_theta = np.sqrt(np.maximum(0.0, 1.0 - cos_theta**2))
+    phi = 2 * np.pi * u[:, 1]
+    wi = (np.outer(sin_theta * np.cos(phi), t) + np.outer(sin_theta * np.sin(phi), b) + np.outer(cos_theta, axis))
+    wi = wi.astype(np.float32)
+    return wi, light_pdf(ref, wi)
+
+
+def light_sample(ref, u):
+    return _light_sample(ref, u, False)
+
+
+def light_sample_uniform_angle(ref, u):
+    return _light_sample(ref, u, True)
+
+
+REFLECTANCE = 0.8
+
+
+def _same_side(wo, wi):
+    return wo[..., 2] * wi[..., 2] > 0
+
+
+def lambert_f(wo, wi):
+    return np.where(_same_side(wo, wi), REFLECTANCE / np.pi, 0.0)
+
+
+def lambert_f_without_pi(wo, wi):
+    return np.where(_same_side(wo, wi), REFLECTANCE, 0.0)
+
+
+def lambert_pdf(wo, wi):
+    return np.where(_same_side(wo, wi), np.abs(wi[:, 2]) / np.pi, 0.0)
+
+
+def _lambert_sample(wo, uc, u, f):
+    del uc  # one lobe: the lobe choice is not used
+    r = np.sqrt(u[:, 0].astype(np.float64))
+    phi = 2 * np.pi * u[:, 1]
+    z = np.sqrt(np.maximum(0.0, 1.0 - u[:, 0]))
+    z = np.where(wo[2] < 0, -z, z)
+    wi = np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1).astype(np.float32)
+    wo_rows = np.broadcast_to(wo, wi.shape)
+    return wi, f(wo_rows, wi), lambert_pdf(wo_rows, wi)
+
+
+def lambert_sample(wo, uc, u):
+    return _lambert_sample(wo, uc, u, lambert_f)
+
+
+def lambert_sample_without_pi(wo, uc, u):
+    return _lambert_sample(wo, uc, u, lambert_f_without_pi)
+
+
+def lights():
+    correct = wc.Light("numpy_sphere_light", light_sample, pdf=light_pdf, points=POINTS,
+                       description="sphere light sampled uniformly in the cone it subtends")
+    wrong = wc.Light("numpy_sphere_light_uniform_angle", light_sample_uniform_angle, pdf=light_pdf,
+                     points=POINTS[:1], description="the cone's angle drawn uniformly instead of its cosine")
+    return correct, wrong
+
+
+def bsdfs():
+    correct = wc.Bsdf("numpy_lambert", lambert_sample, f=lambert_f, pdf=lambert_pdf, theta_o=[0, 45, 80],
+                      params={"R": REFLECTANCE}, description="Lambertian reflection, cosine-weighted sampling")
+    wrong = wc.Bsdf("numpy_lambert_without_pi", lambert_sample_without_pi, f=lambert_f_without_pi, pdf=lambert_pdf,
+                    theta_o=[45], params={"R": REFLECTANCE}, description="f without its 1/pi")
+    return correct, wrong
+
+
+if __name__ == "__main__":
+    print(wc.run([*lights(), *bsdfs()], samples=100_000).table())

@@ -1,0 +1,129 @@
+// Warp, BSDF and light cases whose parts are Python callables on NumPy batches,
+// behind the same WarpCase interface as a C++ warp: every check, the runner and
+// the reports take them as they are. A batch is one call: the checks' chunks
+// (4096 to 65536 inputs) are the arrays the callables see, so the cost of the
+// call is paid per chunk. Each call takes the GIL; the check threads wait for
+// it in turn (NumPy releases it inside its own loops), and the figures do not
+// depend on the order in which they get it, because every chunk's inputs and
+// the merge of the results are fixed (validate/checks/input_chunks.h).
+//
+// The shapes (n inputs in a batch):
+//   warp:   sample(u) -> x, or (x, value) when it returns its pdf or weight,
+//           or indices (n,) for a discrete choice;  pdf(x) -> (n,);
+//           invert(x) -> u;  eval(x) -> (n,).
+//           u: float32 (n,) in 1D, (n, 2) in 2D; raw bits uint32/uint64 (n,).
+//           x: (n,) on a line, (n, 2) in the plane, (n, 3) on the sphere.
+//   light:  the same with the reference point first: sample(ref, u) ->
+//           (wi, pdf), pdf(ref, wi) -> (n,), ref a float32 array (3,).
+//   BSDF:   sample(wo, uc, u) -> (wi, f, pdf[, flags[, eta]]) (a phase
+//           function: sample(wo, u)), f(wo, wi) -> (n,), pdf(wo, wi) -> (n,):
+//           wo (3,) in sample, wo and wi (n, 3) in f and pdf (f is also called
+//           with its arguments swapped, for reciprocity).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "validate/api/bsdf_case.h"
+#include "validate/api/warp_case.h"
+#include "validate/python/python_calls.h"
+
+namespace warpcheck::python {
+
+struct WarpParts {
+    PyRef sample, pdf, invert, eval;
+};
+
+class PythonWarpCase final : public WarpCase {
+public:
+    /// `reference_point`: a light's, passed before every other argument.
+    PythonWarpCase(WarpCaseInfo info, const WarpSignature& signature, WarpParts parts,
+                   std::optional<std::array<float, 3>> reference_point = std::nullopt);
+
+    void sample(std::span<const WarpInput> in, std::span<WarpOutput> out) const override;
+    void sample_with_value(std::span<const WarpInput> in, std::span<WarpOutput> out,
+                           std::span<double> value) const override;
+    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override;
+    void invert(std::span<const WarpOutput> x, std::span<WarpInput> out) const override;
+    void eval(std::span<const WarpOutput> x, std::span<double> out) const override;
+
+private:
+    void run_sample(std::span<const WarpInput> in, std::span<WarpOutput> out, std::span<double> value) const;
+    py::object call_part(const PyRef& part, const char* part_name, py::object argument) const;
+    std::string what(const char* part) const { return name() + ": " + part; }
+
+    WarpParts parts_;
+    std::optional<std::array<float, 3>> reference_point_;
+};
+
+struct BsdfParts {
+    PyRef sample, f, pdf;
+};
+
+class PythonBsdfCase final : public BsdfCase {
+public:
+    PythonBsdfCase(WarpCaseInfo info, BsdfClaims claims, BsdfParts parts);
+
+    void sample_bsdf(std::span<const WarpInput> in, std::span<BsdfRecord> out) const override;
+    void f(std::span<const WarpOutput> a, std::span<const WarpOutput> b, std::span<double> out) const override;
+    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override;
+
+private:
+    BsdfParts parts_;
+};
+
+/// What a Python object that describes cases makes: one case, or one per
+/// point of its grid (a BSDF's outgoing directions, a light's reference points).
+class CaseSpec {
+public:
+    virtual ~CaseSpec() = default;
+    virtual std::vector<std::unique_ptr<WarpCase>> make() const = 0;
+};
+
+/// A warp (or, with reference points, a light) of Python callables.
+class WarpSpec final : public CaseSpec {
+public:
+    /// Refused (std::invalid_argument, ValueError in Python) when the
+    /// declaration contradicts itself, as make_warp_case refuses a C++ case.
+    WarpSpec(WarpCaseInfo info, WarpSignature signature, WarpParts parts,
+             std::vector<std::array<float, 3>> reference_points = {});
+    std::vector<std::unique_ptr<WarpCase>> make() const override;
+
+private:
+    WarpCaseInfo info_;
+    WarpSignature signature_;
+    WarpParts parts_;
+    std::vector<std::array<float, 3>> reference_points_;
+};
+
+/// A BSDF of Python callables over a list of outgoing directions (theta_o in
+/// degrees, in the plane phi = 0), one case each, named family[...,theta_o=T].
+class BsdfSpec final : public CaseSpec {
+public:
+    BsdfSpec(WarpCaseInfo info, BsdfClaims claims, BsdfParts parts, std::vector<double> theta_o);
+    std::vector<std::unique_ptr<WarpCase>> make() const override;
+
+private:
+    WarpCaseInfo info_;
+    BsdfClaims claims_;
+    BsdfParts parts_;
+    std::vector<double> theta_o_;
+};
+
+/// A case of the C++ registry (a built-in warp), by reference: its own
+/// functions, not Python's. BSDFs are not offered this way.
+class RegisteredSpec final : public CaseSpec {
+public:
+    explicit RegisteredSpec(const WarpCase& warp) : warp_(warp) {}
+    const WarpCase& warp() const { return warp_; }
+    std::vector<std::unique_ptr<WarpCase>> make() const override;
+
+private:
+    const WarpCase& warp_;
+};
+
+}  // namespace warpcheck::python
