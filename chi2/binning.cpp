@@ -506,6 +506,21 @@ void Binning::count_pole(Histogram& hist, std::size_t row) const {
     ++hist.poles[row];
 }
 
+namespace {
+
+/// A sample left in a zero cell, kept; the list is compacted when it doubles
+/// (at least 4096): with hundreds of zero cells, what compaction keeps (six
+/// points a cell) is itself thousands, and compacting at a fixed size would
+/// sort them again at every sample.
+void keep_zero_point(std::vector<Histogram::CellPoint>& points, std::size_t& compact_at, Histogram::CellPoint p) {
+    points.push_back(p);
+    if (points.size() < compact_at) return;
+    keep_extreme_points(points, {});
+    compact_at = std::max<std::size_t>(4096, 2 * points.size());
+}
+
+}  // namespace
+
 template <typename Point>
 void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span<const unsigned char> zero_cells) const {
     if (hist.counts.size() != cell_count()) throw std::invalid_argument("Binning::bin: histogram of another binning");
@@ -528,17 +543,7 @@ void Binning::bin_impl(std::span<const Point> points, Histogram& hist, std::span
                 ++hist.on_boundary;
                 return;
             }
-            if (zero_cells[cell]) {
-                zero_points.push_back({cell, q});
-                // Compacted when it doubles (at least 4096): with hundreds of
-                // zero cells, what compaction keeps (six points a cell) is
-                // itself thousands, and compacting at a fixed size would sort
-                // them again at every sample.
-                if (zero_points.size() >= compact_at) {
-                    keep_extreme_points(zero_points, {});
-                    compact_at = std::max<std::size_t>(4096, 2 * zero_points.size());
-                }
-            }
+            if (zero_cells[cell]) keep_zero_point(zero_points, compact_at, {cell, q});
         }
         ++counts[cell];
     };

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <numbers>
 #include <random>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -180,9 +182,12 @@ std::vector<double> tilt_gradient(const Binning& b, std::span<const double> prob
     return g;
 }
 
-double tilt_noncentrality(std::span<const double> gradient, std::span<const double> probability,
-                          std::span<const std::size_t> term_of_cell, uint64_t samples) {
-    if (gradient.size() != probability.size() || term_of_cell.size() != probability.size()) return std::nan("");
+namespace {
+
+/// Sums of gradient and probability over the terms that pooling made.
+std::pair<std::vector<double>, std::vector<double>> per_term(std::span<const double> gradient,
+                                                             std::span<const double> probability,
+                                                             std::span<const std::size_t> term_of_cell) {
     std::size_t terms = 0;
     for (std::size_t t : term_of_cell)
         if (t != static_cast<std::size_t>(-1)) terms = std::max(terms, t + 1);
@@ -193,10 +198,36 @@ double tilt_noncentrality(std::span<const double> gradient, std::span<const doub
         moved[t] += gradient[c];
         mass[t] += std::max(probability[c], 0.0);
     }
+    return {std::move(moved), std::move(mass)};
+}
+
+}  // namespace
+
+double tilt_noncentrality(std::span<const double> gradient, std::span<const double> probability,
+                          std::span<const std::size_t> term_of_cell, uint64_t samples) {
+    if (gradient.size() != probability.size() || term_of_cell.size() != probability.size()) return std::nan("");
+    const auto [moved, mass] = per_term(gradient, probability, term_of_cell);
     double sum = 0.0;
-    for (std::size_t t = 0; t < terms; ++t)
+    for (std::size_t t = 0; t < moved.size(); ++t)
         if (mass[t] > 0.0) sum += moved[t] * moved[t] / mass[t];
     return static_cast<double>(samples) * sum;
+}
+
+double tilt_mean_shift(std::span<const double> gradient, std::span<const double> probability,
+                       std::span<const std::size_t> term_of_cell) {
+    if (gradient.size() != probability.size() || term_of_cell.size() != probability.size()) return std::nan("");
+    const auto [moved, mass] = per_term(gradient, probability, term_of_cell);
+    double sum = 0.0;
+    for (std::size_t t = 0; t < moved.size(); ++t)
+        if (mass[t] > 0.0) sum += moved[t] / mass[t];
+    return sum;
+}
+
+double tilt_for_noncentrality(double lambda, double per_unit, double shift) {
+    if (!(lambda >= 0.0) || std::isnan(shift)) return std::nan("");
+    if (!(per_unit > 0.0)) return std::numeric_limits<double>::infinity();
+    const double b = std::abs(shift);
+    return (b + std::sqrt(b * b + 4.0 * per_unit * lambda)) / (2.0 * per_unit);
 }
 
 double pearson_tilt_for_noncentrality(double lambda, uint64_t n) {

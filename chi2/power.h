@@ -46,6 +46,21 @@ std::vector<double> tilt_gradient(const Binning& binning, std::span<const double
 double tilt_noncentrality(std::span<const double> gradient, std::span<const double> probability,
                           std::span<const std::size_t> term_of_cell, uint64_t samples);
 
+/// The first-order change of Pearson's mean per unit tilt, on the same terms:
+/// sum over terms (sum of gradient) / (sum of probability). Under a deviation
+/// delta the statistic's mean is dof + lambda + sum delta/p (a term whose
+/// expected count grows also grows its variance); it is zero on cells of equal
+/// probability and large where a lobe's mass sits in a few heavy cells and the
+/// tilt takes it from many light ones.
+double tilt_mean_shift(std::span<const double> gradient, std::span<const double> probability,
+                       std::span<const std::size_t> term_of_cell);
+
+/// The smallest |eps| at which a tilt of either sign moves Pearson's mean by
+/// `lambda` beyond its dof: the positive root of per_unit eps^2 - |shift| eps =
+/// lambda (per_unit from tilt_noncentrality, shift from tilt_mean_shift), so
+/// that the stated power holds for the sign that lowers the mean.
+double tilt_for_noncentrality(double lambda, double per_unit, double shift);
+
 /// The tilt eps of one marginal that gives Pearson's statistic the
 /// noncentrality `lambda` with n samples: lambda = n eps^2 Var(2U - 1) = n eps^2 / 3.
 /// Cells much narrower than the marginal's scale lose a fraction ~1/cells^2

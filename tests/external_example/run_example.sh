@@ -36,8 +36,10 @@ grep -Eq "^n/a +roundtrip +cosine_hemisphere_no_inverse +not applicable: the war
 
 # Samplers that return more than a point: each correct one passes the checks of
 # its kind (with every other applicable check, in --all above).
-expect_row() {  # VERDICT CHECK CASE
-  grep -Eq "^$1 +$2 +$(printf '%s' "$3" | sed 's/[][]/\\&/g')( |\$)" "$work/all.txt" \
+expect_row() {  # VERDICT CHECK CASE; a weak row is a pass that states it could not see a 5% tilt
+  local verdict=$1
+  [ "$verdict" != pass ] || verdict='(pass|weak)'
+  grep -Eq "^$verdict +$2 +$(printf '%s' "$3" | sed 's/[][]/\\&/g')( |\$)" "$work/all.txt" \
     || { echo "expected a '$1' row for check $2 on $3"; exit 1; }
 }
 expect_row pass sample_pdf cosine_returned_pdf

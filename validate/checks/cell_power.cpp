@@ -29,7 +29,10 @@ void add_cell_power(CheckResult& r, const chi2::Binning& binning, const chi2::Ch
         const std::vector<double> gradient = chi2::tilt_gradient(binning, o.integrals.probability, axis);
         const double per_unit =
             chi2::tilt_noncentrality(gradient, o.integrals.probability, o.pearson.term_of_cell, samples);
-        const double eps = per_unit > 0.0 ? std::sqrt(lambda / per_unit) : std::numeric_limits<double>::infinity();
+        // The tilt whose mean shift of the statistic, its noncentrality less the
+        // first-order loss of the sign that empties heavy cells, reaches lambda.
+        const double shift = chi2::tilt_mean_shift(gradient, o.integrals.probability, o.pearson.term_of_cell);
+        const double eps = chi2::tilt_for_noncentrality(lambda, per_unit, shift);
         const std::string label = axis == 0 ? binning.u_label() : binning.v_label();
         r.figures.push_back({"power_tilt_eps_" + figure_label(label), eps});
         weakest = std::isnan(eps) || std::isnan(weakest) ? std::nan("") : std::max(weakest, eps);
