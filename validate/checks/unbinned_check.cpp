@@ -405,6 +405,9 @@ struct Computed {
     std::vector<Marginal> marginals;
     std::vector<std::vector<double>> sorted_u;
     std::vector<uint64_t> nan;
+    /// Samples whose point itself has a NaN coordinate (the warp returned NaN),
+    /// of all drawn: a failure, whatever their share, as in chi2.
+    uint64_t nan_points = 0, drawn = 0;
     /// The largest probability between a sample's transform and an end of its
     /// float band: how far float rounding may have moved the CDF.
     std::vector<double> float_band;
@@ -459,17 +462,39 @@ ChunkTransforms transform(const Marginal& m, std::span<const WarpOutput> out) {
 }
 
 /// Samples every chunk and gathers each marginal's transforms and bands in chunk order.
+/// The points of `out` with a NaN among the domain's `dimension` coordinates.
+uint64_t nan_points(std::span<const WarpOutput> out, int dimension) {
+    uint64_t n = 0;
+    for (const WarpOutput& o : out) {
+        bool nan = false;
+        for (int i = 0; i < dimension; ++i) nan = nan || std::isnan(o[static_cast<std::size_t>(i)]);
+        n += nan;
+    }
+    return n;
+}
+
 void gather(Computed& c, const WarpCase& warp, const CheckContext& ctx, const UnbinnedSource& source,
             std::vector<std::vector<float>>& band) {
     const std::size_t k = c.marginals.size();
-    const auto parts = map_input_chunks<std::vector<ChunkTransforms>>(
+    struct Part {
+        std::vector<ChunkTransforms> t;
+        uint64_t nan_points = 0, drawn = 0;
+    };
+    const int dimension = warp.domain().point_dimension();
+    auto chunks = map_input_chunks<Part>(
         ctx, warp.input_kind(), ctx.options().samples, false, [&](std::size_t, std::span<const WarpInput> in) {
             std::vector<WarpOutput> out;
             source.draw(in, out);
-            std::vector<ChunkTransforms> t;
-            for (std::size_t m = 0; m < k; ++m) t.push_back(transform(c.marginals[m], out));
-            return t;
+            Part part{{}, nan_points(out, dimension), out.size()};
+            for (std::size_t m = 0; m < k; ++m) part.t.push_back(transform(c.marginals[m], out));
+            return part;
         });
+    std::vector<std::vector<ChunkTransforms>> parts;
+    for (Part& p : chunks) {
+        c.nan_points += p.nan_points;
+        c.drawn += p.drawn;
+        parts.push_back(std::move(p.t));
+    }
     c.sorted_u.assign(k, {});
     band.assign(k, {});
     c.nan.assign(k, 0);
@@ -598,17 +623,30 @@ std::string band_note(const Computed& c, std::size_t m, uint64_t samples) {
     return note;
 }
 
-/// The verdict when something other than the p-value decides: every sample
-/// NaN is a failure of the warp, a density without a finite integral an error
-/// (there is no CDF to test against), nothing tested is not applicable.
+/// The verdict when something other than the p-value decides: a sample whose
+/// point is NaN, or every sample's coordinate NaN, is a failure of the warp
+/// (before any error: an error must never hide a failure), a density without
+/// a finite integral an error (there is no CDF to test against; said once
+/// however many marginals lack it), nothing tested is not applicable.
 bool judge_without_p_value(CheckResult& r, const Computed& c, const std::vector<std::string>& untested, int tests) {
+    if (c.nan_points > 0) {
+        r.verdict = Verdict::Fail;
+        r.p_value.reset();  // decided without a level
+        const bool all = c.nan_points == c.drawn;
+        r.summary = all ? "every sample has a NaN coordinate"
+                        : fmt::format("{} of {} samples have NaN coordinates", c.nan_points, c.drawn);
+        r.message = r.summary + (all ? ": nothing to test" : "") +
+                    ": a sampler must return a point (NaN fails whatever its share, as in chi2)";
+        return true;
+    }
     std::vector<std::string> all_nan, errors;
     bool any_samples = false;
     for (std::size_t m = 0; m < c.marginals.size(); ++m) {
         any_samples = any_samples || c.mode[m] != Mode::NoSamples;
         if (c.mode[m] == Mode::AllNaN) all_nan.push_back(c.marginals[m].label);
-        if (c.mode[m] == Mode::NoDensity)
-            errors.push_back(fmt::format("the density integrates to {} over the domain", c.marginals[m].cdf.total));
+        const std::string error = fmt::format("the density integrates to {} over the domain", c.marginals[m].cdf.total);
+        if (c.mode[m] == Mode::NoDensity && std::find(errors.begin(), errors.end(), error) == errors.end())
+            errors.push_back(error);
     }
     if (!all_nan.empty()) {
         r.verdict = Verdict::Fail;
@@ -691,6 +729,7 @@ void add_figures(CheckResult& r, const Computed& c, const RunOptions& options, i
     // The outputs the source drew (a warp's: every sample; a BSDF's: its
     // continuous samples), each marginal's tested or left out.
     const uint64_t drawn = c.sorted_u.empty() ? options.samples : c.sorted_u[0].size() + c.nan[0];
+    r.figures.push_back({"nan_samples", static_cast<double>(c.nan_points)});
     const double level = power_level(options, tests);
     double worst = 0.0;
     for (chi2::UnbinnedTest t : chi2::kUnbinnedTests)

@@ -96,5 +96,47 @@ TEST(BsdfUnbinned, WrongTwinsFail) {
     }
 }
 
+/// Henyey-Greenstein g = 0.5 whose sampled wi is NaN for u.x below `share`,
+/// or whose pdf is NaN everywhere.
+struct NaNPhase {
+    float share = 0.0f;
+    bool nan_pdf = false;
+    HenyeyGreenstein hg{0.5f};
+    float p(Vector3f wo, Vector3f wi) const { return nan_pdf ? std::nanf("") : hg.p(wo, wi); }
+    float pdf(Vector3f wo, Vector3f wi) const { return p(wo, wi); }
+    BsdfSample sample(Vector3f wo, Point2f u) const {
+        BsdfSample s = hg.sample(wo, u);
+        if (u.x < share) s.wi = {std::nanf(""), std::nanf(""), std::nanf("")};
+        return s;
+    }
+};
+
+TEST(BsdfUnbinned, NaNDirectionsFailWithTheirCountAndANaNPdfErrsOnce) {
+    // Before: a BSDF sampling NaN directions for 90% of its draws was "not
+    // applicable" and at 1% a pass; a NaN pdf was an ERROR whose message said
+    // the same thing once per marginal.
+    for (const float share : {0.9f, 0.01f}) {
+        std::vector<std::unique_ptr<WarpCase>> cases;
+        cases.push_back(make_phase_case({.family = "nan_wi_hg", .params = {{"share", share}}}, bsdf_direction(30),
+                                        NaNPhase{share, false}));
+        const RunResult r = run(cases, {"bsdf_unbinned"}, 1);
+        ASSERT_EQ(r.results.size(), 1u);
+        const CheckResult& c = r.results[0];
+        EXPECT_EQ(c.verdict, Verdict::Fail) << rows(r);
+        EXPECT_NE(c.summary.find("samples have NaN coordinates"), std::string::npos) << rows(r);
+        EXPECT_GT(c.figure("nan_samples").value_or(0.0), 0.5 * share * 1e6) << rows(r);
+    }
+    std::vector<std::unique_ptr<WarpCase>> cases;
+    cases.push_back(make_phase_case({.family = "nan_pdf_hg"}, bsdf_direction(30), NaNPhase{0.0f, true}));
+    const RunResult r = run(cases, {"bsdf_unbinned"}, 1);
+    ASSERT_EQ(r.results.size(), 1u);
+    const CheckResult& c = r.results[0];
+    EXPECT_NE(c.verdict, Verdict::Pass) << rows(r);
+    const std::string said = "integrates to nan";
+    const std::size_t first = c.message.find(said);
+    EXPECT_NE(first, std::string::npos) << rows(r);
+    EXPECT_EQ(c.message.find(said, first + 1), std::string::npos) << "said twice: " << c.message;
+}
+
 }  // namespace
 }  // namespace warpcheck

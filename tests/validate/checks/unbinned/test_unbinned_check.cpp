@@ -12,6 +12,7 @@
 #include <numbers>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "chi2/local_residual.h"
@@ -174,17 +175,37 @@ TEST(UnbinnedVerdicts, EverySampleNaNIsAFailureThatSaysSo) {
         EXPECT_EQ(run.results[0].verdict, Verdict::Fail);
         EXPECT_EQ(run.results[0].summary, "every sample has a NaN coordinate");
     }
-    // Some NaN samples among good ones are left out, counted, and carried into the band.
-    const auto warp = make_warp_case(
-        {"some_nan", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
-        warp_of([](Point2f u) {
-                    const float nan = std::nanf("");
-                    return u.x < 0.01f ? Vector3f{nan, nan, nan} : UniformHemisphere{}.sample(u);
-                })
-            .with_pdf([](Vector3f v) { return UniformHemisphere{}.pdf(v); }));
-    const CheckResult r = run_check(*check, *warp, 1);
-    EXPECT_GT(figure(r, "cos_theta_nan"), 9000.0);
-    EXPECT_NE(r.summary.find("samples without a cos theta left out"), std::string::npos) << r.summary;
+}
+
+TEST(UnbinnedVerdicts, AnyShareOfNaNSamplesFailsWithItsCount) {
+    // Before: 1% NaN points were left out and carried into the band (a pass),
+    // 90% made the CDF band too wide to test ("not applicable"). A sampler
+    // that returns NaN is wrong whatever the share, as chi2 judges it: FAIL
+    // with the count; ten in 10^6 fail as surely as 90%.
+    const auto check = make_unbinned_check();
+    for (const float share : {0.9f, 0.01f, 1e-5f}) {
+        const auto warp = make_warp_case(
+            {"some_nan", {{"share", share}}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+            warp_of([share](Point2f u) {
+                const float nan = std::nanf("");
+                return u.x < share ? Vector3f{nan, nan, nan} : UniformHemisphere{}.sample(u);
+            }).with_pdf([](Vector3f v) { return UniformHemisphere{}.pdf(v); }));
+        const CheckResult r = run_check(*check, *warp, 1);
+        SCOPED_TRACE(share);
+        EXPECT_EQ(r.verdict, Verdict::Fail) << r.summary;
+        EXPECT_FALSE(r.p_value.has_value());
+        const double count = figure(r, "nan_samples");
+        EXPECT_NEAR(count, share * 1e6, 5.0 * std::sqrt(share * 1e6) + 2.0);
+        EXPECT_GE(count, 1.0);
+        EXPECT_EQ(r.summary, fmt::format("{} of 1000000 samples have NaN coordinates", static_cast<uint64_t>(count)));
+    }
+    // The control: the same warp without NaN passes, and counts none.
+    const auto clean = make_warp_case({"no_nan", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
+                                      warp_of([](Point2f u) { return UniformHemisphere{}.sample(u); })
+                                          .with_pdf([](Vector3f v) { return UniformHemisphere{}.pdf(v); }));
+    const CheckResult r = run_check(*check, *clean, 1);
+    EXPECT_EQ(r.verdict, Verdict::Pass) << r.summary;
+    EXPECT_EQ(figure(r, "nan_samples"), 0.0);
 }
 
 /// The uniform hemisphere whose pdf claims 1.5 times its density: each
