@@ -129,7 +129,12 @@ struct Chi2Outcome {
 /// Per-cell zero flags: 1 where the probability is not positive.
 std::vector<unsigned char> zero_cells_of(const CellIntegrals& integrals);
 
-/// reintegrate_missed_support looks again at no more cells than this.
+/// reintegrate_missed_support looks again at no more cells than this: a sliver
+/// of support that the cubature's nodes miss touches a few cells along its
+/// length (a thin light or band crosses at most ~2 x 32 cells of a 32 x 32
+/// grid), so 64 covers one such sliver while bounding the cost when a density
+/// is zero over a wide region where samples land (a wrong pdf: those cells
+/// stay zero and fail the run on their hits).
 inline constexpr std::size_t kMaxReintegratedCells = 64;
 
 /// The cells of `q` integrated as zero where samples of `hist` landed and
