@@ -56,6 +56,7 @@ struct CliOptions {
     std::string report_on_failure_path;
     std::vector<std::string> filters;
     std::vector<std::string> checks;
+    std::vector<std::string> skipped_checks;  ///< --skip-check: left out of the checks run
     std::string report_path, json_path, junit_path;
     bool no_isolation = false;
     uint64_t memory_limit_mib = 0;
@@ -218,6 +219,10 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
         // value in brackets at its commas ('[a=1,b=3]' as '[a=1' and 'b=3]').
         ->allow_extra_args(false);
     app.add_option("--check", o.checks, "Run only this check (repeatable); see --list for names")->type_name("NAME");
+    app.add_option("--skip-check", o.skipped_checks,
+                   "Run every check that would run but this one (repeatable; with --check, those named there "
+                   "but this one): e.g. the 2^32 sweeps of exhaustive left out of a quick run")
+        ->type_name("NAME");
     app.add_flag("--list", o.list, "List the checks and the warp cases (those selected by --filter), then exit");
     app.add_flag("--list-jobs", o.list_jobs,
                  "List the (case, check) jobs the selection would run (of the --shard, if given), one per line: "
@@ -353,6 +358,27 @@ std::string no_case_matches(const std::string& pattern, const Registry& registry
     const bool glob = pattern.find_first_of("*?") != std::string::npos;
     const std::string hint = glob ? "" : did_you_mean(closest_names(pattern, names, !whole_names));
     return fmt::format("no warp case matches '{}'{}; '{} --list' shows them all", pattern, hint, program);
+}
+
+/// --skip-check: o.checks becomes the checks that would run (all that run by
+/// default, or those named by --check) less the skipped; what is wrong, or empty.
+std::string apply_skipped_checks(CliOptions& o, const Registry& registry) {
+    if (o.skipped_checks.empty()) return {};
+    for (const auto& name : o.skipped_checks)
+        if (!registry.find_check(name)) return unknown_check(name, registry);
+    // Named, so that select_jobs takes exactly those (a check that runs only
+    // when asked stays out, as it would without --skip-check).
+    const auto named = [](const std::vector<std::string>& names, const std::string& name) {
+        return std::find(names.begin(), names.end(), name) != names.end();
+    };
+    std::vector<std::string> kept;
+    for (const auto& c : registry.checks()) {
+        const bool would_run = o.checks.empty() ? c->runs_by_default(o.run) : named(o.checks, c->name());
+        if (would_run && !named(o.skipped_checks, c->name())) kept.push_back(c->name());
+    }
+    if (kept.empty()) return "--skip-check leaves no check to run";
+    o.checks = std::move(kept);
+    return {};
 }
 
 /// What is wrong with the selection, or empty; reads --shard into o.shard.
@@ -640,6 +666,10 @@ int run_cli(int argc, char** argv, const Registry& registry) {
     app.set_version_flag("--version", "warpcheck " + o.program_name + " " WARPCHECK_VERSION);
     if (const auto done = parse(app, o, argc, argv)) return *done;
     const std::vector<Output> outputs = requested_outputs(o);
+    if (const std::string bad = apply_skipped_checks(o, registry); !bad.empty()) {
+        std::cerr << o.program_name << ": " << bad << "\n";
+        return kExitUsage;
+    }
     if (o.samples.any()) {  // samples from elsewhere: a run of their own (validate/cli/samples_options.h)
         o.samples.isolation = !o.no_isolation;
         if (const std::string bad = output_problem(outputs, {}); !bad.empty()) {

@@ -44,6 +44,33 @@ TEST(Cli, ExactCaseNameSelectsOneCase) {
     EXPECT_NE(r.output.find("1 checks: 1 passed"), std::string::npos) << r.output;
 }
 
+// --skip-check: every check that would run but the skipped (with --check, the
+// named ones but those); an unknown name, or skipping all, is a usage error.
+TEST(Cli, SkipCheckRunsTheRestOfTheSelection) {
+    const std::string one = "--filter 'uniform_cone[cos_theta_max=0.3]' --samples 10000 --color never ";
+    const auto all = run_validate(one);
+    const auto skipped = run_validate(one + "--skip-check chi2 --skip-check unbinned");
+    EXPECT_EQ(skipped.status, 0) << skipped.output;
+    for (const char* check : {" consistency ", " roundtrip ", " tabulated "}) {
+        EXPECT_NE(all.output.find(check), std::string::npos) << all.output;
+        EXPECT_NE(skipped.output.find(check), std::string::npos) << skipped.output;
+    }
+    for (const char* check : {" chi2 ", " unbinned "}) {
+        EXPECT_NE(all.output.find(check), std::string::npos) << all.output;
+        EXPECT_EQ(skipped.output.find(check), std::string::npos) << skipped.output;
+    }
+    const auto named = run_validate(one + "--check roundtrip --check chi2 --skip-check chi2");
+    EXPECT_NE(named.output.find("1 checks: 1 passed"), std::string::npos) << named.output;
+    // A check that runs only when asked stays out when another is skipped.
+    EXPECT_EQ(run_validate(one + "--skip-check chi2").output.find("exhaustive_roundtrip"), std::string::npos);
+    const auto unknown = run_validate(one + "--skip-check chi3");
+    EXPECT_EQ(unknown.status, 2);
+    EXPECT_NE(unknown.output.find("unknown check 'chi3'"), std::string::npos) << unknown.output;
+    const auto none = run_validate(one + "--check chi2 --skip-check chi2");
+    EXPECT_EQ(none.status, 2);
+    EXPECT_NE(none.output.find("--skip-check leaves no check to run"), std::string::npos) << none.output;
+}
+
 // Cases that demonstrate a known flaw stay out of --all, run when asked for,
 // and then fail with their numbers.
 TEST(Cli, KnownFlawsRunOnlyWhenAskedFor) {
