@@ -73,6 +73,16 @@ double reciprocity_scale(const BsdfCase& bsdf, const WarpOutput& wi) {
     return bsdf.claims().transport == Transport::Radiance ? ratio * ratio : 1.0 / (ratio * ratio);
 }
 
+/// The rule a pair was held to, with the claims it used, for the row's message.
+std::string rule_of(const BsdfCase& bsdf, const WarpOutput& wi) {
+    if (!bsdf.transmitted(wi)) return "reflection: f(wo, wi) = f(wi, wo)";
+    const bool radiance = bsdf.claims().transport == Transport::Radiance;
+    return fmt::format("transmission with the claimed eta {:.6g} and {} transport: f(wo, wi) / eta({})^2 = "
+                       "f(wi, wo) / eta({})^2, scale s = {:.9g}",
+                       bsdf.claims().eta, radiance ? "radiance" : "importance", radiance ? "wo" : "wi",
+                       radiance ? "wi" : "wo", reciprocity_scale(bsdf, wi));
+}
+
 double relative_difference(double a, double b) {
     const double diff = std::abs(a - b);
     if (diff <= FLT_MIN) return 0.0;
@@ -236,9 +246,9 @@ protected:
             const Pair& p = s.worst.front().item;
             r.summary = fmt::format("not reciprocal at {} of {} pairs", s.violations, s.pairs);
             r.message = fmt::format("{} of {} pairs differ by more than {:.3g} relative; worst: wi {}, f(wo, wi) {:.9g} "
-                                    "times {:.9g} against f(wi, wo) {:.9g} (relative error {:.3g})",
+                                    "times {:.9g} against f(wi, wo) {:.9g} (relative error {:.3g}); rule: {}",
                                     s.violations, s.pairs, kRelativeTolerance, format_output(p.wi, 3), p.forward,
-                                    p.scale, p.backward, p.error);
+                                    p.scale, p.backward, p.error, rule_of(bsdf, p.wi));
         }
         r.plots.push_back(error_plot(bsdf, s));
         r.tables.push_back(worst_table(s));

@@ -107,6 +107,11 @@ TEST(BsdfReciprocity, RoughGlassHalfAPercentOffStillFails) {
         const CheckResult r = reciprocity(*twin, seed);
         EXPECT_EQ(r.verdict, Verdict::Fail) << "seed " << seed;
         EXPECT_GT(figure(r, "violations"), 1000.0) << "seed " << seed;
+        // The message names the rule and the claims it was held to (issue 38).
+        EXPECT_NE(r.message.find("rule: transmission with the claimed eta 1.5 and radiance transport: "
+                                 "f(wo, wi) / eta(wo)^2 = f(wi, wo) / eta(wi)^2, scale s = "),
+                  std::string::npos)
+            << r.message;
     }
 }
 
