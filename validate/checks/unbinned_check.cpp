@@ -167,11 +167,11 @@ chi2::ParallelFor parallel(const CheckContext& ctx) {
 }
 
 /// The refinement budget of one piece of a CDF strip (chi2::QuadratureOptions):
-/// 128 regions, 7 halvings of each side. A piece that has not met the accuracy
-/// rule by then holds a jump or a density that float rounding makes jagged
-/// (the edge of a 1e-4 annulus), which further halvings shrink only in
-/// proportion: there 1024 regions cost 7x the evaluations (2.3e9, 50 s of the
-/// row) for 0.2% less stated error. Its error estimate is carried into the
+/// 128 regions (127 halvings, each of the region whose error is largest). A
+/// piece that has not met the accuracy rule by then holds a jump or a density
+/// that float rounding makes jagged (the edge of a 1e-4 annulus), which further
+/// halvings shrink only in proportion: there 1024 regions cost 7x the
+/// evaluations (3.9e9 in the row's tabulations, 50 s) for 0.2% less stated error. Its error estimate is carried into the
 /// CDF's error either way; no row of validate --all needs more than 128.
 constexpr std::size_t kCdfPieceRegions = 128;
 
