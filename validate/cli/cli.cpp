@@ -364,8 +364,10 @@ std::string no_case_matches(const std::string& pattern, const Registry& registry
 /// default, or those named by --check) less the skipped; what is wrong, or empty.
 std::string apply_skipped_checks(CliOptions& o, const Registry& registry) {
     if (o.skipped_checks.empty()) return {};
-    for (const auto& name : o.skipped_checks)
-        if (!registry.find_check(name)) return unknown_check(name, registry);
+    // Both lists first: a misspelt --check must not vanish from the list below.
+    for (const auto* names : {&o.checks, &o.skipped_checks})
+        for (const auto& name : *names)
+            if (!registry.find_check(name)) return unknown_check(name, registry);
     // Named, so that select_jobs takes exactly those (a check that runs only
     // when asked stays out, as it would without --skip-check).
     const auto named = [](const std::vector<std::string>& names, const std::string& name) {

@@ -66,6 +66,9 @@ TEST(Cli, SkipCheckRunsTheRestOfTheSelection) {
     const auto unknown = run_validate(one + "--skip-check chi3");
     EXPECT_EQ(unknown.status, 2);
     EXPECT_NE(unknown.output.find("unknown check 'chi3'"), std::string::npos) << unknown.output;
+    const auto misspelt = run_validate(one + "--check chi3 --check roundtrip --skip-check chi2");
+    EXPECT_EQ(misspelt.status, 2) << misspelt.output;
+    EXPECT_NE(misspelt.output.find("unknown check 'chi3'"), std::string::npos) << misspelt.output;
     const auto none = run_validate(one + "--check chi2 --skip-check chi2");
     EXPECT_EQ(none.status, 2);
     EXPECT_NE(none.output.find("--skip-check leaves no check to run"), std::string::npos) << none.output;
