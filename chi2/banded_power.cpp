@@ -9,42 +9,42 @@
 namespace warpcheck::chi2 {
 namespace {
 
-constexpr int kBridges = 1000;
-constexpr int kGrid = 512;
+constexpr int kBandedBridges = 1000;
+constexpr int kBandedGrid = 512;
 
-/// kBridges Brownian bridges at u = j / kGrid, j = 1 .. kGrid - 1, bridge r at
-/// [r * (kGrid - 1), (r + 1) * (kGrid - 1)), from a fixed mt19937_64 stream
+/// kBandedBridges Brownian bridges at u = j / kBandedGrid, j = 1 .. kBandedGrid - 1, bridge r at
+/// [r * (kBandedGrid - 1), (r + 1) * (kBandedGrid - 1)), from a fixed mt19937_64 stream
 /// through Box-Muller (std::normal_distribution is not portable).
-const std::vector<double>& bridges() {
+const std::vector<double>& banded_bridges() {
     static const std::vector<double> b = [] {
         std::mt19937_64 rng(20260101);
         auto uniform = [&rng] { return (static_cast<double>(rng() >> 11) + 0.5) * 0x1p-53; };
-        std::vector<double> w(kGrid + 1), out;
-        out.reserve(static_cast<std::size_t>(kBridges) * (kGrid - 1));
-        const double step = std::sqrt(1.0 / kGrid);
-        for (int r = 0; r < kBridges; ++r) {
+        std::vector<double> w(kBandedGrid + 1), out;
+        out.reserve(static_cast<std::size_t>(kBandedBridges) * (kBandedGrid - 1));
+        const double step = std::sqrt(1.0 / kBandedGrid);
+        for (int r = 0; r < kBandedBridges; ++r) {
             w[0] = 0.0;
-            for (int j = 1; j <= kGrid; j += 2) {
+            for (int j = 1; j <= kBandedGrid; j += 2) {
                 const double radius = std::sqrt(-2.0 * std::log(uniform())), angle = 2.0 * std::numbers::pi * uniform();
                 w[j] = w[j - 1] + step * radius * std::cos(angle);
-                if (j + 1 <= kGrid) w[j + 1] = w[j] + step * radius * std::sin(angle);
+                if (j + 1 <= kBandedGrid) w[j + 1] = w[j] + step * radius * std::sin(angle);
             }
-            for (int j = 1; j < kGrid; ++j) out.push_back(w[j] - static_cast<double>(j) / kGrid * w[kGrid]);
+            for (int j = 1; j < kBandedGrid; ++j) out.push_back(w[j] - static_cast<double>(j) / kBandedGrid * w[kBandedGrid]);
         }
         return out;
     }();
     return b;
 }
 
-/// The banded statistic of one bridge (its kGrid - 1 values from `bridge`)
+/// The banded statistic of one bridge (its kBandedGrid - 1 values from `bridge`)
 /// plus the drift delta u (1 - u), against the band [-c, c].
 double banded_statistic(UnbinnedTest test, const double* bridge, double delta, double c) {
-    // The grid's extremes fall short of the continuous ones by ~0.5826 / sqrt(kGrid)
+    // The grid's extremes fall short of the continuous ones by ~0.5826 / sqrt(kBandedGrid)
     // (the continuity correction of chi2/power.cpp).
-    static const double correction = 0.5826 * std::sqrt(1.0 / kGrid);
+    static const double correction = 0.5826 * std::sqrt(1.0 / kBandedGrid);
     double hi = 0.0, lo = 0.0, ad = 0.0;
-    for (int j = 1; j < kGrid; ++j) {
-        const double u = static_cast<double>(j) / kGrid, weight = u * (1.0 - u);
+    for (int j = 1; j < kBandedGrid; ++j) {
+        const double u = static_cast<double>(j) / kBandedGrid, weight = u * (1.0 - u);
         const double y = bridge[j - 1] + delta * weight;
         hi = std::max(hi, y);
         lo = std::min(lo, y);
@@ -55,22 +55,22 @@ double banded_statistic(UnbinnedTest test, const double* bridge, double delta, d
     switch (test) {
         case UnbinnedTest::KolmogorovSmirnov: return std::max(d_plus, d_minus);
         case UnbinnedTest::Kuiper: return d_plus + d_minus;
-        case UnbinnedTest::AndersonDarling: return ad / kGrid;
+        case UnbinnedTest::AndersonDarling: return ad / kBandedGrid;
     }
     return std::nan("");
 }
 
 double simulated_power(UnbinnedTest test, double critical, double delta, double c) {
-    const std::vector<double>& b = bridges();
+    const std::vector<double>& b = banded_bridges();
     int hits = 0;
-    for (int r = 0; r < kBridges; ++r)
-        hits += banded_statistic(test, b.data() + static_cast<std::size_t>(r) * (kGrid - 1), delta, c) > critical;
-    return static_cast<double>(hits) / kBridges;
+    for (int r = 0; r < kBandedBridges; ++r)
+        hits += banded_statistic(test, b.data() + static_cast<std::size_t>(r) * (kBandedGrid - 1), delta, c) > critical;
+    return static_cast<double>(hits) / kBandedBridges;
 }
 
 }  // namespace
 
-void prepare_banded_power() { (void)bridges(); }
+void prepare_banded_power() { (void)banded_bridges(); }
 
 double banded_tilt_for_power(UnbinnedTest test, double level, double shift, uint64_t n, double power) {
     if (!(level > 0.0 && level < 1.0) || !(power > level && power < 1.0) || n == 0 || !(shift >= 0.0))

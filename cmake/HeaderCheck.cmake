@@ -25,6 +25,8 @@ function(warpcheck_check_headers folder)
   if(sources)
     string(MAKE_C_IDENTIFIER "${folder}" target)
     add_library(header_check_${target} OBJECT ${sources})
+    # One header per translation unit is the point: never batched into a unity source.
+    set_target_properties(header_check_${target} PROPERTIES UNITY_BUILD OFF)
     target_link_libraries(header_check_${target} PRIVATE ${arg_UNPARSED_ARGUMENTS} warpcheck_options)
   endif()
 endfunction()

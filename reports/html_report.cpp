@@ -186,7 +186,7 @@ void append_weakest(std::string& html, const RunResult& run) {
 
 /// The margin cell: the terminal's text (a row that did not pass shows it only
 /// when that is what failed it) with a gauge of how close the row came.
-std::string margin_cell(const CheckResult& r) {
+std::string html_margin_cell(const CheckResult& r) {
     const RowMargin m = row_margin(r);
     const bool past = (m.p_over_level && !(*m.p_over_level >= 1.0)) || (m.of_tolerance && *m.of_tolerance > 1.0);
     // The terminal's text, or the tolerance's when a row with both came closer to that.
@@ -271,7 +271,7 @@ void append_row(std::string& html, const RunResult& run, std::size_t i, const Pa
                         verdict_class(r.verdict), i, escaped(r.check_name),
                         r.message.empty() ? "" : " data-s=\"" + escaped(r.message) + "\"",
                         open ? " open=\"open\"" : fmt::format(" data-p=\"{}\"", pack->second), badge(r),
-                        case_cell(r.case_name), margin_cell(r), escaped(r.summary), p_value_cell(r),
+                        case_cell(r.case_name), html_margin_cell(r), escaped(r.summary), p_value_cell(r),
                         escaped(format_seconds(r.seconds)));
     if (open) html += "<div class=\"body\">\n" + html::row_body(run, i) + "</div>";
     else html += "<div class=\"body\"></div>";

@@ -19,7 +19,6 @@
 namespace warpcheck::html {
 namespace {
 
-constexpr double kLocalShare = kChi2LocalShare;
 
 std::string short_number(double v) { return std::isfinite(v) ? fmt::format("{:.3g}", v) : format_number(v); }
 
@@ -84,7 +83,7 @@ std::optional<double> single_cell_limit(const CheckResult& r) {
     const auto cells = r.figure("cells");
     if (!r.level || !cells || !(*cells >= 1.0)) return std::nullopt;
     const double tested = *cells - r.figure("zero_expected_cells").value_or(0.0);
-    const double cell_level = -std::expm1(std::log1p(-kLocalShare * *r.level) / std::max(tested, 1.0));
+    const double cell_level = -std::expm1(std::log1p(-kChi2LocalShare * *r.level) / std::max(tested, 1.0));
     if (!(cell_level > 0.0 && cell_level < 1.0)) return std::nullopt;
     double lo = 0.0, hi = 40.0;
     for (int i = 0; i < 100; ++i) {

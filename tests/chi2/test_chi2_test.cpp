@@ -15,11 +15,11 @@
 
 #include "chi2/chi2_test.h"
 #include "sampling/pcg32.h"
+#include "tests/chi2/pointwise_pdf.h"
 
 namespace warpcheck::chi2 {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr uint64_t kSamples = 1'000'000;  // the suite's default sample count
 // A correct sampler's p-value is uniform; with fixed seeds each test below is
 // deterministic, and this level is far below any p-value a correct one gave.
@@ -37,26 +37,22 @@ SampleChunk sampler(PointFn f) {
     };
 }
 
-BatchPdf pointwise(std::function<double(const DomainPoint&)> f) {
-    return [f = std::move(f)](std::span<const DomainPoint> x, std::span<double> out) {
-        for (std::size_t i = 0; i < x.size(); ++i) out[i] = f(x[i]);
-    };
-}
+using test_pdfs::pointwise;
 
 SamplePoint uniform_sphere(Pcg32& rng) {
-    const double z = 1 - 2 * rng.next_double(), phi = 2 * kPi * rng.next_double();
+    const double z = 1 - 2 * rng.next_double(), phi = 2 * std::numbers::pi * rng.next_double();
     const double s = std::sqrt(std::max(0.0, 1 - z * z));
     return {static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)), static_cast<float>(z)};
 }
 
 SamplePoint cosine_hemisphere(Pcg32& rng) {
-    const double z = std::sqrt(rng.next_double()), phi = 2 * kPi * rng.next_double();
+    const double z = std::sqrt(rng.next_double()), phi = 2 * std::numbers::pi * rng.next_double();
     const double s = std::sqrt(std::max(0.0, 1 - z * z));
     return {static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)), static_cast<float>(z)};
 }
 
-const BatchPdf kUniformSpherePdf = pointwise([](const DomainPoint&) { return 0.25 / kPi; });
-const BatchPdf kCosinePdf = pointwise([](const DomainPoint& p) { return std::max(0.0, p[2]) / kPi; });
+const BatchPdf kUniformSpherePdf = pointwise([](const DomainPoint&) { return 0.25 / std::numbers::pi; });
+const BatchPdf kCosinePdf = pointwise([](const DomainPoint& p) { return std::max(0.0, p[2]) / std::numbers::pi; });
 
 bool mentions(const Chi2Outcome& o, const std::string& text) {
     return std::any_of(o.failures.begin(), o.failures.end(),
@@ -81,7 +77,7 @@ PointFn phong50(double rim_fraction) {
         const float u0 = r.next_float(), u1 = r.next_float();
         const bool rim = r.next_double() < rim_fraction;
         const float z = rim ? 0.0f : std::pow(u0, 1.0f / 51.0f);
-        const float s = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * static_cast<float>(kPi) * u1;
+        const float s = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * static_cast<float>(std::numbers::pi) * u1;
         return SamplePoint{s * std::cos(phi), s * std::sin(phi), z};
     };
 }
@@ -89,7 +85,7 @@ PointFn phong50(double rim_fraction) {
 // cells near the rim integrate to exactly 0.
 const BatchPdf kPhong50Pdf = pointwise([](const DomainPoint& p) {
     const float z = static_cast<float>(p[2]);
-    return z > 0 ? 51.0 / (2 * kPi) * static_cast<double>(std::pow(z, 50.0f)) : 0.0;
+    return z > 0 ? 51.0 / (2 * std::numbers::pi) * static_cast<double>(std::pow(z, 50.0f)) : 0.0;
 });
 
 TEST(Chi2Boundary, AFewRimSamplesOfAVanishingDensityAreSetAside) {
@@ -128,7 +124,7 @@ TEST(Chi2Null, PeakedTrowbridgeReitzPassesWithPooling) {
     // D(h) cos theta in solid angle. Almost all mass is in the top row of cells.
     const double alpha = 0.05;
     const PointFn ggx = [alpha](Pcg32& rng) {
-        const double u = rng.next_double(), phi = 2 * kPi * rng.next_double();
+        const double u = rng.next_double(), phi = 2 * std::numbers::pi * rng.next_double();
         const double tan2 = alpha * alpha * u / (1 - u), z = 1 / std::sqrt(1 + tan2);
         const double s = std::sqrt(std::max(0.0, 1 - z * z));
         return SamplePoint{static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)),
@@ -136,7 +132,7 @@ TEST(Chi2Null, PeakedTrowbridgeReitzPassesWithPooling) {
     };
     const BatchPdf pdf = pointwise([alpha](const DomainPoint& p) {
         const double z2 = p[2] * p[2], a2 = alpha * alpha, d = a2 * z2 + (1 - z2);
-        return p[2] <= 0 ? 0.0 : a2 * p[2] / (kPi * d * d);
+        return p[2] <= 0 ? 0.0 : a2 * p[2] / (std::numbers::pi * d * d);
     });
     const Chi2Outcome o = run(Domain::hemisphere(), ggx, pdf);
     EXPECT_TRUE(o.failures.empty());
@@ -176,19 +172,19 @@ TEST(Chi2Null, MirroredExponentialOnLowerHalfLinePasses) {
 
 TEST(Chi2Null, NormalOnTheRealLinePasses) {
     const PointFn normal = [](Pcg32& rng) {  // Box-Muller, one of the pair
-        const double r = std::sqrt(-2.0 * std::log1p(-rng.next_double())), phi = 2 * kPi * rng.next_double();
+        const double r = std::sqrt(-2.0 * std::log1p(-rng.next_double())), phi = 2 * std::numbers::pi * rng.next_double();
         return SamplePoint{static_cast<float>(-5.0 + 0.5 * r * std::cos(phi)), 0, 0};
     };
     const BatchPdf pdf = pointwise([](const DomainPoint& p) {
         const double z = (p[0] + 5.0) / 0.5;
-        return std::exp(-0.5 * z * z) / (0.5 * std::sqrt(2 * kPi));
+        return std::exp(-0.5 * z * z) / (0.5 * std::sqrt(2 * std::numbers::pi));
     });
     const Chi2Outcome o = run(Domain::real_line(), normal, pdf, kSamples, {0, 0, 1.25, -5.0});
     EXPECT_TRUE(o.failures.empty());
     EXPECT_GE(o.p_value(), kPassLevel);
     EXPECT_NEAR(o.integrals.total, 1.0, 1e-6);
     const PointFn wide = [](Pcg32& rng) {
-        const double r = std::sqrt(-2.0 * std::log1p(-rng.next_double())), phi = 2 * kPi * rng.next_double();
+        const double r = std::sqrt(-2.0 * std::log1p(-rng.next_double())), phi = 2 * std::numbers::pi * rng.next_double();
         return SamplePoint{static_cast<float>(-5.0 + 0.51 * r * std::cos(phi)), 0, 0};
     };
     EXPECT_LT(run(Domain::real_line(), wide, pdf, kSamples, {0, 0, 1.25, -5.0}).p_value(), 1e-6);
@@ -196,10 +192,10 @@ TEST(Chi2Null, NormalOnTheRealLinePasses) {
 
 TEST(Chi2Null, DiskAndBoxPass) {
     const PointFn disk = [](Pcg32& rng) {  // uniform disk by polar map
-        const double r = std::sqrt(rng.next_double()), phi = 2 * kPi * rng.next_double();
+        const double r = std::sqrt(rng.next_double()), phi = 2 * std::numbers::pi * rng.next_double();
         return SamplePoint{static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)), 0};
     };
-    const Chi2Outcome od = run(Domain::unit_disk(), disk, pointwise([](const DomainPoint&) { return 1 / kPi; }));
+    const Chi2Outcome od = run(Domain::unit_disk(), disk, pointwise([](const DomainPoint&) { return 1 / std::numbers::pi; }));
     EXPECT_TRUE(od.failures.empty());
     EXPECT_GE(od.p_value(), kPassLevel);
     const PointFn tent = [](Pcg32& rng) {  // density 2x * 1 on the unit square
@@ -216,7 +212,7 @@ TEST(Chi2Power, DensityOffByTwoPercentOverHalfTheSphereFails) {
     // The pdf claims 2% more density on the upper half and 2% less on the lower
     // (still normalised), while the samples are uniform.
     const Chi2Outcome o = run(Domain::sphere(), uniform_sphere,
-                              pointwise([](const DomainPoint& p) { return (p[2] >= 0 ? 1.02 : 0.98) * 0.25 / kPi; }));
+                              pointwise([](const DomainPoint& p) { return (p[2] >= 0 ? 1.02 : 0.98) * 0.25 / std::numbers::pi; }));
     EXPECT_TRUE(o.failures.empty());  // not a normalisation problem: a statistical one
     EXPECT_LT(o.p_value(), kFailLevel);
 }
@@ -232,7 +228,7 @@ TEST(Chi2Power, MirroredSamplesFail) {
             }
         }
     };
-    const BatchPdf pdf = pointwise([](const DomainPoint& p) { return (1 + 0.5 * p[0]) * 0.25 / kPi; });
+    const BatchPdf pdf = pointwise([](const DomainPoint& p) { return (1 + 0.5 * p[0]) * 0.25 / std::numbers::pi; });
     const Chi2Outcome good = run(Domain::sphere(), [&](Pcg32& r) { return tilted(r, false); }, pdf);
     EXPECT_GE(good.p_value(), kPassLevel);
     const Chi2Outcome bad = run(Domain::sphere(), [&](Pcg32& r) { return tilted(r, true); }, pdf);
@@ -241,7 +237,7 @@ TEST(Chi2Power, MirroredSamplesFail) {
 
 TEST(Chi2Power, PValueIsTinyButNotZeroForALargeDeviation) {
     const Chi2Outcome o = run(Domain::hemisphere(), cosine_hemisphere,
-                              pointwise([](const DomainPoint&) { return 0.5 / kPi; }));
+                              pointwise([](const DomainPoint&) { return 0.5 / std::numbers::pi; }));
     EXPECT_TRUE(std::isfinite(o.statistic()));
     EXPECT_TRUE(o.p_value() >= 0.0 && o.p_value() < 1e-12);
 }
@@ -270,20 +266,20 @@ TEST(Chi2Failures, DensityThatIntegratesToLessOrMoreThanOne) {
     // error bound plus the float rounding of densities (2^-20).
     for (double scale : {0.98, 1.02, 0.995, 1.0005, 1.0 - 5e-5}) {
         const Chi2Outcome o = run(Domain::sphere(), uniform_sphere,
-                                  pointwise([scale](const DomainPoint&) { return scale * 0.25 / kPi; }));
+                                  pointwise([scale](const DomainPoint&) { return scale * 0.25 / std::numbers::pi; }));
         EXPECT_TRUE(mentions(o, "integrates to")) << scale;
         EXPECT_NEAR(o.integrals.total, scale, 1e-12);
     }
     // Within the tolerance (float rounding of the density): no failure.
     const Chi2Outcome ok = run(Domain::sphere(), uniform_sphere,
-                               pointwise([](const DomainPoint&) { return (1.0 + 0x1p-22) * 0.25 / kPi; }));
+                               pointwise([](const DomainPoint&) { return (1.0 + 0x1p-22) * 0.25 / std::numbers::pi; }));
     EXPECT_FALSE(mentions(ok, "integrates to"));
 }
 
 TEST(Chi2Failures, SamplesWhereTheDensityIsZero) {
     // Uniform sphere samples, but the pdf is the upper hemisphere's (1 / 2pi on z >= 0).
     const Chi2Outcome o = run(Domain::sphere(), uniform_sphere,
-                              pointwise([](const DomainPoint& p) { return p[2] >= 0 ? 0.5 / kPi : 0.0; }));
+                              pointwise([](const DomainPoint& p) { return p[2] >= 0 ? 0.5 / std::numbers::pi : 0.0; }));
     EXPECT_GT(o.zero_expected_hits, 400000u);
     EXPECT_EQ(o.zero_expected_cells, 512u);
     EXPECT_TRUE(mentions(o, "density integrates to zero"));
@@ -304,7 +300,7 @@ TEST(Chi2Failures, RoundingAtTheSupportEdgeIsNotAZeroHit) {
 
 TEST(Chi2Failures, NonFiniteDensity) {
     const Chi2Outcome o = run(Domain::hemisphere(), cosine_hemisphere,
-                              pointwise([](const DomainPoint& p) { return p[2] > 0.99 ? std::nan("") : p[2] / kPi; }));
+                              pointwise([](const DomainPoint& p) { return p[2] > 0.99 ? std::nan("") : p[2] / std::numbers::pi; }));
     EXPECT_TRUE(mentions(o, "NaN or infinite"));
     EXPECT_FALSE(o.failures.empty());
 }

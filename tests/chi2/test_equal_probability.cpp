@@ -18,18 +18,18 @@
 #include "chi2/float_band.h"
 #include "chi2/power.h"
 #include "sampling/pcg32.h"
+#include "tests/chi2/pointwise_pdf.h"
 
 namespace warpcheck::chi2 {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// A von Mises-Fisher lobe about +z, kappa 1e6 (a 1e-6 sr lobe), sampled
 /// stably in float: x and y from 1 - cos theta, which keeps their resolution.
 SamplePoint vmf(Pcg32& rng, bool rings = false) {
     const float kappa = 1e6f;
     const float v = std::fmin(-std::log(std::fmax(rng.next_float(), 0x1p-149f)) / kappa, 2.0f);
-    const float phi = 2.0f * static_cast<float>(kPi) * rng.next_float();
+    const float phi = 2.0f * static_cast<float>(std::numbers::pi) * rng.next_float();
     if (rings) {  // sin theta from the float cos theta: a few hundred rings
         const float z = 1.0f - v, s = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
         return {s * std::cos(phi), s * std::sin(phi), z};
@@ -40,18 +40,10 @@ SamplePoint vmf(Pcg32& rng, bool rings = false) {
 
 double vmf_pdf(const DomainPoint& p) {
     const double t = p[2] > 0 ? (p[0] * p[0] + p[1] * p[1]) / (1.0 + p[2]) : 1.0 - p[2];
-    return 1e6 / (2.0 * kPi) * std::exp(-1e6 * t);
+    return 1e6 / (2.0 * std::numbers::pi) * std::exp(-1e6 * t);
 }
 
-BatchPdf pointwise(std::function<double(const DomainPoint&)> f) {
-    return [f = std::move(f)](std::span<const DomainPoint> x, std::span<double> out) {
-        for (std::size_t i = 0; i < x.size(); ++i) {
-            // The density as a float warp sees it: at the float point.
-            const DomainPoint q{static_cast<float>(x[i][0]), static_cast<float>(x[i][1]), static_cast<float>(x[i][2])};
-            out[i] = f(q);
-        }
-    };
-}
+using test_pdfs::float_pointwise;
 
 std::vector<SamplePoint> draw(std::size_t n, uint64_t seed, bool rings = false) {
     Pcg32 rng(seed, 7);
@@ -65,7 +57,7 @@ Chi2Outcome run_lobe(const Binning& b, uint64_t seed, bool rings) {
         Pcg32 rng(seed * 1000 + chunk, 11);
         for (SamplePoint& p : out) p = vmf(rng, rings);
     };
-    return run_chi2_test(b, 1'000'000, chunks, pointwise(vmf_pdf), Chi2Options{});
+    return run_chi2_test(b, 1'000'000, chunks, float_pointwise(vmf_pdf), Chi2Options{});
 }
 
 TEST(PolarHeight, NearThePoleItIsReadOffXAndY) {
@@ -88,7 +80,7 @@ TEST(PolarHeight, NearThePoleItIsReadOffXAndY) {
 TEST(OwnEdges, EveryPointLandsInTheCellThatHoldsIt) {
     CellEdges e;
     e.rows = {-1.0, 0.2, 0.999, 0.9999999, 1.0};
-    for (int r = 0; r < 4; ++r) e.cols.push_back({0.0, 0.1, 3.0, 3.00001, 2.0 * kPi});
+    for (int r = 0; r < 4; ++r) e.cols.push_back({0.0, 0.1, 3.0, 3.00001, 2.0 * std::numbers::pi});
     const Binning b(Domain::sphere(), {}, e);
     ASSERT_EQ(b.rows(), 4);
     ASSERT_EQ(b.cols(), 4);
@@ -156,7 +148,7 @@ TEST(EqualProbability, TheOuterRowIsIntegratedWhereItsMassIs) {
     const EqualProbabilityCells cells = equal_probability_cells(grid, draw(65536, 3), 1'000'000);
     const Binning b(Domain::sphere(), grid.resolution(), cells.edges);
     QuadratureOptions q;
-    const CellIntegrals in = integrate_cells(b, pointwise(vmf_pdf), q);
+    const CellIntegrals in = integrate_cells(b, float_pointwise(vmf_pdf), q);
     EXPECT_NEAR(in.total, 1.0, 1e-5);
     double row0 = 0.0;
     for (int c = 0; c < b.cols(); ++c) row0 += in.probability[static_cast<std::size_t>(c)];

@@ -15,19 +15,13 @@
 #include "chi2/pearson.h"
 #include "chi2/quadrature.h"
 #include "sampling/pcg32.h"
+#include "tests/chi2/pointwise_pdf.h"
 
 namespace warpcheck::chi2 {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
-/// The density as a float warp's pdf sees it: each coordinate rounded to float.
-BatchPdf float_pointwise(std::function<double(const DomainPoint&)> f) {
-    return [f = std::move(f)](std::span<const DomainPoint> x, std::span<double> out) {
-        for (std::size_t i = 0; i < x.size(); ++i)
-            out[i] = f({static_cast<float>(x[i][0]), static_cast<float>(x[i][1]), static_cast<float>(x[i][2])});
-    };
-}
+using test_pdfs::float_pointwise;
 
 // Density 2 on the triangle x + y <= 1 of the unit square, tested in float as
 // a renderer writes it: on the default 32 x 32 grid the jump runs through 32
@@ -64,7 +58,7 @@ TEST(VerifiedQuadrature, SmoothDensitiesAreNotFlagged) {
     const Binning b(Domain::hemisphere());
     QuadratureOptions verified;
     verified.verify = true;
-    const CellIntegrals q = integrate_cells(b, float_pointwise([](const DomainPoint& p) { return p[2] / kPi; }), verified);
+    const CellIntegrals q = integrate_cells(b, float_pointwise([](const DomainPoint& p) { return p[2] / std::numbers::pi; }), verified);
     EXPECT_EQ(q.verification_mismatches, 0u);
     EXPECT_NEAR(q.total, 1.0, 1e-7);
 }
@@ -85,7 +79,7 @@ TEST(FloatNoise, CancellingFloatDensityHasNoiseOfItsError) {
     EXPECT_GT(std::abs(q.total - 1.0), 1e-5);  // the float pdf misses 1 by far more than 2^-20
     EXPECT_LT(std::abs(q.total - 1.0), q.float_noise_total);
     const CellIntegrals smooth =
-        integrate_cells(b, float_pointwise([](const DomainPoint& p) { return (1.0 + p[2]) / (4.0 * kPi); }), o);
+        integrate_cells(b, float_pointwise([](const DomainPoint& p) { return (1.0 + p[2]) / (4.0 * std::numbers::pi); }), o);
     EXPECT_LT(smooth.float_noise_total, 1e-6);
 }
 
@@ -94,8 +88,8 @@ TEST(FloatNoise, CancellingFloatDensityHasNoiseOfItsError) {
 // the jump band bounds it.
 TEST(FloatNoise, JumpBandCoversATinyCapsRim) {
     const Binning b(Domain::spherical_cap(0.99999));
-    const float c = static_cast<float>(std::cos(0.25 * kPi / 180.0));
-    const double density = 1.0 / (2.0 * kPi * (1.0 - double{c}));
+    const float c = static_cast<float>(std::cos(0.25 * std::numbers::pi / 180.0));
+    const double density = 1.0 / (2.0 * std::numbers::pi * (1.0 - double{c}));
     QuadratureOptions o;
     o.float_noise = true;
     const CellIntegrals q =

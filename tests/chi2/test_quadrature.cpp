@@ -11,17 +11,13 @@
 #include <gtest/gtest.h>
 
 #include "chi2/quadrature.h"
+#include "tests/chi2/pointwise_pdf.h"
 
 namespace warpcheck::chi2 {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
-BatchPdf pointwise(std::function<double(const DomainPoint&)> f) {
-    return [f = std::move(f)](std::span<const DomainPoint> x, std::span<double> out) {
-        for (std::size_t i = 0; i < x.size(); ++i) out[i] = f(x[i]);
-    };
-}
+using test_pdfs::pointwise;
 
 /// Trowbridge-Reitz (GGX) normal distribution times cos theta, a density in
 /// solid angle on the hemisphere; very peaked at small alpha.
@@ -29,7 +25,7 @@ double ggx_pdf(double z, double alpha) {
     if (z <= 0) return 0.0;
     const double z2 = z * z, a2 = alpha * alpha;
     const double d = a2 * z2 + (1 - z2);
-    return a2 * z / (kPi * d * d);
+    return a2 * z / (std::numbers::pi * d * d);
 }
 /// Its mass with cos theta >= z: tan^2 / (alpha^2 + tan^2) at tan^2 = (1 - z^2) / z^2.
 double ggx_mass_above(double z, double alpha) {
@@ -39,9 +35,9 @@ double ggx_mass_above(double z, double alpha) {
 
 TEST(Quadrature, UniformSphereCellsAreExact) {
     const Binning b(Domain::sphere());
-    const CellIntegrals q = integrate_cells(b, pointwise([](const DomainPoint&) { return 0.25 / kPi; }), {});
+    const CellIntegrals q = integrate_cells(b, pointwise([](const DomainPoint&) { return 0.25 / std::numbers::pi; }), {});
     for (std::size_t c = 0; c < b.cell_count(); ++c)
-        EXPECT_NEAR(q.probability[c], b.cell_measure(c) * 0.25 / kPi, 1e-16) << c;
+        EXPECT_NEAR(q.probability[c], b.cell_measure(c) * 0.25 / std::numbers::pi, 1e-16) << c;
     EXPECT_NEAR(q.total, 1.0, 1e-12);
     EXPECT_EQ(q.unconverged_cells, 0u);
     // One 15 x 15 rule per cell: nothing to refine for a constant.
@@ -50,10 +46,10 @@ TEST(Quadrature, UniformSphereCellsAreExact) {
 
 TEST(Quadrature, CosineHemisphereMatchesClosedForm) {
     const Binning b(Domain::hemisphere());
-    const CellIntegrals q = integrate_cells(b, pointwise([](const DomainPoint& p) { return p[2] / kPi; }), {});
+    const CellIntegrals q = integrate_cells(b, pointwise([](const DomainPoint& p) { return p[2] / std::numbers::pi; }), {});
     for (std::size_t c = 0; c < b.cell_count(); ++c) {
         const ParamRect r = b.cell_rect(c);
-        const double exact = (r.u1 - r.u0) / kPi * 0.5 * (r.v1 * r.v1 - r.v0 * r.v0);
+        const double exact = (r.u1 - r.u0) / std::numbers::pi * 0.5 * (r.v1 * r.v1 - r.v0 * r.v0);
         EXPECT_NEAR(q.probability[c], exact, 1e-15) << c;
     }
     EXPECT_NEAR(q.total, 1.0, 1e-12);
@@ -69,7 +65,7 @@ TEST(Quadrature, PeakedDensityMeetsTheAccuracyRule) {
     EXPECT_EQ(q.unconverged_cells, 0u);
     for (std::size_t c = 0; c < b.cell_count(); ++c) {
         const ParamRect r = b.cell_rect(c);
-        const double exact = (r.u1 - r.u0) / (2 * kPi) * (ggx_mass_above(r.v0, alpha) - ggx_mass_above(r.v1, alpha));
+        const double exact = (r.u1 - r.u0) / (2 * std::numbers::pi) * (ggx_mass_above(r.v0, alpha) - ggx_mass_above(r.v1, alpha));
         // The rule: |error| <= 1% of the cell's Poisson deviation at N samples.
         EXPECT_TRUE(std::abs(q.probability[c] - exact) <= cell_tolerance(exact, opt))
             << c << " " << q.probability[c] << " " << exact << " " << cell_tolerance(exact, opt);
@@ -93,7 +89,7 @@ TEST(Quadrature, DiskUsesAreaMeasure) {
     const Binning b(Domain::unit_disk());
     // Density 2 (1 - r^2) / pi on the unit disk integrates to 1.
     const CellIntegrals q = integrate_cells(
-        b, pointwise([](const DomainPoint& p) { return 2 * (1 - p[0] * p[0] - p[1] * p[1]) / kPi; }), {});
+        b, pointwise([](const DomainPoint& p) { return 2 * (1 - p[0] * p[0] - p[1] * p[1]) / std::numbers::pi; }), {});
     EXPECT_NEAR(q.total, 1.0, 1e-12);
 }
 

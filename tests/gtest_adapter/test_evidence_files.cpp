@@ -11,6 +11,7 @@
 #include "validate/api/external.h"
 #include "validate/gtest/job_tests.h"
 #include "validate/gtest/warpcheck_gtest.h"
+#include "tests/gtest_adapter/scoped_env.h"
 
 namespace warpcheck {
 namespace {
@@ -22,17 +23,7 @@ struct HalvedInverse {
     float invert(float x) const { return 0.5f * x; }
 };
 
-/// Sets an environment variable for the life of the object.
-class ScopedEnv {
-public:
-    ScopedEnv(const char* name, const std::string& value) : name_(name) { ::setenv(name, value.c_str(), 1); }
-    ~ScopedEnv() { ::unsetenv(name_); }
-    ScopedEnv(const ScopedEnv&) = delete;
-    ScopedEnv& operator=(const ScopedEnv&) = delete;
-
-private:
-    const char* name_;
-};
+using gtest_adapter_tests::ScopedEnv;
 
 std::string evidence_line(const std::string& message) {
     const std::size_t at = message.find("evidence: ");

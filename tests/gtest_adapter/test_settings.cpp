@@ -10,21 +10,12 @@
 #include "validate/api/external.h"
 #include "validate/gtest/job_tests.h"
 #include "validate/gtest/warpcheck_gtest.h"
+#include "tests/gtest_adapter/scoped_env.h"
 
 namespace warpcheck {
 namespace {
 
-/// Sets an environment variable for the life of the object.
-class ScopedEnv {
-public:
-    ScopedEnv(const char* name, const std::string& value) : name_(name) { ::setenv(name, value.c_str(), 1); }
-    ~ScopedEnv() { ::unsetenv(name_); }
-    ScopedEnv(const ScopedEnv&) = delete;
-    ScopedEnv& operator=(const ScopedEnv&) = delete;
-
-private:
-    const char* name_;
-};
+using gtest_adapter_tests::ScopedEnv;
 
 /// The identity on [0,1) that never returns from its first sample.
 struct Spins {

@@ -19,7 +19,7 @@
 namespace warpcheck {
 namespace {
 
-const float kEdges[] = {0.0f, 0x1p-149f, 0x1p-126f, 0x1p-25f, 0x1p-24f, 0.5f, kOneMinusEpsilon};
+const float kExponentialEdges[] = {0.0f, 0x1p-149f, 0x1p-126f, 0x1p-25f, 0x1p-24f, 0.5f, kOneMinusEpsilon};
 
 uint32_t sweep_stride() {
     const char* full = std::getenv("WARPCHECK_FULL_SWEEP");
@@ -80,7 +80,7 @@ TEST(Exponential, KnownValues) {
 TEST(Exponential, RoundTripAtEdges) {
     for (float a : {0.1f, 1.0f, 10.0f, 1e-30f, 1e30f}) {
         const Exponential e(a);
-        for (float u : kEdges) {
+        for (float u : kExponentialEdges) {
             const float back = e.invert(e.sample(u));
             EXPECT_LE(std::abs(back - u), 1e-6f * std::max(u, 1e-30f) + 0x1p-24f) << "a=" << a << " u=" << u;
         }
@@ -125,7 +125,7 @@ TEST(TrimmedExponential, RejectsBadParameters) {
 
 TEST(TrimmedExponential, ZeroRateIsUniform) {
     const TrimmedExponential t(0.0f, 3.0f);
-    for (float u : kEdges) EXPECT_EQ(t.sample(u), u * 3.0f);
+    for (float u : kExponentialEdges) EXPECT_EQ(t.sample(u), u * 3.0f);
     EXPECT_FLOAT_EQ(t.pdf(1.0f), 1.0f / 3.0f);
     EXPECT_FLOAT_EQ(t.invert(1.5f), 0.5f);
 }
@@ -159,7 +159,7 @@ TEST(TrimmedExponential, DensityIntegratesToOne) {
 TEST(TrimmedExponential, RoundTripAtEdges) {
     for (auto [c, xmax] : {std::pair{1e-6f, 1.0f}, {1.0f, 1.0f}, {100.0f, 1.0f}, {0.0f, 2.0f}, {1e-30f, 1e10f}}) {
         const TrimmedExponential t(c, xmax);
-        for (float u : kEdges) {
+        for (float u : kExponentialEdges) {
             const float x = t.sample(u);
             EXPECT_GE(x, 0.0f);
             EXPECT_LE(x, xmax);

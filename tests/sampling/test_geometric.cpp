@@ -14,8 +14,7 @@
 namespace warpcheck {
 namespace {
 
-constexpr double kPiD = std::numbers::pi;
-const float kEdges[] = {0.0f, 0x1p-24f, 0.5f, kOneMinusEpsilon};
+const float kGeometricEdges[] = {0.0f, 0x1p-24f, 0.5f, kOneMinusEpsilon};
 
 // NaN-safe closeness: NaN is never near anything.
 ::testing::AssertionResult near(double a, double b, double tol) {
@@ -27,7 +26,7 @@ const float kEdges[] = {0.0f, 0x1p-24f, 0.5f, kOneMinusEpsilon};
 // rule on a fine grid; dA = dphi dz on the unit sphere.
 double integrate_spherical(const std::function<float(Vector3f)>& pdf, double z0, int n = 800) {
     double sum = 0.0;
-    const double dz = (1.0 - z0) / n, dphi = 2.0 * kPiD / n;
+    const double dz = (1.0 - z0) / n, dphi = 2.0 * std::numbers::pi / n;
     for (int i = 0; i < n; ++i) {
         const double z = z0 + (i + 0.5) * dz, r = std::sqrt(1.0 - z * z);
         for (int j = 0; j < n; ++j) {
@@ -42,7 +41,7 @@ double integrate_spherical(const std::function<float(Vector3f)>& pdf, double z0,
 // Integral over the unit disk in polar coordinates (dA = r dr dphi).
 double integrate_disk(const std::function<float(Point2f)>& pdf, int n = 800) {
     double sum = 0.0;
-    const double dr = 1.0 / n, dphi = 2.0 * kPiD / n;
+    const double dr = 1.0 / n, dphi = 2.0 * std::numbers::pi / n;
     for (int i = 0; i < n; ++i) {
         const double r = (i + 0.5) * dr;
         for (int j = 0; j < n; ++j) {
@@ -91,7 +90,7 @@ void expect_round_trip(Sample sample, Invert invert, double tol, bool periodic_y
     }
     // Edges where the warp is injective: away from the centre / poles.
     for (float a : {0x1p-24f, 0.25f, kOneMinusEpsilon})
-        for (float b : kEdges) one({a, b});
+        for (float b : kGeometricEdges) one({a, b});
 }
 
 TEST(Disk, RoundTrips) {
@@ -102,8 +101,8 @@ TEST(Disk, RoundTrips) {
 }
 
 TEST(Hemisphere, KnownValues) {
-    EXPECT_FLOAT_EQ(CosineHemisphere{}.pdf({0.0f, 0.0f, 1.0f}), static_cast<float>(1.0 / kPiD));
-    EXPECT_FLOAT_EQ(UniformHemisphere{}.pdf({0.0f, 0.0f, 1.0f}), static_cast<float>(0.5 / kPiD));
+    EXPECT_FLOAT_EQ(CosineHemisphere{}.pdf({0.0f, 0.0f, 1.0f}), static_cast<float>(1.0 / std::numbers::pi));
+    EXPECT_FLOAT_EQ(UniformHemisphere{}.pdf({0.0f, 0.0f, 1.0f}), static_cast<float>(0.5 / std::numbers::pi));
     EXPECT_EQ(CosineHemisphere{}.pdf({0.0f, 0.0f, -1.0f}), 0.0f);
     EXPECT_EQ(UniformHemisphere{}.pdf({0.0f, 0.0f, -0.5f}), 0.0f);
     // The centre of the square is the pole for the cosine warp.

@@ -14,7 +14,7 @@
 namespace warpcheck {
 namespace {
 
-const float kEdges[] = {0.0f, 0x1p-24f, 0.25f, 0.5f, 0.75f, kOneMinusEpsilon};
+const float kPiecewiseEdges[] = {0.0f, 0x1p-24f, 0.25f, 0.5f, 0.75f, kOneMinusEpsilon};
 
 TEST(PiecewiseConstant1D, RejectsBadInput) {
     const std::vector<float> ok{1.0f, 2.0f};
@@ -59,7 +59,7 @@ TEST(PiecewiseConstant1D, AllZeroIsUniform) {
     for (const std::vector<float>& f : {std::vector<float>{0.0f, 0.0f, 0.0f, 0.0f}, std::vector<float>{-1.0f, -2.0f}}) {
         const PiecewiseConstant1D d(f, 1.0f, 3.0f);
         EXPECT_EQ(d.integral(), 0.0f);
-        for (float u : kEdges) {
+        for (float u : kPiecewiseEdges) {
             const auto s = d.sample(u);
             EXPECT_FLOAT_EQ(s.x, 1.0f + 2.0f * u);
             EXPECT_FLOAT_EQ(s.pdf, 0.5f);
@@ -76,7 +76,7 @@ TEST(PiecewiseConstant1D, SampleAgreesWithPdfAndInvertEverywhere) {
     for (int i = 0; i < 1000; ++i) f.push_back(i % 7 == 3 ? 0.0f : std::exp(std::sin(0.1f * i) * 6.0f));
     const PiecewiseConstant1D d(f, -0.3f, 1.7f);
     Pcg32 rng(2, 3);
-    std::vector<float> us(std::begin(kEdges), std::end(kEdges));
+    std::vector<float> us(std::begin(kPiecewiseEdges), std::end(kPiecewiseEdges));
     for (std::size_t i = 0; i <= f.size(); ++i) us.push_back(std::min(d.cdf()[i], kOneMinusEpsilon));
     for (int i = 0; i < 200000; ++i) us.push_back(rng.next_float());
     for (float u : us) {
@@ -112,8 +112,8 @@ TEST(PiecewiseConstant2D, KnownValuesAndNormalisation) {
 TEST(PiecewiseConstant2D, AllZeroIsUniform) {
     const PiecewiseConstant2D d(std::vector<float>(6, 0.0f), 3, 2, -1.0f, 1.0f, 0.0f, 4.0f);
     EXPECT_EQ(d.integral(), 0.0f);
-    for (float a : kEdges)
-        for (float b : kEdges) {
+    for (float a : kPiecewiseEdges)
+        for (float b : kPiecewiseEdges) {
             const auto s = d.sample({a, b});
             EXPECT_FLOAT_EQ(s.pdf, 0.125f);
             EXPECT_FLOAT_EQ(d.pdf(s.p), 0.125f);

@@ -18,19 +18,18 @@
 namespace warpcheck {
 namespace {
 
-constexpr double kPiD = std::numbers::pi;
 using boost::math::quadrature::gauss_kronrod;
 
 const std::vector<std::pair<float, float>> kAlphas = {{0.05f, 0.05f}, {0.3f, 0.3f}, {1.0f, 1.0f},
                                                        {0.3f, 0.05f},  {0.05f, 0.4f}};
-const float kEdges[] = {0.0f, 0x1p-24f, 0.25f, 0.5f, 0.75f, kOneMinusEpsilon};
+const float kNormalEdges[] = {0.0f, 0x1p-24f, 0.25f, 0.5f, 0.75f, kOneMinusEpsilon};
 
 Vector3f direction(double theta, double phi) {
     return {static_cast<float>(std::sin(theta) * std::cos(phi)), static_cast<float>(std::sin(theta) * std::sin(phi)),
             static_cast<float>(std::cos(theta))};
 }
 
-double radians(double degrees) { return degrees * kPiD / 180.0; }
+double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
 /// Integral over the hemisphere of f(w) dw, as iterated adaptive Gauss-Kronrod
 /// quadrature in z = cos theta (outer) and phi (inner, over [0, 2 pi) split at
@@ -44,7 +43,7 @@ double integrate_hemisphere(F f, Breaks phi_breaks) {
         const double z = 1.0 - s * s, r = std::sqrt(std::max(0.0, 1.0 - z * z));
         std::vector<double> cuts = phi_breaks(z);
         cuts.insert(cuts.begin(), 0.0);
-        cuts.push_back(2.0 * kPiD);
+        cuts.push_back(2.0 * std::numbers::pi);
         double sum = 0.0;
         for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
             if (!(cuts[k + 1] > cuts[k])) continue;
@@ -72,7 +71,7 @@ auto mask_breaks(Vector3f wo) {
         const double c = -static_cast<double>(wo.z) * z / (static_cast<double>(wo.x) * r);  // cos phi at the kink
         if (c > -1.0 && c < 1.0) {
             const double p = std::acos(c);
-            out = {p, 2.0 * kPiD - p};
+            out = {p, 2.0 * std::numbers::pi - p};
         }
         return out;
     };
@@ -103,7 +102,7 @@ TEST(TrowbridgeReitz, KnownValues) {
         EXPECT_EQ(tr.D({0.0f, 0.6f, -0.8f}), 0.0f);
         Pcg32 rng(3, 4);
         for (int i = 0; i < 1000; ++i) {
-            const Vector3f w = direction(std::acos(rng.next_double()), 2.0 * kPiD * rng.next_double());
+            const Vector3f w = direction(std::acos(rng.next_double()), 2.0 * std::numbers::pi * rng.next_double());
             EXPECT_NEAR(tr.G1(w), 1.0 / (1.0 + tr.lambda(w)), 1e-6);
             EXPECT_NEAR(tr.G1_over_cos(w) * w.z, tr.G1(w), 1e-6);
             // Lambda against its textbook form (sqrt(1 + alpha^2 tan^2) - 1) / 2, in double.
@@ -117,7 +116,7 @@ TEST(TrowbridgeReitz, KnownValues) {
     const TrowbridgeReitz iso(0.3f);
     for (double theta : {0.1, 0.5, 1.0, 1.5}) {
         const double t2 = std::pow(std::tan(theta), 2), c4 = std::pow(std::cos(theta), 4);
-        EXPECT_NEAR(iso.D(direction(theta, 0.7)), 0.09 / (kPiD * c4 * std::pow(0.09 + t2, 2)),
+        EXPECT_NEAR(iso.D(direction(theta, 0.7)), 0.09 / (std::numbers::pi * c4 * std::pow(0.09 + t2, 2)),
                     1e-5 * iso.D(direction(theta, 0.7)));
     }
 }
@@ -140,7 +139,7 @@ TEST(TrowbridgeReitz, MarginalDensitiesIntegrateToOne) {
     }
     for (auto [ax, ay] : kAlphas) {
         const double i = gauss_kronrod<double, 31>::integrate(
-            [ax = ax, ay = ay](double p) { return TrowbridgeReitz::azimuth_pdf(ax, ay, p); }, 0.0, 2.0 * kPiD, 15, 1e-12);
+            [ax = ax, ay = ay](double p) { return TrowbridgeReitz::azimuth_pdf(ax, ay, p); }, 0.0, 2.0 * std::numbers::pi, 15, 1e-12);
         EXPECT_NEAR(i, 1.0, 1e-9) << ax << " " << ay;
     }
 }
@@ -207,8 +206,8 @@ TEST(TrowbridgeReitz, NormalRoundTrip) {
         const TrowbridgeReitz tr(ax, ay);
         auto s = [&](Point2f u) { return tr.normals().sample(u); };
         auto i = [&](Vector3f w) { return tr.normals().invert(w); };
-        for (float a : kEdges)
-            for (float b : kEdges) expect_round_trip(s, i, {a, b}, "normal edge");
+        for (float a : kNormalEdges)
+            for (float b : kNormalEdges) expect_round_trip(s, i, {a, b}, "normal edge");
         Pcg32 rng(1, 2);
         for (int k = 0; k < 200000; ++k) expect_round_trip(s, i, {rng.next_float(), rng.next_float()}, "normal");
     }
@@ -231,8 +230,8 @@ TEST(TrowbridgeReitz, VisibleRoundTripAndConsistency) {
                     EXPECT_TRUE(std::isfinite(p) && (p > 0.0f || w.z == 0.0f))
                         << "theta_o=" << theta_o << " u=(" << u.x << "," << u.y << ") pdf=" << p;
                 };
-                for (float a : kEdges)
-                    for (float b : kEdges) {
+                for (float a : kNormalEdges)
+                    for (float b : kNormalEdges) {
                         expect_round_trip(s, i, {a, b}, "visible edge");
                         consistent({a, b});
                     }

@@ -18,7 +18,7 @@
 namespace warpcheck {
 namespace {
 
-constexpr float kGoldEta = 0.2f, kGoldK = 3.0f, kGlass = 1.5f;
+constexpr float kFlawedGoldEta = 0.2f, kFlawedGoldK = 3.0f, kFlawedGlass = 1.5f;
 
 WarpCaseInfo flawed_info(std::string family, std::vector<Parameter> params, std::string description) {
     return {.family = std::move(family), .params = std::move(params), .description = std::move(description)};
@@ -27,7 +27,7 @@ WarpCaseInfo flawed_info(std::string family, std::vector<Parameter> params, std:
 /// Weight missing the cosine: the sample's f is f / |cos theta_i|, so that
 /// the weight f |cos| / pdf is what a renderer that forgot the cosine gets.
 std::unique_ptr<WarpCase> weight_without_cosine() {
-    const RoughConductor c(TrowbridgeReitz(0.3f), kGoldEta, kGoldK);
+    const RoughConductor c(TrowbridgeReitz(0.3f), kFlawedGoldEta, kFlawedGoldK);
     return make_bsdf_case(
         flawed_info("rough_conductor_weight_no_cos", {{"alpha", 0.3}, {"theta_o", 60}},
                     "rough conductor whose sampled weight misses |cos theta_i|"),
@@ -43,16 +43,16 @@ std::unique_ptr<WarpCase> weight_without_cosine() {
 
 /// Refraction by 1 / eta instead of eta (the sample still reports eta).
 std::unique_ptr<WarpCase> eta_swapped() {
-    const SmoothDielectric d(kGlass);
+    const SmoothDielectric d(kFlawedGlass);
     return make_bsdf_case(
         flawed_info("smooth_dielectric_eta_swapped", {{"eta", 1.5}, {"theta_o", 30}},
                     "smooth dielectric refracting with 1 / eta in place of eta"),
-        {.wo = bsdf_direction(30), .lobes = d.flags(), .eta = kGlass},
+        {.wo = bsdf_direction(30), .lobes = d.flags(), .eta = kFlawedGlass},
         bsdf_of([d](Vector3f wo, float uc, Point2f u) {
             BsdfSample s = d.sample(wo, uc, u);
             float etap = 1.0f;
             Vector3f wt;
-            if (has(s.flags, BsdfFlags::Transmission) && refract(wo, {0.0f, 0.0f, 1.0f}, 1.0f / kGlass, etap, wt))
+            if (has(s.flags, BsdfFlags::Transmission) && refract(wo, {0.0f, 0.0f, 1.0f}, 1.0f / kFlawedGlass, etap, wt))
                 s.wi = wt;
             return s;
         })
@@ -63,7 +63,7 @@ std::unique_ptr<WarpCase> eta_swapped() {
 /// A diffuse + glossy mixture whose pdf() gives each lobe the other's
 /// probability: (Ps cos / pi + (1 - Ps) pdf_spec); the sampler's choice is right.
 std::unique_ptr<WarpCase> mixture_wrong_lobe_pdf() {
-    const Plastic p(0.8f, kGlass, 0.2f);
+    const Plastic p(0.8f, kFlawedGlass, 0.2f);
     const TrowbridgeReitz tr(0.2f);
     auto pdf = [p, tr](Vector3f wo, Vector3f wi) {
         if (!same_hemisphere(wo, wi)) return 0.0f;
@@ -93,11 +93,11 @@ std::unique_ptr<WarpCase> mixture_wrong_lobe_pdf() {
 /// The delta reflection chosen with probability F but claiming 1 - F (and
 /// refraction the reverse), its value scaled to keep the weight.
 std::unique_ptr<WarpCase> lobe_probability_swapped() {
-    const SmoothDielectric d(kGlass);
+    const SmoothDielectric d(kFlawedGlass);
     return make_bsdf_case(
         flawed_info("smooth_dielectric_lobe_swapped", {{"eta", 1.5}, {"theta_o", 60}},
                     "smooth dielectric choosing reflection with probability F but weighting it as if 1 - F"),
-        {.wo = bsdf_direction(60), .lobes = d.flags(), .eta = kGlass},
+        {.wo = bsdf_direction(60), .lobes = d.flags(), .eta = kFlawedGlass},
         bsdf_of([d](Vector3f wo, float uc, Point2f u) {
                     BsdfSample s = d.sample(wo, uc, u);
                     if (s.pdf > 0.0f) {
@@ -158,7 +158,7 @@ std::unique_ptr<WarpCase> energy_gain_at_grazing() {
 /// (-wo.x, -wo.y, wo.z); f and pdf evaluated right at the wi it returns.
 std::unique_ptr<WarpCase> visible_normals_wrong_side() {
     const TrowbridgeReitz tr(0.3f);
-    const RoughConductor c(tr, kGoldEta, kGoldK);
+    const RoughConductor c(tr, kFlawedGoldEta, kFlawedGoldK);
     return make_bsdf_case(
         flawed_info("rough_conductor_vndf_wrong_side", {{"alpha", 0.3}, {"theta_o", 60}},
                     "rough conductor sampling the normals visible from the mirror of wo"),
@@ -182,8 +182,8 @@ std::unique_ptr<WarpCase> visible_normals_wrong_side() {
 std::unique_ptr<WarpCase> roughness_one_percent_off() {
     return sampled_by(flawed_info("rough_conductor_alpha_1pct_wide", {{"alpha", 0.05}, {"theta_o", 85}},
                                   "rough conductor sampling its visible normals with alpha 0.0505 instead of 0.05"),
-                      bsdf_direction(85), RoughConductor(TrowbridgeReitz(0.05f), kGoldEta, kGoldK),
-                      RoughConductor(TrowbridgeReitz(0.0505f), kGoldEta, kGoldK));
+                      bsdf_direction(85), RoughConductor(TrowbridgeReitz(0.05f), kFlawedGoldEta, kFlawedGoldK),
+                      RoughConductor(TrowbridgeReitz(0.0505f), kFlawedGoldEta, kFlawedGoldK));
 }
 
 }  // namespace

@@ -62,7 +62,7 @@ constexpr int kProbeUlps = 4;
 constexpr double kRoundedAcrossEdgeRate = 0x1p-16;
 /// The chance that a correct warp's count exceeds the bound (the round trip's
 /// other-preimage bound uses the same): far below any run's level.
-constexpr double kBoundTail = 1e-9;
+constexpr double kConsistencyBoundTail = 1e-9;
 /// Every kEdgeBandStride-th random sample with a positive pdf is probed
 /// kProbeUlps spacings along each coordinate both ways for a zero pdf inside
 /// the domain: the share of samples that lie that close to an edge of the
@@ -78,7 +78,7 @@ struct Example {
     double pdf = 0.0;
 };
 
-struct Stats {
+struct ConsistencyStats {
     uint64_t count = 0, random_count = 0;
     Tally<Example> nan_sample, outside, bad_pdf, zero_pdf;
     uint64_t boundary_zero = 0;
@@ -90,7 +90,7 @@ struct Stats {
     double min_pdf = std::numeric_limits<double>::infinity();
     double max_pdf = 0.0;
 
-    void merge(const Stats& o) {
+    void merge(const ConsistencyStats& o) {
         count += o.count;
         random_count += o.random_count;
         rounded_random.merge(o.rounded_random);
@@ -116,7 +116,7 @@ bool finite_point(const chi2::DomainPoint& p, int dims) {
 
 /// Sorts one sample into the kinds of violation (or none); a zero pdf inside
 /// the domain and off its boundary is left to the probe (returns true).
-bool classify(Stats& s, const chi2::Domain& domain, uint64_t index, const Example& e, bool random) {
+bool classify(ConsistencyStats& s, const chi2::Domain& domain, uint64_t index, const Example& e, bool random) {
     ++s.count;
     const chi2::DomainPoint p = to_domain_point(e.output);
     if (!finite_point(p, domain.point_dimension())) {
@@ -209,10 +209,10 @@ bool near_support_edge(const WarpCase& warp, const WarpOutput& x) {
 }
 
 /// One chunk of samples with their pdfs, classified.
-Stats classify_chunk(const WarpCase& warp, std::size_t chunk, std::span<const WarpInput> inputs,
+ConsistencyStats classify_chunk(const WarpCase& warp, std::size_t chunk, std::span<const WarpInput> inputs,
                      std::span<const WarpOutput> x, std::span<const double> pdf) {
     const chi2::Domain& domain = warp.domain();
-    Stats s;
+    ConsistencyStats s;
     if (chunk > 0) s.random_count = inputs.size();
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         const uint64_t index = chunk * kInputChunkSize + i;
@@ -231,8 +231,8 @@ Stats classify_chunk(const WarpCase& warp, std::size_t chunk, std::span<const Wa
     return s;
 }
 
-Stats compute(const WarpCase& warp, const CheckContext& ctx) {
-    auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, true,
+ConsistencyStats compute(const WarpCase& warp, const CheckContext& ctx) {
+    auto parts = map_input_chunks<ConsistencyStats>(ctx, warp.input_kind(), ctx.options().samples, true,
                                          [&](std::size_t chunk, std::span<const WarpInput> inputs) {
         std::vector<WarpOutput> x(inputs.size());
         std::vector<double> pdf(inputs.size());
@@ -251,7 +251,7 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx) {
 /// (kEdgeBandStride), bounded above: the measured share with 6 standard
 /// deviations of its count added, 0 when none was seen (the fixed rate then
 /// applies alone).
-double edge_band_share(const Stats& s) {
+double edge_band_share(const ConsistencyStats& s) {
     if (s.band_near_edge == 0 || s.band_probed == 0) return 0.0;
     const double k = static_cast<double>(s.band_near_edge);
     return (k + 6.0 * std::sqrt(k) + 1.0) / static_cast<double>(s.band_probed);
@@ -259,17 +259,17 @@ double edge_band_share(const Stats& s) {
 
 /// How many random samples may lie on the domain's boundary with pdf 0: a
 /// Poisson bound at kRoundedAcrossEdgeRate (the boundary has no measure).
-uint64_t boundary_bound(const Stats& s) {
-    return chi2::poisson_count_bound(static_cast<double>(s.random_count) * kRoundedAcrossEdgeRate, kBoundTail);
+uint64_t boundary_bound(const ConsistencyStats& s) {
+    return chi2::poisson_count_bound(static_cast<double>(s.random_count) * kRoundedAcrossEdgeRate, kConsistencyBoundTail);
 }
 
 /// How many random samples may have pdf 0 next to a positive pdf: a Poisson
 /// bound on the larger of kRoundedAcrossEdgeRate and the measured share of
 /// samples that lie within the probe's reach of a support edge (only those
 /// can round across it).
-uint64_t rounded_bound(const Stats& s) {
+uint64_t rounded_bound(const ConsistencyStats& s) {
     const double rate = std::max(kRoundedAcrossEdgeRate, edge_band_share(s));
-    return chi2::poisson_count_bound(static_cast<double>(s.random_count) * rate, kBoundTail);
+    return chi2::poisson_count_bound(static_cast<double>(s.random_count) * rate, kConsistencyBoundTail);
 }
 
 struct Finding {
@@ -278,7 +278,7 @@ struct Finding {
 };
 
 /// The kinds of violation in the order the verdict states them.
-std::vector<Finding> findings(const Stats& s, const chi2::Domain& domain) {
+std::vector<Finding> findings(const ConsistencyStats& s, const chi2::Domain& domain) {
     return {{&s.nan_sample, "samples with NaN or infinite coordinates"},
             {&s.outside, fmt::format("samples outside the {}", domain.describe())},
             {&s.bad_pdf, "samples with a NaN, infinite or negative pdf"},
@@ -293,7 +293,7 @@ std::vector<Finding> findings(const Stats& s, const chi2::Domain& domain) {
 /// a warp that clamps onto its rim where its pdf is 0 (a tiny cap sampled a
 /// few floats too wide) puts a fixed fraction there, and each such sample has
 /// an infinite weight f / pdf. Edge inputs (u.x = 0 onto z = 0) are apart.
-std::string boundary_problem(const Stats& s, InputKind kind, int dims) {
+std::string boundary_problem(const ConsistencyStats& s, InputKind kind, int dims) {
     const uint64_t bound = boundary_bound(s);
     if (s.boundary_random.count <= bound) return {};
     std::string text = fmt::format("{} of {} random samples lie on the domain's boundary with pdf 0, more than the {} "
@@ -304,7 +304,7 @@ std::string boundary_problem(const Stats& s, InputKind kind, int dims) {
     return text;
 }
 
-std::string rounded_problem(const Stats& s, bool strict, InputKind kind, int dims) {
+std::string rounded_problem(const ConsistencyStats& s, bool strict, InputKind kind, int dims) {
     const uint64_t all = s.rounded_random.count + s.rounded_edges, bound = rounded_bound(s);
     if (all == 0 || (!strict && s.rounded_random.count <= bound)) return {};
     std::string text =
@@ -325,7 +325,7 @@ std::string rounded_problem(const Stats& s, bool strict, InputKind kind, int dim
 /// The verdict: any sample of any kind of violation fails; there is no
 /// tolerance on counts, since a correct warp produces none, except for the
 /// zero pdfs that float rounding at the support's edge explains (bounded).
-void judge_and_explain(CheckResult& r, const Stats& s, const WarpCase& warp, bool strict) {
+void judge_and_explain(CheckResult& r, const ConsistencyStats& s, const WarpCase& warp, bool strict) {
     const int dims = warp.domain().point_dimension();
     const InputKind kind = warp.input_kind();
     Table examples{"First violation of each kind", {"violation", "count", "input u", "sample(u)", "pdf"}, {}};
@@ -355,7 +355,7 @@ void judge_and_explain(CheckResult& r, const Stats& s, const WarpCase& warp, boo
     if (!examples.rows.empty()) r.tables.push_back(std::move(examples));
 }
 
-void add_figures(CheckResult& r, const Stats& s) {
+void add_figures(CheckResult& r, const ConsistencyStats& s) {
     r.samples = s.count;
     r.figures = {{"samples", static_cast<double>(s.count)},
                  {"non_finite_samples", static_cast<double>(s.nan_sample.count)},
@@ -384,7 +384,7 @@ public:
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
-        const Stats stats = compute(warp, ctx);
+        const ConsistencyStats stats = compute(warp, ctx);
         CheckResult r;
         add_figures(r, stats);
         judge_and_explain(r, stats, warp, ctx.options().strict);

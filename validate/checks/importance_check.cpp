@@ -44,22 +44,22 @@ constexpr double kRoundingAllowance = 0x1p-20;
 
 enum class Estimator { Weight, InversePdf };
 
-struct Stats {
+struct ImportanceStats {
     chi2::Moments moments;
     uint64_t invalid = 0;  ///< samples whose estimate is NaN or infinite (or whose pdf is not positive)
-    void merge(const Stats& o) {
+    void merge(const ImportanceStats& o) {
         moments.merge(o.moments);
         invalid += o.invalid;
     }
 };
 
-Stats compute(const WarpCase& warp, const CheckContext& ctx, Estimator which) {
-    auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, false,
+ImportanceStats compute(const WarpCase& warp, const CheckContext& ctx, Estimator which) {
+    auto parts = map_input_chunks<ImportanceStats>(ctx, warp.input_kind(), ctx.options().samples, false,
                                          [&](std::size_t, std::span<const WarpInput> inputs) {
         std::vector<WarpOutput> x(inputs.size());
         std::vector<double> value(inputs.size());
         warp.sample_with_value(inputs, x, value);
-        Stats s;
+        ImportanceStats s;
         for (double v : value) {
             const double estimate = which == Estimator::Weight ? v : 1.0 / v;
             if (!std::isfinite(estimate) || (which == Estimator::InversePdf && !(v > 0.0))) ++s.invalid;
@@ -104,7 +104,7 @@ std::string reference_text(Estimator which, const Reference& ref) {
                          : "the declared support's measure";
 }
 
-void judge(CheckResult& r, const Stats& s, const chi2::MeanTest& t, Estimator which, const Reference& ref) {
+void judge(CheckResult& r, const ImportanceStats& s, const chi2::MeanTest& t, Estimator which, const Reference& ref) {
     const char* what = which == Estimator::Weight ? "mean weight" : "mean 1/pdf";
     r.p_value = t.p_value;  // judged by the runner at the run's corrected level
     r.summary = fmt::format("{} {:.6g} vs {}{:.6g} (t = {:.2f}{})", what, t.mean, ref.one_sided ? "<= " : "",
@@ -149,7 +149,7 @@ public:
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
-        const Stats s = compute(warp, ctx, which_);
+        const ImportanceStats s = compute(warp, ctx, which_);
         const Reference ref = which_ == Estimator::Weight ? integral_of_eval(warp, ctx) : support_measure(warp);
         const double uncertainty = std::hypot(ref.error, kRoundingAllowance * std::abs(ref.value));
         chi2::MeanTest t = chi2::mean_test(s.moments, ref.value, uncertainty);

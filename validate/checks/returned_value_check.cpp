@@ -45,12 +45,12 @@ struct Example {
     double eval = 0.0, pdf = 0.0;  // the reference's parts (weight check)
 };
 
-struct Stats {
+struct ReturnedValueStats {
     uint64_t count = 0, mismatches = 0;
     double max_relative = 0.0;
     WorstK<Example> worst{10};
 
-    void merge(const Stats& o) {
+    void merge(const ReturnedValueStats& o) {
         count += o.count;
         mismatches += o.mismatches;
         max_relative = max_nan_wins(max_relative, o.max_relative);
@@ -72,15 +72,15 @@ void references(const WarpCase& warp, What what, std::span<const WarpOutput> x, 
     }
 }
 
-Stats compute(const WarpCase& warp, const CheckContext& ctx, What what) {
-    auto parts = map_input_chunks<Stats>(ctx, warp.input_kind(), ctx.options().samples, true,
+ReturnedValueStats compute(const WarpCase& warp, const CheckContext& ctx, What what) {
+    auto parts = map_input_chunks<ReturnedValueStats>(ctx, warp.input_kind(), ctx.options().samples, true,
                                          [&](std::size_t chunk, std::span<const WarpInput> inputs) {
         std::vector<WarpOutput> x(inputs.size());
         std::vector<double> value(inputs.size());
         warp.sample_with_value(inputs, x, value);
         std::vector<Example> ex(inputs.size());
         references(warp, what, x, ex);
-        Stats s;
+        ReturnedValueStats s;
         for (std::size_t i = 0; i < inputs.size(); ++i) {
             ex[i].input = inputs[i];
             ex[i].output = x[i];
@@ -97,7 +97,7 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx, What what) {
 }
 
 /// The judge: any sample beyond the tolerance fails (a correct sampler has none).
-void judge(CheckResult& r, const Stats& s, What what) {
+void judge(CheckResult& r, const ReturnedValueStats& s, What what) {
     const char* value = what == What::Pdf ? "pdf" : "weight";
     const char* reference = what == What::Pdf ? "pdf(x)" : "eval(x) / pdf(x)";
     r.summary = fmt::format("max rel. diff {:.3g}", s.max_relative);
@@ -114,7 +114,7 @@ void judge(CheckResult& r, const Stats& s, What what) {
                             e.reference, s.max_relative);
 }
 
-Table worst_table(const Stats& s, const WarpCase& warp, What what) {
+Table worst_table(const ReturnedValueStats& s, const WarpCase& warp, What what) {
     const int dims = warp.domain().point_dimension();
     Table t{"Largest disagreements", {"input u", "sample(u)", "returned", "", "relative difference"}, {}};
     t.columns[3] = what == What::Pdf ? "pdf(x)" : "eval(x) / pdf(x)";
@@ -146,7 +146,7 @@ public:
     }
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
-        const Stats s = compute(warp, ctx, what_);
+        const ReturnedValueStats s = compute(warp, ctx, what_);
         CheckResult r;
         r.samples = s.count;
         r.figures = {{"samples", static_cast<double>(s.count)},

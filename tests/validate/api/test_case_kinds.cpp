@@ -15,6 +15,7 @@
 #include "validate/api/case_grid.h"
 #include "validate/checks/checks.h"
 #include "validate/api/registry.h"
+#include "sampling/math.h"
 
 namespace warpcheck {
 namespace {
@@ -26,7 +27,6 @@ std::vector<std::unique_ptr<Check>> checks(std::initializer_list<std::unique_ptr
     for (auto make : makers) out.push_back(make());
     return out;
 }
-constexpr float kPi = 3.14159265358979323846f;
 
 // ---- a sample that returns its pdf -------------------------------------------
 
@@ -367,7 +367,7 @@ TEST(CaseGrid, BadGridsAreRefusedNamingTheFamily) {
 
 /// The message of the std::invalid_argument that `make` throws, or "".
 template <typename F>
-std::string refusal(F make) {
+std::string kind_refusal(F make) {
     try {
         make();
     } catch (const std::invalid_argument& e) {
@@ -379,7 +379,7 @@ std::string refusal(F make) {
 /// Whether `make` is refused as a declaration of case `name` with `problem` among its problems.
 template <typename F>
 ::testing::AssertionResult refused(F make, const std::string& name, const std::string& problem) {
-    const std::string message = refusal(make);
+    const std::string message = kind_refusal(make);
     if (message.find("warp case " + name + " is declared inconsistently:") != std::string::npos &&
         message.find("\n  - " + problem) != std::string::npos)
         return ::testing::AssertionSuccess();
@@ -451,7 +451,7 @@ TEST(Declaration, EveryProblemIsListed) {
     view.label = "x";
     view.lo = 0.0;
     view.hi = 5.0;
-    const std::string message = refusal([&] {
+    const std::string message = kind_refusal([&] {
         make_warp_case({.family = "many", .domain = chi2::Domain::interval(0, 2), .roundtrip_tolerance = 2.0,
                         .views = {view}},
                        warp_of([](float u) { return u; }).with_pdf([](float) { return 0.5f; }));

@@ -17,7 +17,6 @@ namespace {
 
 using ::testing::HasSubstr;
 using testing::run_check;
-constexpr double kPi = std::numbers::pi;
 
 // Uniform over the sphere, z = 1 - 2 u.x and phi = 2 pi u.y, or with `bend`
 // moving azimuth mass: phi = 2 pi (u.y + bend sin(2 pi u.y)) / ... (cos theta untouched).
@@ -41,19 +40,19 @@ MonotoneMarginal cos_theta_view() {
 MonotoneMarginal azimuth_view() {
     MonotoneMarginal m;
     m.input_coordinate = 1;
-    m.hi = 2.0 * kPi;
+    m.hi = 2.0 * std::numbers::pi;
     m.label = "phi";
     m.coordinate = [](const WarpOutput& o) {
         return o[0] == 0.0f && o[1] == 0.0f ? std::nan("") : chi2::exact_phi(o[0], o[1]);
     };
-    m.pdf = [](double) { return 0.5 / kPi; };
+    m.pdf = [](double) { return 0.5 / std::numbers::pi; };
     return m;
 }
 
 std::unique_ptr<WarpCase> sphere_case(float bend, std::vector<MonotoneMarginal> views) {
     return make_warp_case({.family = "sphere", .domain = chi2::Domain::sphere(), .views = std::move(views)},
                           warp_of([bend](Point2f u) { return sphere_sample(u, bend); })
-                              .with_pdf([](Vector3f) { return static_cast<float>(0.25 / kPi); }));
+                              .with_pdf([](Vector3f) { return static_cast<float>(0.25 / std::numbers::pi); }));
 }
 
 TEST(Views, EachViewIsTabulatedAndNamed) {
@@ -82,7 +81,7 @@ double lower_normal_quantile(double p) {
                          (1.0 + 1.432788 * t + 0.189269 * t * t + 0.001308 * t * t * t));
     for (int k = 0; k < 3; ++k) {
         const double cdf = 0.5 * std::erfc(-x / std::sqrt(2.0));
-        const double pdf = std::exp(-0.5 * x * x) / std::sqrt(2.0 * kPi);
+        const double pdf = std::exp(-0.5 * x * x) / std::sqrt(2.0 * std::numbers::pi);
         x -= (cdf - p) / pdf;
     }
     return x;
@@ -100,7 +99,7 @@ struct Normal {
     }
     float pdf(float x) const {
         const double z = (x - mu) / sigma;
-        return static_cast<float>(pdf_scale * std::exp(-0.5 * z * z) / (sigma * std::sqrt(2.0 * kPi)));
+        return static_cast<float>(pdf_scale * std::exp(-0.5 * z * z) / (sigma * std::sqrt(2.0 * std::numbers::pi)));
     }
 };
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -89,6 +90,15 @@ chi2::BinResolution bsdf_resolution(const BsdfCase& bsdf);
 
 /// The delta lobes: reflection (0) and transmission (1).
 inline constexpr int kDeltaLobes = 2;
+/// |a - b| over the larger magnitude, 0 when they differ by at most FLT_MIN (a
+/// float value's underflow noise is no disagreement; NaN gives NaN, which no
+/// limit accepts).
+inline double relative_difference(double a, double b) {
+    const double diff = std::abs(a - b);
+    if (diff <= FLT_MIN) return 0.0;
+    return diff / std::max(std::abs(a), std::abs(b));
+}
+
 inline const char* delta_lobe_name(int k) { return k == 0 ? "delta reflection" : "delta transmission"; }
 
 /// The delta samples of a run, per lobe: how many, and what they claim (the

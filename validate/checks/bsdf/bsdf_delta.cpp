@@ -64,18 +64,18 @@ bool expected_direction(const BsdfCase& bsdf, int lobe, double eta, std::array<d
     return true;
 }
 
-struct Example {
+struct DeltaExample {
     WarpInput input;
     BsdfRecord record;
     double error = 0.0;
 };
 
-struct Stats {
+struct DeltaStats {
     DeltaTally tally;  ///< random draws only
     uint64_t draws = 0;
     std::array<double, kDeltaLobes> max_error{};
-    Tally<Example> off_direction, wrong_eta, no_refraction;
-    void merge(const Stats& o) {
+    Tally<DeltaExample> off_direction, wrong_eta, no_refraction;
+    void merge(const DeltaStats& o) {
         tally.merge(o.tally);
         draws += o.draws;
         for (int k = 0; k < kDeltaLobes; ++k)
@@ -90,7 +90,7 @@ struct Stats {
 /// The eta(wi) / eta(wo) of a transmission through the case's interface.
 double claimed_eta(const BsdfCase& bsdf) { return bsdf.wo().z > 0.0f ? bsdf.claims().eta : 1.0 / bsdf.claims().eta; }
 
-void judge_direction(const BsdfCase& bsdf, Stats& s, uint64_t index, const Example& base) {
+void judge_delta_direction(const BsdfCase& bsdf, DeltaStats& s, uint64_t index, const DeltaExample& base) {
     const BsdfRecord& r = base.record;
     const int lobe = DeltaTally::lobe_of(bsdf, r);
     if (lobe == 1 && !(std::abs(r.eta / claimed_eta(bsdf) - 1.0) <= kEtaTolerance)) s.wrong_eta.add(index, base);
@@ -100,7 +100,7 @@ void judge_direction(const BsdfCase& bsdf, Stats& s, uint64_t index, const Examp
         s.no_refraction.add(index, base);
         return;
     }
-    Example e = base;
+    DeltaExample e = base;
     e.error = std::hypot(r.wi[0] - w[0], r.wi[1] - w[1], r.wi[2] - w[2]);
     double& worst = s.max_error[static_cast<std::size_t>(lobe)];
     worst = max_nan_wins(worst, e.error);
@@ -108,16 +108,16 @@ void judge_direction(const BsdfCase& bsdf, Stats& s, uint64_t index, const Examp
     if (!(e.error <= tol)) s.off_direction.add(index, e);
 }
 
-Stats compute(const BsdfCase& bsdf, const CheckContext& ctx) {
-    const auto parts = map_bsdf_chunks<Stats>(
+DeltaStats compute_delta(const BsdfCase& bsdf, const CheckContext& ctx) {
+    const auto parts = map_bsdf_chunks<DeltaStats>(
         ctx, bsdf, ctx.options().samples, true,
         [&](std::size_t chunk, std::span<const WarpInput> in, std::span<const BsdfRecord> rec) {
-            Stats s;
+            DeltaStats s;
             if (chunk > 0) s.draws = rec.size();
             for (std::size_t i = 0; i < rec.size(); ++i) {
                 if (!rec[i].sampled() || !rec[i].delta()) continue;
                 if (chunk > 0) s.tally.add(bsdf, rec[i]);  // the binomial test takes random draws only
-                judge_direction(bsdf, s, chunk * kInputChunkSize + i, Example{in[i], rec[i], 0.0});
+                judge_delta_direction(bsdf, s, chunk * kInputChunkSize + i, DeltaExample{in[i], rec[i], 0.0});
             }
             return s;
         });
@@ -129,7 +129,7 @@ struct LobeTest {
     double p_value = 1.0, spread = 0.0, detectable = 0.0;
 };
 
-std::array<LobeTest, kDeltaLobes> lobe_tests(const Stats& s, double level) {
+std::array<LobeTest, kDeltaLobes> lobe_tests(const DeltaStats& s, double level) {
     std::array<LobeTest, kDeltaLobes> out{};
     for (int k = 0; k < kDeltaLobes; ++k) {
         const DeltaTally::Lobe& l = s.tally.lobes[static_cast<std::size_t>(k)];
@@ -144,13 +144,13 @@ std::array<LobeTest, kDeltaLobes> lobe_tests(const Stats& s, double level) {
     return out;
 }
 
-std::string describe(const Example& e) {
+std::string describe_delta(const DeltaExample& e) {
     return fmt::format("input {}: wi ({:.9g}, {:.9g}, {:.9g}), eta {:.9g}, pdf {:.9g}",
                        format_input(e.input, InputKind::Uniform3D), e.record.wi[0], e.record.wi[1], e.record.wi[2],
                        e.record.eta, e.record.pdf);
 }
 
-std::vector<std::string> failures(const BsdfCase& bsdf, const Stats& s, const std::array<LobeTest, kDeltaLobes>& t) {
+std::vector<std::string> failures(const BsdfCase& bsdf, const DeltaStats& s, const std::array<LobeTest, kDeltaLobes>& t) {
     std::vector<std::string> out;
     for (int k = 0; k < kDeltaLobes; ++k) {
         const LobeTest& lt = t[static_cast<std::size_t>(k)];
@@ -162,19 +162,19 @@ std::vector<std::string> failures(const BsdfCase& bsdf, const Stats& s, const st
     }
     if (s.wrong_eta.count > 0)
         out.push_back(fmt::format("{} transmissions report an eta that is not eta(wi) / eta(wo) = {:.9g} of the claims "
-                                  "(first: {})", s.wrong_eta.count, claimed_eta(bsdf), describe(*s.wrong_eta.first)));
+                                  "(first: {})", s.wrong_eta.count, claimed_eta(bsdf), describe_delta(*s.wrong_eta.first)));
     if (s.no_refraction.count > 0)
         out.push_back(fmt::format("{} transmissions beyond the critical angle of their own eta (first: {})",
-                                  s.no_refraction.count, describe(*s.no_refraction.first)));
+                                  s.no_refraction.count, describe_delta(*s.no_refraction.first)));
     if (s.off_direction.count > 0)
         out.push_back(fmt::format("{} delta samples off their lobe's direction (mirror, or Snell with the sample's "
                                   "eta) by up to {:.3g} (first: {}, off by {:.3g})", s.off_direction.count,
-                                  std::max(s.max_error[0], s.max_error[1]), describe(*s.off_direction.first),
+                                  std::max(s.max_error[0], s.max_error[1]), describe_delta(*s.off_direction.first),
                                   s.off_direction.first->error));
     return out;
 }
 
-Table lobe_table(const Stats& s, const std::array<LobeTest, kDeltaLobes>& t) {
+Table lobe_table(const DeltaStats& s, const std::array<LobeTest, kDeltaLobes>& t) {
     Table table{"Delta lobes",
                 {"lobe", "samples", "share", "claimed probability", "p-value", "90% power: probability error",
                  "max direction error", "mean weight"},
@@ -192,7 +192,7 @@ Table lobe_table(const Stats& s, const std::array<LobeTest, kDeltaLobes>& t) {
     return table;
 }
 
-void add_figures(CheckResult& r, const Stats& s, const std::array<LobeTest, kDeltaLobes>& t, double level) {
+void add_figures(CheckResult& r, const DeltaStats& s, const std::array<LobeTest, kDeltaLobes>& t, double level) {
     r.samples = s.draws;
     r.figures = {{"samples", static_cast<double>(s.draws)}, {"power_level", level},
                  {"off_direction", static_cast<double>(s.off_direction.count)},
@@ -225,7 +225,7 @@ protected:
     }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
-        const Stats s = compute(bsdf, ctx);
+        const DeltaStats s = compute_delta(bsdf, ctx);
         const int tested = (s.tally.lobes[0].count > 0) + (s.tally.lobes[1].count > 0);
         const double level = power_level(ctx.options(), std::max(tested, 1));
         const auto tests = lobe_tests(s, level);

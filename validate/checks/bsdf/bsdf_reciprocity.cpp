@@ -9,7 +9,7 @@
 // Tested at the case's wo against every wi of its continuous samples (where
 // f matters) and of a spherical Fibonacci grid of kGridDirections (where it
 // is small). Not statistical: one violation is a failure. The rule: the two
-// sides agree within kRelativeTolerance relative, or FLT_MIN absolute, or
+// sides agree within kReciprocityTolerance relative, or FLT_MIN absolute, or
 // within f's own float resolution there: how much f(wo, .) and f(., wo) move
 // when wi moves by 1, 4 and 16 floats of a unit vector's components
 // (kNeighbourSteps), measured at eight neighbours at each distance, for each
@@ -38,11 +38,11 @@
 namespace warpcheck::bsdf {
 namespace {
 
-/// 2^-12 relative, as bsdf_weight's: f(wo, wi) and f(wi, wo) compute the same
+/// 2^-12 relative, as bsdf_weight's: f(wo, wi) and f(wi, wo) compute_reciprocity the same
 /// half vector and Fresnel term from the two directions in another order, each
 /// off by a few float roundings, which a sharp lobe's slope (~80 per radian at
 /// alpha = 0.05) multiplies to ~1e-5; a non-reciprocal factor is off by percent.
-constexpr double kRelativeTolerance = 0x1p-12;
+constexpr double kReciprocityTolerance = 0x1p-12;
 /// Directions of the deterministic grid, spread evenly over the sphere.
 constexpr int kGridDirections = 4096;
 /// The continuous samples' directions tested: at most this many.
@@ -81,12 +81,6 @@ std::string rule_of(const BsdfCase& bsdf, const WarpOutput& wi) {
                        "f(wi, wo) / eta({})^2, scale s = {:.9g}",
                        bsdf.claims().eta, radiance ? "radiance" : "importance", radiance ? "wo" : "wi",
                        radiance ? "wi" : "wo", reciprocity_scale(bsdf, wi));
-}
-
-double relative_difference(double a, double b) {
-    const double diff = std::abs(a - b);
-    if (diff <= FLT_MIN) return 0.0;
-    return diff / std::max(std::abs(a), std::abs(b));
 }
 
 /// The directions: the continuous samples' wi (random draws), then the grid.
@@ -140,7 +134,7 @@ double float_resolution(const BsdfCase& bsdf, const Pair& p) {
     return spread_f + spread_b;
 }
 
-struct Stats {
+struct ReciprocityStats {
     uint64_t pairs = 0, violations = 0, excused = 0;
     double max_error = 0.0, excused_max_error = 0.0;
     double excused_max_fraction = 0.0;  ///< of the excused pairs: the largest discrepancy over the resolution
@@ -148,18 +142,18 @@ struct Stats {
     std::vector<double> max_by_degree = std::vector<double>(180, 0.0);  ///< the largest error per degree of theta_i
 };
 
-Stats compute(const BsdfCase& bsdf, const CheckContext& ctx) {
+ReciprocityStats compute_reciprocity(const BsdfCase& bsdf, const CheckContext& ctx) {
     const std::vector<WarpOutput> wi = directions(bsdf, ctx);
     const std::vector<WarpOutput> wo(wi.size(), detail::to_output_of(bsdf.wo()));
     std::vector<double> forward(wi.size()), backward(wi.size());
     bsdf.f(wo, wi, forward);
     bsdf.f(wi, wo, backward);
-    Stats s;
+    ReciprocityStats s;
     for (std::size_t i = 0; i < wi.size(); ++i) {
         Pair p{wi[i], forward[i], backward[i], reciprocity_scale(bsdf, wi[i]), 0.0};
         p.error = relative_difference(p.forward * p.scale, p.backward);
         ++s.pairs;
-        if (!(p.error <= kRelativeTolerance)) {
+        if (!(p.error <= kReciprocityTolerance)) {
             const double gap = std::abs(p.forward * p.scale - p.backward), resolution = float_resolution(bsdf, p);
             if (gap <= kResolutionFactor * resolution) {
                 ++s.excused;
@@ -178,7 +172,7 @@ Stats compute(const BsdfCase& bsdf, const CheckContext& ctx) {
     return s;
 }
 
-Plot error_plot(const BsdfCase& bsdf, const Stats& s) {
+Plot error_plot(const BsdfCase& bsdf, const ReciprocityStats& s) {
     Plot plot;
     plot.kind = Plot::Kind::Points;
     plot.title = "reciprocity error of " + bsdf.name();
@@ -190,11 +184,11 @@ Plot error_plot(const BsdfCase& bsdf, const Stats& s) {
         worst.y.push_back(s.max_by_degree[d]);
     }
     plot.series = {std::move(worst),
-                   {"tolerance", {0.0, 180.0}, {kRelativeTolerance, kRelativeTolerance}}};
+                   {"tolerance", {0.0, 180.0}, {kReciprocityTolerance, kReciprocityTolerance}}};
     return plot;
 }
 
-Table worst_table(const Stats& s) {
+Table reciprocity_worst_table(const ReciprocityStats& s) {
     Table t{"Largest reciprocity errors", {"wi", "f(wo, wi)", "scale s", "f(wi, wo)", "relative error"}, {}};
     for (const auto& e : s.worst.entries())
         t.rows.push_back({format_output(e.item.wi, 3), fmt::format("{:.9g}", e.item.forward),
@@ -220,7 +214,7 @@ protected:
     }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
-        const Stats s = compute(bsdf, ctx);
+        const ReciprocityStats s = compute_reciprocity(bsdf, ctx);
         CheckResult r;
         r.samples = s.pairs;
         r.figures = {{"pairs", static_cast<double>(s.pairs)},
@@ -229,7 +223,7 @@ protected:
                      {"excused_max_error", s.excused_max_error},
                      {"excused_max_fraction_of_resolution", s.excused_max_fraction},
                      {"max_relative_error", s.max_error},
-                     {"tolerance", kRelativeTolerance}};
+                     {"tolerance", kReciprocityTolerance}};
         r.summary = fmt::format("max rel. error {:.3g} over {} pairs, {} at float resolution", s.max_error, s.pairs,
                                 s.excused);
         const double excused_bound = kMaxExcusedFraction * static_cast<double>(s.pairs);
@@ -240,22 +234,22 @@ protected:
             r.message = fmt::format("{} of {} pairs differ by more than {:.3g} relative and are within f's float "
                                     "resolution, more than the {:.0f} ({:.3g} of the pairs) that cancellations near "
                                     "the critical angle or edge-on facets explain: f is unstable, not float-limited",
-                                    s.excused, s.pairs, kRelativeTolerance, excused_bound, kMaxExcusedFraction);
+                                    s.excused, s.pairs, kReciprocityTolerance, excused_bound, kMaxExcusedFraction);
         }
         if (s.violations > 0) {
             const Pair& p = s.worst.front().item;
             r.summary = fmt::format("not reciprocal at {} of {} pairs", s.violations, s.pairs);
             r.message = fmt::format("{} of {} pairs differ by more than {:.3g} relative; worst: wi {}, f(wo, wi) {:.9g} "
                                     "times {:.9g} against f(wi, wo) {:.9g} (relative error {:.3g}); rule: {}",
-                                    s.violations, s.pairs, kRelativeTolerance, format_output(p.wi, 3), p.forward,
+                                    s.violations, s.pairs, kReciprocityTolerance, format_output(p.wi, 3), p.forward,
                                     p.scale, p.backward, p.error, rule_of(bsdf, p.wi));
         }
         r.plots.push_back(error_plot(bsdf, s));
-        r.tables.push_back(worst_table(s));
+        r.tables.push_back(reciprocity_worst_table(s));
         FamilyPoint point = family_point(bsdf, "reciprocity error against theta_o", "largest relative error");
         point.log_y = true;
         point.values = {{"largest relative error", s.max_error}};
-        point.limits = {{"tolerance", kRelativeTolerance}};
+        point.limits = {{"tolerance", kReciprocityTolerance}};
         r.family_points.push_back(std::move(point));
         return r;
     }

@@ -82,12 +82,6 @@ struct Stats {
     }
 };
 
-double relative_difference(double a, double b) {
-    const double diff = std::abs(a - b);
-    if (diff <= FLT_MIN) return 0.0;
-    return diff / std::max(std::abs(a), std::abs(b));
-}
-
 /// The side rule: whether wi lies where the sample's flags put it.
 bool on_its_side(const BsdfCase& bsdf, const BsdfRecord& r) {
     if (bsdf.phase_function()) return true;

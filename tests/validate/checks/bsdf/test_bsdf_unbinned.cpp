@@ -33,7 +33,7 @@ std::unique_ptr<WarpCase> conductor(float alpha, double theta) {
                           {.wo = bsdf_direction(theta)}, RoughConductor(TrowbridgeReitz(alpha), kGoldEta, kGoldK));
 }
 
-std::unique_ptr<WarpCase> henyey_greenstein(float g) {
+std::unique_ptr<WarpCase> hg_lobe(float g) {
     return make_phase_case({.family = "hard_hg", .params = {{"g", g}, {"theta_o", 30}}}, bsdf_direction(30, 20),
                            HenyeyGreenstein(g));
 }
@@ -69,7 +69,7 @@ std::string rows(const RunResult& r) {
 TEST(BsdfUnbinned, HardLobesPassOnTenSeeds) {
     std::vector<std::unique_ptr<WarpCase>> cases;
     for (float alpha : {0.01f, 0.05f}) cases.push_back(conductor(alpha, 85));
-    for (float g : {0.9f, 0.99f}) cases.push_back(henyey_greenstein(g));
+    for (float g : {0.9f, 0.99f}) cases.push_back(hg_lobe(g));
     for (uint64_t seed = 1; seed <= 10; ++seed) {
         const RunResult r = run(cases, {"bsdf_unbinned"}, seed);
         ASSERT_EQ(r.results.size(), cases.size());

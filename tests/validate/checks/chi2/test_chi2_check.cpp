@@ -21,11 +21,11 @@
 #include "validate/checks/checks.h"
 #include "validate/run/thread_pool.h"
 #include "validate/api/warp_case.h"
+#include "sampling/math.h"
 
 namespace warpcheck {
 namespace {
 
-constexpr float kPi = std::numbers::pi_v<float>;
 // Correct warps give uniform p-values; with fixed seeds these are fixed numbers,
 // and this level is far below any of them.
 constexpr double kPassLevel = 1e-4;

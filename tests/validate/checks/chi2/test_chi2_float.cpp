@@ -38,7 +38,7 @@ CheckResult chi2_of(const WarpCase& warp, uint64_t seed, bool strict = false) {
     return run_jobs({Job{&warp, check.get()}}, options).results.at(0);
 }
 
-double figure(const CheckResult& r, const char* name) {
+double float_figure(const CheckResult& r, const char* name) {
     return r.figure(name).value_or(std::numeric_limits<double>::quiet_NaN());
 }
 
@@ -63,8 +63,8 @@ TEST(Chi2Float, CancellingFloatPdfPassesWithItsAllowance) {
         for (Vector3f forward : {Vector3f{0, 0, 1}, kOblique})
             for (uint64_t seed : {1, 2, 3}) expect_pass(*henyey_greenstein("hg", g, forward), seed);
     const CheckResult r = chi2_of(*henyey_greenstein("hg", 0.99f, {0, 0, 1}), 1);
-    EXPECT_GT(std::abs(figure(r, "integral") - 1.0), 1e-5);  // the float pdf is off by far more than 2^-20
-    EXPECT_LT(std::abs(figure(r, "integral") - 1.0), figure(r, "float_noise_allowance"));
+    EXPECT_GT(std::abs(float_figure(r, "integral") - 1.0), 1e-5);  // the float pdf is off by far more than 2^-20
+    EXPECT_LT(std::abs(float_figure(r, "integral") - 1.0), float_figure(r, "float_noise_allowance"));
     EXPECT_NE(r.summary.find("float rounding"), std::string::npos) << r.summary;
 }
 
@@ -86,7 +86,7 @@ TEST(Chi2Float, WrongConstantsStillFail) {
     const auto sphere = make_warp_case(
         {.family = "sphere_off", .domain = chi2::Domain::sphere()},
         warp_of([](Point2f u) {
-            const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPi * u.y;
+            const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * testing::hard::kPi * u.y;
             return Vector3f{r * std::cos(phi), r * std::sin(phi), z};
         })
             .with_pdf([](Vector3f) { return kInv4Pi * (1.0f + 5e-5f); }));
@@ -110,12 +110,12 @@ TEST(Chi2Float, TinySunPasses) {
         for (bool cap : {true, false})
             for (uint64_t seed : {1, 2}) expect_pass(*sun(degrees, cap), seed);
     const CheckResult r = chi2_of(*sun(0.25, false), 1);
-    EXPECT_EQ(figure(r, "equal_probability_cells"), 1.0);
+    EXPECT_EQ(float_figure(r, "equal_probability_cells"), 1.0);
     // Its rim's float rounding (half a step of z, 0.3% of the cap) is carried
     // into the bands, and the row states what power is left (a tilt of about
     // 0.07: weak, and it says so).
-    EXPECT_LT(figure(r, "power_tilt_eps"), 0.1);
-    EXPECT_EQ(r.weak.empty(), figure(r, "power_tilt_eps") <= 0.05);
+    EXPECT_LT(float_figure(r, "power_tilt_eps"), 0.1);
+    EXPECT_EQ(r.weak.empty(), float_figure(r, "power_tilt_eps") <= 0.05);
 }
 
 // The same sun with its azimuth 2% short still fails.
@@ -134,8 +134,8 @@ TEST(Chi2Float, JumpAlongTheCellDiagonalsPasses) {
                                          SquareTriangle{});
     for (uint64_t seed : {2, 3, 4, 5}) expect_pass(*triangle, seed);
     const CheckResult r = chi2_of(*triangle, 2);
-    EXPECT_LE(std::abs(figure(r, "integral") - 1.0), figure(r, "integration_error") + 0x1p-20);
-    EXPECT_GT(figure(r, "verification_mismatches"), 0.0);
+    EXPECT_LE(std::abs(float_figure(r, "integral") - 1.0), float_figure(r, "integration_error") + 0x1p-20);
+    EXPECT_GT(float_figure(r, "verification_mismatches"), 0.0);
     expect_fail(*make_warp_case({.family = "square_triangle_off", .domain = chi2::Domain::unit_square()},
                                 SquareTriangle{1.98f}),
                 "integrates to");
@@ -161,7 +161,7 @@ TEST(Chi2Float, SliverLightIsFoundAroundItsSamples) {
     // Found by cells of equal probability integrated where the pilot saw it,
     // or around the samples in cells whose nodes missed it.
     const CheckResult r = chi2_of(*sliver, 1);
-    EXPECT_TRUE(figure(r, "reintegrated_cells") > 0.0 || figure(r, "equal_probability_cells") == 1.0);
+    EXPECT_TRUE(float_figure(r, "reintegrated_cells") > 0.0 || float_figure(r, "equal_probability_cells") == 1.0);
     const auto spilling = make_warp_case({.family = "sliver_light_spilling", .domain = chi2::Domain::hemisphere()},
                                          RectangleLight{0.5f, 0.002f, 0.0025f});
     EXPECT_EQ(chi2_of(*spilling, 1).verdict, Verdict::Fail);

@@ -141,7 +141,7 @@ private:
     F f_;
 };
 
-CheckResult exhaustive(const WarpCase& warp, double max_float_bias = 0.0) {
+CheckResult exhaustive_verdict(const WarpCase& warp, double max_float_bias = 0.0) {
     RunOptions options;
     options.threads = 2;
     options.check_time_budget = testing::kTestTimeBudget;
@@ -152,7 +152,7 @@ CheckResult exhaustive(const WarpCase& warp, double max_float_bias = 0.0) {
 
 TEST(ExhaustiveCheckVerdicts, TheClampedMultiplySinglesOutItsTopFloatAndFailsAMaxFloatBias) {
     const WarpCase& clamped = builtin_case("unit_float_mul32_clamped");
-    const CheckResult reported = exhaustive(clamped);
+    const CheckResult reported = exhaustive_verdict(clamped);
     EXPECT_EQ(reported.verdict, Verdict::Pass) << reported.message;  // bias alone is a finding
     // 0x1.fffffep-1 takes 383 inputs against an ideal 256 (factor 383 / 257).
     EXPECT_EQ(*reported.figure("most_biased_float"), 0x1.fffffep-1);
@@ -164,7 +164,7 @@ TEST(ExhaustiveCheckVerdicts, TheClampedMultiplySinglesOutItsTopFloatAndFailsAMa
     EXPECT_TRUE(table);
     // The old rule's only bias figure is the same for an unbiased sampler.
     EXPECT_EQ(*reported.figure("max_relative_deviation"), 0.5);
-    const CheckResult failed = exhaustive(clamped, 1.4);
+    const CheckResult failed = exhaustive_verdict(clamped, 1.4);
     EXPECT_EQ(failed.verdict, Verdict::Fail);
     EXPECT_NE(failed.message.find("max-float-bias"), std::string::npos) << failed.message;
 }
@@ -176,7 +176,7 @@ TEST(ExhaustiveCheckVerdicts, ARoundDownMultiplyPassesTheSameMaxFloatBias) {
         const auto x = static_cast<float>(exact);
         return static_cast<double>(x) > exact ? next_float_down(x) : x;
     });
-    const CheckResult r = exhaustive(round_down, 1.4);
+    const CheckResult r = exhaustive_verdict(round_down, 1.4);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     EXPECT_LE(*r.figure("max_float_bias"), 1.0);
     EXPECT_EQ(*r.figure("unreached_above_one_input"), 0.0);
@@ -185,14 +185,14 @@ TEST(ExhaustiveCheckVerdicts, ARoundDownMultiplyPassesTheSameMaxFloatBias) {
 TEST(ExhaustiveCheckVerdicts, AReachShortOfTheTopByMoreThanOneInputFails) {
     // (u >> 9) 2^-23 never reaches 1 - 2^-24, whose ideal mass is 2^-24 >> 2^-32.
     const SweepableU32 short_reach([](uint32_t u) { return static_cast<float>(u >> 9) * 0x1p-23f; });
-    const CheckResult bad = exhaustive(short_reach);
+    const CheckResult bad = exhaustive_verdict(short_reach);
     EXPECT_EQ(bad.verdict, Verdict::Fail);
     EXPECT_EQ(*bad.figure("highest_output"), 0x1.fffffcp-1);
     EXPECT_EQ(*bad.figure("mass_outside_reach"), 0x1p-24);
     EXPECT_NE(bad.message.find("reach only"), std::string::npos) << bad.message;
     // The twin with 24 bits reaches the largest float below 1.
     const SweepableU32 full_reach([](uint32_t u) { return static_cast<float>(u >> 8) * 0x1p-24f; });
-    const CheckResult ok = exhaustive(full_reach);
+    const CheckResult ok = exhaustive_verdict(full_reach);
     EXPECT_EQ(ok.verdict, Verdict::Pass) << ok.message;
     EXPECT_EQ(*ok.figure("lowest_output"), 0.0);
     EXPECT_EQ(*ok.figure("highest_output"), 0x1.fffffep-1);

@@ -37,7 +37,7 @@ CheckResult roundtrip(const WarpCase& warp, uint64_t seed, uint64_t samples, boo
     return run(*make_roundtrip_check(), warp, seed, samples, strict);
 }
 
-double figure(const CheckResult& r, const std::string& name) {
+double resolution_figure(const CheckResult& r, const std::string& name) {
     const auto f = r.figure(name);
     EXPECT_TRUE(f.has_value()) << name;
     return f.value_or(std::nan(""));
@@ -113,14 +113,14 @@ TEST(RoundtripResolution, TriangleInverseExactInRealsPassesNearItsVertex) {
         for (const WarpCase* warp : {tri.get(), tight.get()}) {
             const CheckResult r = roundtrip(*warp, seed, 1'000'000);
             EXPECT_EQ(r.verdict, Verdict::Pass) << warp->name() << " seed " << seed << ": " << r.message;
-            EXPECT_EQ(figure(r, "other_preimage_random_inputs"), 0.0) << warp->name() << " seed " << seed;
-            EXPECT_GT(figure(r, "resolution_limited"), 0.0) << warp->name() << " seed " << seed;
-            EXPECT_LE(figure(r, "max_resolution_limited_cells"), 1.0) << warp->name() << " seed " << seed;  // rule: 4
+            EXPECT_EQ(resolution_figure(r, "other_preimage_random_inputs"), 0.0) << warp->name() << " seed " << seed;
+            EXPECT_GT(resolution_figure(r, "resolution_limited"), 0.0) << warp->name() << " seed " << seed;
+            EXPECT_LE(resolution_figure(r, "max_resolution_limited_cells"), 1.0) << warp->name() << " seed " << seed;  // rule: 4
             EXPECT_GT(excused_rows(r, "resolution-limited"), 0u) << warp->name() << " seed " << seed;
             EXPECT_NE(r.summary.find("resolution-limited"), std::string::npos) << r.summary;
         }
         const CheckResult r = roundtrip(*tight, seed, 1'000'000);
-        EXPECT_GT(figure(r, "resolution_limited_random_inputs"), 50.0) << "seed " << seed;
+        EXPECT_GT(resolution_figure(r, "resolution_limited_random_inputs"), 50.0) << "seed " << seed;
     }
 }
 
@@ -133,15 +133,15 @@ TEST(RoundtripResolution, TriangleInverseOffBy1e3Fails) {
     for (uint64_t seed : kSeeds) {
         const CheckResult a = roundtrip(*everywhere, seed, 200'000);
         EXPECT_EQ(a.verdict, Verdict::Fail) << "seed " << seed;
-        EXPECT_GT(figure(a, "failures"), 180'000.0) << "seed " << seed;
+        EXPECT_GT(resolution_figure(a, "failures"), 180'000.0) << "seed " << seed;
         const CheckResult b = roundtrip(*near_vertex, seed, 1'000'000);
         EXPECT_EQ(b.verdict, Verdict::Fail) << "seed " << seed;
-        EXPECT_GT(figure(b, "other_preimage_random_inputs"), figure(b, "other_preimage_bound")) << "seed " << seed;
+        EXPECT_GT(resolution_figure(b, "other_preimage_random_inputs"), resolution_figure(b, "other_preimage_bound")) << "seed " << seed;
         EXPECT_GT(excused_rows(b, "other preimage"), 0u) << "the offending inputs are listed";
         EXPECT_NE(b.message.find("another preimage"), std::string::npos) << b.message;
         const CheckResult c = roundtrip(*near_tight, seed, 1'000'000);
         EXPECT_EQ(c.verdict, Verdict::Fail) << "seed " << seed;
-        EXPECT_GT(figure(c, "failures"), 100.0) << "seed " << seed;
+        EXPECT_GT(resolution_figure(c, "failures"), 100.0) << "seed " << seed;
     }
 }
 
@@ -153,13 +153,13 @@ TEST(RoundtripResolution, SharpPhongLobesInversePasses) {
         for (uint64_t seed : kSeeds) {
             const CheckResult r = roundtrip(*lobe, seed, 200'000);
             EXPECT_EQ(r.verdict, Verdict::Pass) << "n " << n << " seed " << seed << ": " << r.message;
-            EXPECT_EQ(figure(r, "failures"), 0.0);
+            EXPECT_EQ(resolution_figure(r, "failures"), 0.0);
             // Thousands of inputs off by a float step of cos theta (up to 3e-4 of u.x).
-            EXPECT_GT(figure(r, "resolution_limited"), n > 5000 ? 100'000.0 : 10'000.0) << "n " << n;
-            EXPECT_LE(figure(r, "max_resolution_limited_cells"), 1.0) << "n " << n << " seed " << seed;
-            EXPECT_LE(figure(r, "float_pole_random_inputs"), figure(r, "float_pole_bound"));
+            EXPECT_GT(resolution_figure(r, "resolution_limited"), n > 5000 ? 100'000.0 : 10'000.0) << "n " << n;
+            EXPECT_LE(resolution_figure(r, "max_resolution_limited_cells"), 1.0) << "n " << n << " seed " << seed;
+            EXPECT_LE(resolution_figure(r, "float_pole_random_inputs"), resolution_figure(r, "float_pole_bound"));
             if (n > 5000) {
-                EXPECT_GT(figure(r, "float_pole_random_inputs"), 0.0) << "seed " << seed;
+                EXPECT_GT(resolution_figure(r, "float_pole_random_inputs"), 0.0) << "seed " << seed;
             }
         }
     }
@@ -172,7 +172,7 @@ TEST(RoundtripResolution, SharpPhongLobesWrongInverseFails) {
         for (uint64_t seed : kSeeds) {
             const CheckResult r = roundtrip(*wrong, seed, 200'000);
             EXPECT_EQ(r.verdict, Verdict::Fail) << "n " << n << " seed " << seed;
-            EXPECT_GT(figure(r, "failures"), 50'000.0) << "n " << n << " seed " << seed;
+            EXPECT_GT(resolution_figure(r, "failures"), 50'000.0) << "n " << n << " seed " << seed;
         }
     }
     // cos theta^n instead of cos theta^(n+1). (At n = 10^4 that changes u.x by
@@ -206,8 +206,8 @@ TEST(RoundtripResolution, TinyConesInversePasses) {
         for (uint64_t seed : kSeeds) {
             const CheckResult r = roundtrip(*cone, seed, 200'000);
             EXPECT_EQ(r.verdict, Verdict::Pass) << degrees << " seed " << seed << ": " << r.message;
-            EXPECT_GT(figure(r, "resolution_limited"), 100'000.0) << degrees << " seed " << seed;
-            EXPECT_LE(figure(r, "max_resolution_limited_cells"), 1.0) << degrees << " seed " << seed;  // rule: 4
+            EXPECT_GT(resolution_figure(r, "resolution_limited"), 100'000.0) << degrees << " seed " << seed;
+            EXPECT_LE(resolution_figure(r, "max_resolution_limited_cells"), 1.0) << degrees << " seed " << seed;  // rule: 4
         }
     }
 }
@@ -219,7 +219,7 @@ TEST(RoundtripResolution, TinyConesWrongInverseFails) {
     for (uint64_t seed : kSeeds) {
         const CheckResult r = roundtrip(*wrong, seed, 200'000);
         EXPECT_EQ(r.verdict, Verdict::Fail) << "seed " << seed;
-        EXPECT_GT(figure(r, "failures"), 100'000.0) << "seed " << seed;
+        EXPECT_GT(resolution_figure(r, "failures"), 100'000.0) << "seed " << seed;
     }
 }
 
@@ -232,12 +232,12 @@ TEST(RoundtripRoundedToOne, PassesByDefaultAndFailsUnderStrict) {
         for (uint64_t seed : {1, 2, 3}) {
             const CheckResult r = roundtrip(*warp, seed, 200'000);
             EXPECT_EQ(r.verdict, Verdict::Pass) << warp->name() << " seed " << seed << ": " << r.message;
-            EXPECT_GE(figure(r, "rounded_to_one"), 1.0) << warp->name();
-            EXPECT_EQ(figure(r, "outside_input_domain"), 0.0) << warp->name();
+            EXPECT_GE(resolution_figure(r, "rounded_to_one"), 1.0) << warp->name();
+            EXPECT_EQ(resolution_figure(r, "outside_input_domain"), 0.0) << warp->name();
             EXPECT_NE(r.summary.find("rounded to 1 (fails under --strict)"), std::string::npos) << r.summary;
             const CheckResult strict = roundtrip(*warp, seed, 200'000, true);
             EXPECT_EQ(strict.verdict, Verdict::Fail) << warp->name() << " seed " << seed;
-            EXPECT_EQ(figure(strict, "rounded_to_one"), figure(r, "rounded_to_one"));
+            EXPECT_EQ(resolution_figure(strict, "rounded_to_one"), resolution_figure(r, "rounded_to_one"));
             EXPECT_NE(strict.message.find("fails under --strict"), std::string::npos) << strict.message;
         }
     }
@@ -250,7 +250,7 @@ TEST(RoundtripRoundedToOne, OneForUFarFromOneAlwaysFails) {
         for (bool strict : {false, true}) {
             const CheckResult r = roundtrip(*warp, 1, 200'000, strict);
             EXPECT_EQ(r.verdict, Verdict::Fail) << warp->name() << " strict " << strict;
-            EXPECT_GT(figure(r, "outside_input_domain"), 15'000.0) << warp->name();
+            EXPECT_GT(resolution_figure(r, "outside_input_domain"), 15'000.0) << warp->name();
             EXPECT_NE(r.message.find("outside the input domain"), std::string::npos) << r.message;
         }
     }
@@ -271,8 +271,8 @@ TEST(ExhaustiveRoundtripRoundedToOne, PassesByDefault) {
     const auto interval = hard::scaled_interval("interval_times_reciprocal", 7.0f);
     const CheckResult r = run(*make_exhaustive_roundtrip_check(), *interval, 1, 0);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
-    EXPECT_EQ(figure(r, "rounded_to_one"), 1.0);  // the largest float below 1 only
-    EXPECT_EQ(figure(r, "outside_input_domain"), 0.0);
+    EXPECT_EQ(resolution_figure(r, "rounded_to_one"), 1.0);  // the largest float below 1 only
+    EXPECT_EQ(resolution_figure(r, "outside_input_domain"), 0.0);
     EXPECT_NE(r.summary.find("1 rounded to 1 (fails under --strict)"), std::string::npos) << r.summary;
 }
 
@@ -281,7 +281,7 @@ TEST(ExhaustiveRoundtripRoundedToOne, FailsUnderStrict) {
     const auto interval = hard::scaled_interval("interval_times_reciprocal", 7.0f);
     const CheckResult r = run(*make_exhaustive_roundtrip_check(), *interval, 1, 0, true);
     EXPECT_EQ(r.verdict, Verdict::Fail);
-    EXPECT_EQ(figure(r, "rounded_to_one"), 1.0);
+    EXPECT_EQ(resolution_figure(r, "rounded_to_one"), 1.0);
     EXPECT_NE(r.message.find("fails under --strict"), std::string::npos) << r.message;
 }
 
@@ -292,8 +292,8 @@ TEST(ExhaustiveRoundtripRoundedToOne, OneWithinTheToleranceButBeyondTheEdgeFails
     const auto interval = hard::scaled_interval("interval_one_from_1-1e-6", 7.0f, 0.999999f);
     const CheckResult r = run(*make_exhaustive_roundtrip_check(), *interval, 1, 0);
     EXPECT_EQ(r.verdict, Verdict::Fail);
-    EXPECT_EQ(figure(r, "roundtrip_failures"), 0.0);
-    EXPECT_GT(figure(r, "outside_input_domain"), 5.0);
+    EXPECT_EQ(resolution_figure(r, "roundtrip_failures"), 0.0);
+    EXPECT_GT(resolution_figure(r, "outside_input_domain"), 5.0);
     EXPECT_NE(r.message.find("outside the input domain"), std::string::npos) << r.message;
 }
 

@@ -22,6 +22,7 @@
 #include "validate/checks/tabulated_reference.h"
 #include "validate/api/register17.h"
 #include "validate/api/registry.h"
+#include "sampling/math.h"
 
 namespace warpcheck {
 namespace {
@@ -30,8 +31,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 using testing::run_check;
 
-constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
-constexpr std::array<uint64_t, 3> kSeeds = {1, 2, 3};
+constexpr std::array<uint64_t, 3> kTabulatedSeeds = {1, 2, 3};
 
 WarpCaseInfo interval_info(const std::string& family, double a = 0.0, double b = 1.0,
                            Inversion inversion = Inversion::Measure) {
@@ -84,7 +84,7 @@ std::unique_ptr<WarpCase> alias_table_1d() {
 
 TEST(TabulatedMonotonicity, SamplersThatAreNotMonotoneInUAreNotApplicableWithWhere) {
     const auto check = make_tabulated_check();
-    for (uint64_t seed : kSeeds) {
+    for (uint64_t seed : kTabulatedSeeds) {
         const CheckResult mix = run_check(*check, *mixture(), 200'000, 2, seed);
         EXPECT_EQ(mix.verdict, Verdict::NotApplicable) << mix.summary;
         EXPECT_THAT(mix.summary, HasSubstr("sample is not monotone in u: x falls from "));
@@ -113,7 +113,7 @@ TEST(TabulatedMonotonicity, AMonotoneSamplerIsMeasuredSoAndStillJudged) {
     const auto bad =
         make_warp_case(interval_info("decreasing_ramp_off"),
             warp_of([](float u) { return 1.0f - std::pow(u, 0.502f); }).with_pdf(pdf));
-    for (uint64_t seed : kSeeds) {
+    for (uint64_t seed : kTabulatedSeeds) {
         const CheckResult r = run_check(*check, *good, 200'000, 2, seed);
         EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
         EXPECT_EQ(*r.figure("monotonicity_increasing"), 0.0);
@@ -140,7 +140,7 @@ TEST(TabulatedMonotonicity, FloatNoiseOnAFlatStretchIsExcusedAndCountedAFoldIsNo
         })
             .with_pdf(pdf));
     const auto check = make_tabulated_check();
-    for (uint64_t seed : kSeeds) {
+    for (uint64_t seed : kTabulatedSeeds) {
         const CheckResult r = run_check(*check, *noisy, 200'000, 2, seed);
         EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
         EXPECT_GT(*r.figure("monotonicity_behind_within_noise"), 0.0);
@@ -302,7 +302,7 @@ TEST(TabulatedReferenceTable, AtTheEndsOfUTheCdfUncertaintyReachesTheEndsOfTheRa
     const auto check = make_tabulated_check();
     const auto good = clamped_phong("phong_10000", 1.0f, 10000.0);
     const auto bad = clamped_phong("phong_10000_draws_11000", 1.0f, 10000.0, 11000.0);
-    for (uint64_t seed : kSeeds) {
+    for (uint64_t seed : kTabulatedSeeds) {
         const CheckResult r = run_check(*check, *good, 200'000, 2, seed);
         EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
         EXPECT_GT(*r.figure("samples_where_both_densities_are_0"), 0.0);
@@ -317,7 +317,7 @@ TEST(TabulatedReach, ASharpLobeClampedBelowOnePassesOneMissingItsTopThousandthFa
     const auto good = clamped_phong("phong_1000_clamped_below_1", kOneMinusEpsilon);
     const float z_short = static_cast<float>(std::pow(1.0 - 1e-3, 1.0 / 1001.0));  // 1e-3 of the mass above
     const auto bad = clamped_phong("phong_1000_never_above_top_thousandth", z_short);
-    for (uint64_t seed : kSeeds) {
+    for (uint64_t seed : kTabulatedSeeds) {
         const CheckResult r = run_check(*check, *good, 200'000, 2, seed);
         EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
         EXPECT_GT(*r.figure("mass_outside_reach"), 5e-5);  // the last float step below 1
@@ -345,7 +345,7 @@ TEST(TabulatedReach, SamplesWhereBothDensitiesAreZeroAreStillJudgedOnX) {
         })
             .with_pdf(gap_pdf));
     const auto check = make_tabulated_check();
-    for (uint64_t seed : kSeeds) {
+    for (uint64_t seed : kTabulatedSeeds) {
         EXPECT_EQ(run_check(*check, *good, 200'000, 2, seed).verdict, Verdict::Pass);
         const CheckResult w = run_check(*check, *bad, 200'000, 2, seed);
         EXPECT_EQ(w.verdict, Verdict::Fail);
@@ -389,7 +389,7 @@ TEST(TabulatedReach, ADensityConcentratedAtItsEndReachesItsLastFloat) {
     const auto check = make_tabulated_check();
     const auto good = end_lobe("end_lobe_clamped_below_1", kOneMinusEpsilon);
     const auto bad = end_lobe("end_lobe_three_floats_short", 1.0f - 3.0f * 0x1p-24f);  // 1.8e-3 unreached
-    for (uint64_t seed : kSeeds) {
+    for (uint64_t seed : kTabulatedSeeds) {
         const CheckResult r = run_check(*check, *good, 200'000, 2, seed);
         EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
         EXPECT_GT(*r.figure("mass_of_float_steps_beyond_reach"), 5e-4);
@@ -459,7 +459,7 @@ TEST(TabulatedTails, AFloatLogisticPassesOnEverySeedAndOneMissingItsTailFails) {
         EXPECT_EQ(r.verdict, Verdict::Pass) << "seed " << seed << ": " << r.message;
     }
     const auto bad = float_logistic("logistic_float_short_tail", 0.01f);
-    for (uint64_t seed : kSeeds) {
+    for (uint64_t seed : kTabulatedSeeds) {
         const CheckResult w = run_check(*check, *bad, 200'000, 2, seed);
         EXPECT_EQ(w.verdict, Verdict::Fail);
         EXPECT_GT(*w.figure("tail_failures"), 0.0);

@@ -31,7 +31,7 @@ namespace {
 constexpr int kSeeds = 10;
 const double kSuiteLevel = chi2::sidak_level(0.01, 2);
 
-CheckResult run_check(const Check& check, const WarpCase& warp, uint64_t seed, unsigned threads = 2) {
+CheckResult unbinned_of(const Check& check, const WarpCase& warp, uint64_t seed, unsigned threads = 2) {
     RunOptions options;
     options.seed = seed;
     options.threads = threads;
@@ -71,7 +71,7 @@ int suite_detections(const WarpCase& warp) {
     const auto unbinned = make_unbinned_check();
     int caught = 0;
     for (uint64_t seed = 1; seed <= kSeeds; ++seed)
-        caught += rejects(run_check(*chi2, warp, seed)) || rejects(run_check(*unbinned, warp, seed));
+        caught += rejects(unbinned_of(*chi2, warp, seed)) || rejects(unbinned_of(*unbinned, warp, seed));
     return caught;
 }
 
@@ -111,7 +111,7 @@ TEST(LocalResidual, CatchesAOneCellExcessThatPearsonMisses) {
     const auto chi2 = make_chi2_check();
     int pearson = 0, local = 0;
     for (uint64_t seed = 1; seed <= kSeeds; ++seed) {
-        const CheckResult r = run_check(*chi2, *bumped, seed);
+        const CheckResult r = unbinned_of(*chi2, *bumped, seed);
         pearson += !(figure(r, "p_value") >= (1.0 - chi2::kLocalLevelShare) * kSuiteLevel);
         local += !(figure(r, "local_p_value") >= chi2::kLocalLevelShare * kSuiteLevel);
         EXPECT_TRUE(rejects(r));
@@ -132,8 +132,8 @@ TEST(UnbinnedCheck, SameFiguresForAnyThreadCount) {
     const auto cosine = cosine_claiming_power(0.0);
     const auto check = make_unbinned_check();
     for (const WarpCase* warp : {cosine.get(), cone.get()}) {
-        const CheckResult one = run_check(*check, *warp, 3, 1);
-        const CheckResult four = run_check(*check, *warp, 3, 4);
+        const CheckResult one = unbinned_of(*check, *warp, 3, 1);
+        const CheckResult four = unbinned_of(*check, *warp, 3, 4);
         ASSERT_EQ(one.figures.size(), four.figures.size());
         for (std::size_t i = 0; i < one.figures.size(); ++i) {
             EXPECT_EQ(one.figures[i].name, four.figures[i].name);
@@ -163,7 +163,7 @@ TEST(UnbinnedVerdicts, EverySampleNaNIsAFailureThatSaysSo) {
     const auto check = make_unbinned_check();
     for (bool nan_pdf : {true, false}) {
         const auto warp = nan_warp(nan_pdf ? "all_nan" : "all_nan_samples", nan_pdf);
-        const CheckResult r = run_check(*check, *warp, 1);
+        const CheckResult r = unbinned_of(*check, *warp, 1);
         EXPECT_EQ(r.verdict, Verdict::Fail) << r.summary;
         EXPECT_EQ(r.summary, "every sample has a NaN coordinate");
         EXPECT_NE(r.message.find("every sample has a NaN coordinate"), std::string::npos) << r.message;
@@ -190,7 +190,7 @@ TEST(UnbinnedVerdicts, AnyShareOfNaNSamplesFailsWithItsCount) {
                 const float nan = std::nanf("");
                 return u.x < share ? Vector3f{nan, nan, nan} : UniformHemisphere{}.sample(u);
             }).with_pdf([](Vector3f v) { return UniformHemisphere{}.pdf(v); }));
-        const CheckResult r = run_check(*check, *warp, 1);
+        const CheckResult r = unbinned_of(*check, *warp, 1);
         SCOPED_TRACE(share);
         EXPECT_EQ(r.verdict, Verdict::Fail) << r.summary;
         EXPECT_FALSE(r.p_value.has_value());
@@ -203,7 +203,7 @@ TEST(UnbinnedVerdicts, AnyShareOfNaNSamplesFailsWithItsCount) {
     const auto clean = make_warp_case({"no_nan", {}, "", InputKind::Uniform2D, chi2::Domain::hemisphere()},
                                       warp_of([](Point2f u) { return UniformHemisphere{}.sample(u); })
                                           .with_pdf([](Vector3f v) { return UniformHemisphere{}.pdf(v); }));
-    const CheckResult r = run_check(*check, *clean, 1);
+    const CheckResult r = unbinned_of(*check, *clean, 1);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.summary;
     EXPECT_EQ(figure(r, "nan_samples"), 0.0);
 }
@@ -222,7 +222,7 @@ TEST(UnbinnedVerdicts, NothingTestedIsNotApplicableAndStillCountsInTheFamily) {
     // Today: "pass" with the summary "not applicable: ...".
     const auto check = make_unbinned_check();
     const auto warp = overweight_hemisphere();
-    const CheckResult r = run_check(*check, *warp, 1);
+    const CheckResult r = unbinned_of(*check, *warp, 1);
     EXPECT_EQ(r.verdict, Verdict::NotApplicable);
     EXPECT_EQ(r.summary.rfind("not applicable: no marginal CDF accurate enough; untested: phi (CDF error 0.5)", 0), 0u)
         << r.summary;
@@ -254,7 +254,7 @@ TEST(UnbinnedVerdicts, NoRowSaysNaN) {
     const std::unique_ptr<WarpCase> warps[] = {cosine_claiming_power(0.0), cosine_claiming_power(0.2),
                                                overweight_hemisphere()};
     for (const WarpCase* w : {warps[0].get(), warps[1].get(), warps[2].get(), cone.get()}) {
-        const CheckResult r = run_check(*check, *w, 2);
+        const CheckResult r = unbinned_of(*check, *w, 2);
         EXPECT_TRUE(r.verdict == Verdict::Pass || r.verdict == Verdict::NotApplicable) << w->name();
         std::string text = r.summary + " " + r.message;
         std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });

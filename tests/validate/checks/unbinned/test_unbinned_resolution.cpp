@@ -29,7 +29,7 @@
 namespace warpcheck {
 namespace {
 
-const double kSuiteLevel = chi2::sidak_level(0.01, 2);
+const double kResolutionSuiteLevel = chi2::sidak_level(0.01, 2);
 constexpr float kTwoPiF = 6.28318530717958647692f;
 
 CheckResult run_unbinned(const WarpCase& warp, uint64_t seed, uint64_t samples = 1'000'000, bool strict = false) {
@@ -45,7 +45,7 @@ CheckResult run_unbinned(const WarpCase& warp, uint64_t seed, uint64_t samples =
 }
 
 /// Whether a result fails at the one-case suite level (NaN fails).
-bool rejects(const CheckResult& r) { return r.verdict != Verdict::Pass || !(r.p_value.value_or(1.0) >= kSuiteLevel); }
+bool resolution_rejects(const CheckResult& r) { return r.verdict != Verdict::Pass || !(r.p_value.value_or(1.0) >= kResolutionSuiteLevel); }
 
 bool says(const CheckResult& r, const std::string& text) { return r.summary.find(text) != std::string::npos; }
 
@@ -54,9 +54,9 @@ int rejections(const WarpCase& warp, int seeds, uint64_t samples = 1'000'000) {
     int n = 0;
     for (uint64_t seed = 1; seed <= static_cast<uint64_t>(seeds); ++seed) {
         const CheckResult r = run_unbinned(warp, seed, samples);
-        n += rejects(r);
+        n += resolution_rejects(r);
         std::printf("%s seed %d: %s, p %.3g | %s\n", warp.name().c_str(), static_cast<int>(seed),
-                    rejects(r) ? "rejected" : "passed", r.p_value.value_or(std::nan("")), r.summary.c_str());
+                    resolution_rejects(r) ? "rejected" : "passed", r.p_value.value_or(std::nan("")), r.summary.c_str());
     }
     return n;
 }
@@ -137,7 +137,7 @@ TEST(UnbinnedResolution, StrictGrantsOneFloatStep) {
     // correct cone's x and y are (its z, rounded after them, is not read).
     const float c = cos_degrees(0.25);
     const CheckResult r = run_unbinned(*cone("cone", {c, c, 0.0, 0.0, c}), 1, 1'000'000, true);
-    EXPECT_FALSE(rejects(r)) << r.summary;
+    EXPECT_FALSE(resolution_rejects(r)) << r.summary;
 }
 
 TEST(UnbinnedResolution, TiltsBeyondTheStatedPowerFailOnTinyCones) {
@@ -201,7 +201,7 @@ TEST(UnbinnedResolution, DensityAlternatingWithinStripsPassesAndItsTiltedTwinFai
     const auto right = alternating("alternating_bins", 0.0);
     for (uint64_t seed = 1; seed <= 2; ++seed) {
         const CheckResult r = run_unbinned(*right, seed, 10'000'000);
-        EXPECT_FALSE(rejects(r)) << r.summary;
+        EXPECT_FALSE(resolution_rejects(r)) << r.summary;
         EXPECT_TRUE(says(r, "CDF error +-0.000")) << r.summary;
         EXPECT_TRUE(says(r, "carried into the test (a finer tabulation differs by")) << r.summary;
         EXPECT_GE(r.figure("x_cdf_error").value_or(0.0), 4.39e-4);  // at least the true error
@@ -233,7 +233,7 @@ TEST(UnbinnedResolution, AzimuthSliverNextToTheCutFailsAndTheUniformAzimuthPasse
     int kuiper_alone = 0;
     for (uint64_t seed = 1; seed <= 5; ++seed)
         kuiper_alone +=
-            !(run_unbinned(*gap, seed, 2'000'000).figure("phi_kuiper_p_value").value_or(0.0) >= kSuiteLevel / 3.0);
+            !(run_unbinned(*gap, seed, 2'000'000).figure("phi_kuiper_p_value").value_or(0.0) >= kResolutionSuiteLevel / 3.0);
     std::printf("Kuiper alone rejects the sliver on %d of 5 seeds\n", kuiper_alone);
     EXPECT_LE(kuiper_alone, 2);
     EXPECT_EQ(rejections(*gap, 5, 2'000'000), 5);
@@ -269,7 +269,7 @@ TEST(UnbinnedResolution, ThinAnnulusPassesWithinTheCdfBudgetAndItsTiltedAzimuthF
     // error) fails on every seed.
     const auto right = annulus("annulus", 0.0);
     const CheckResult r = run_unbinned(*right, 1);
-    EXPECT_FALSE(rejects(r)) << r.summary;
+    EXPECT_FALSE(resolution_rejects(r)) << r.summary;
     EXPECT_LE(r.figure("phi_cdf_evaluations").value_or(1e18), 1e9) << r.summary;
     EXPECT_GT(r.figure("phi_cdf_error").value_or(0.0), 0.0) << r.summary;
     EXPECT_LT(r.figure("phi_cdf_error").value_or(1.0), 1e-3) << r.summary;
