@@ -123,6 +123,7 @@ const std::vector<std::pair<std::string_view, std::vector<Spec>>> kSpecs = {
           {"zero_pdf", "continuous samples where pdf(wo, wi) is 0", Rule::Zero},
           {"zero_f", "continuous samples where f(wo, wi) is 0", Rule::Zero},
           {"bad_delta", "delta samples with a weight not finite and positive", Rule::Zero},
+          {"wrong_eta", "continuous transmissions whose eta is not the case's", Rule::Zero},
           {"excused", "samples at the float resolution of f and pdf (excused)", Rule::Counted}}},
         {"bsdf_delta",
          {{"off_direction", "delta samples off their mirror or Snell direction", Rule::Zero},

@@ -60,6 +60,25 @@ std::unique_ptr<WarpCase> eta_swapped() {
             .with_pdf([d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); }));
 }
 
+/// Transmissions from inside the glass report the material's eta where the
+/// relative eta(wi) / eta(wo) = 1 / eta is meant (a renderer then scales the
+/// path by eta^2 where it means 1 / eta^2); direction, f, pdf and the weight
+/// are right.
+std::unique_ptr<WarpCase> eta_not_relative_from_inside() {
+    const RoughDielectric d(TrowbridgeReitz(0.1f), kFlawedGlass);
+    return make_bsdf_case(
+        flawed_info("rough_dielectric_eta_not_relative", {{"alpha", 0.1}, {"eta", 1.5}, {"theta_o", 150}},
+                    "rough dielectric whose transmissions from inside report eta, not eta(wi) / eta(wo)"),
+        {.wo = bsdf_direction(150), .lobes = d.flags(), .eta = kFlawedGlass},
+        bsdf_of([d](Vector3f wo, float uc, Point2f u) {
+            BsdfSample s = d.sample(wo, uc, u);
+            if (has(s.flags, BsdfFlags::Transmission)) s.eta = kFlawedGlass;
+            return s;
+        })
+            .with_f([d](Vector3f wo, Vector3f wi) { return d.f(wo, wi); })
+            .with_pdf([d](Vector3f wo, Vector3f wi) { return d.pdf(wo, wi); }));
+}
+
 /// A diffuse + glossy mixture whose pdf() gives each lobe the other's
 /// probability: (Ps cos / pi + (1 - Ps) pdf_spec); the sampler's choice is right.
 std::unique_ptr<WarpCase> mixture_wrong_lobe_pdf() {
@@ -194,6 +213,8 @@ std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
         {weight_without_cosine, "bsdf_weight", "the sampled weight misses |cos theta_i|", {"bsdf_albedo"}},
         // The weights are right for the direction it claims, so the albedo holds.
         {eta_swapped, "bsdf_delta", "refracts with 1 / eta in place of eta"},
+        // Only the reported eta is wrong: every other check sees a correct BSDF.
+        {eta_not_relative_from_inside, "bsdf_weight", "continuous transmissions from inside report eta, not 1 / eta"},
         // Weights f |cos| / pdf with the wrong pdf: the mean weight is off too,
         // and the samples' marginals are not pdf()'s.
         {mixture_wrong_lobe_pdf, "bsdf_chi2", "pdf() gives each lobe of the mixture the other's probability",

@@ -99,6 +99,16 @@ inline double relative_difference(double a, double b) {
     return diff / std::max(std::abs(a), std::abs(b));
 }
 
+/// How far a transmitted sample's eta may be from the claimed ratio of
+/// indices: 2^-20 relative (eta and 1 / eta are each one float rounding),
+/// while a swapped ratio is off by eta^2 - 1 and a wrong medium by percent.
+constexpr double kEtaTolerance = 0x1p-20;
+
+/// The eta(wi) / eta(wo) of a transmission through the case's interface.
+inline double claimed_eta(const BsdfCase& bsdf) {
+    return bsdf.wo().z > 0.0f ? bsdf.claims().eta : 1.0 / bsdf.claims().eta;
+}
+
 inline const char* delta_lobe_name(int k) { return k == 0 ? "delta reflection" : "delta transmission"; }
 
 /// The delta samples of a run, per lobe: how many, and what they claim (the

@@ -9,7 +9,7 @@
 //  - a reflection goes to the mirror direction (-wo.x, -wo.y, wo.z) within
 //    kReflectionTolerance;
 //  - a transmission reports eta = eta(wi) / eta(wo) as the case claims it
-//    (claims.eta below over above, within kEtaTolerance) and goes where Snell's
+//    (claims.eta below over above, within kEtaTolerance of bsdf_common.h) and goes where Snell's
 //    law with that eta sends it, within transmission_tolerance (edge inputs too).
 #include <algorithm>
 #include <cmath>
@@ -33,10 +33,6 @@ namespace {
 /// roundings when written as 2 (wo.n) n - wo; 2^-20 (8 float ulps of 1) is far
 /// below any wrong direction.
 constexpr double kReflectionTolerance = 0x1p-20;
-/// How far a sample's eta may be from the claimed ratio of indices: 2^-20
-/// relative (eta and 1 / eta are each one float rounding), while a swapped
-/// ratio is off by eta^2 - 1.
-constexpr double kEtaTolerance = 0x1p-20;
 /// How much one lobe's claimed probabilities may spread, relative: 2^-16
 /// (a Fresnel term in float, whose rounding does not depend on the input).
 constexpr double kClaimSpread = 0x1p-16;
@@ -86,9 +82,6 @@ struct DeltaStats {
         no_refraction.merge(o.no_refraction);
     }
 };
-
-/// The eta(wi) / eta(wo) of a transmission through the case's interface.
-double claimed_eta(const BsdfCase& bsdf) { return bsdf.wo().z > 0.0f ? bsdf.claims().eta : 1.0 / bsdf.claims().eta; }
 
 void judge_delta_direction(const BsdfCase& bsdf, DeltaStats& s, uint64_t index, const DeltaExample& base) {
     const BsdfRecord& r = base.record;

@@ -16,7 +16,12 @@
 //    widened by that range: such samples are excused, counted and their
 //    largest disagreement reported (excused, excused_max_relative);
 //  - a delta sample's weight is finite and positive, and its pdf (the
-//    probability of its lobe) at most 1.
+//    probability of its lobe) at most 1;
+//  - a continuous transmission reports the eta the case claims, eta(wi) /
+//    eta(wo) within kEtaTolerance (bsdf_common.h; bsdf_delta holds delta
+//    transmissions to the same): a renderer scales its path by 1 / eta^2 and
+//    tracks the medium from it, so a wrong one biases the image where the
+//    direction and weight are right.
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -46,9 +51,9 @@ constexpr double kRelativeTolerance = 0x1p-12;
 /// change in float; one never normalised, or built with a wrong sine, is off by percent.
 constexpr double kUnitTolerance = 0x1p-18;
 
-enum Kind { kNotUnit, kWrongSide, kZeroPdf, kZeroF, kWeight, kDeltaWeight, kKinds };
+enum Kind { kNotUnit, kWrongSide, kZeroPdf, kZeroF, kWeight, kDeltaWeight, kWrongEta, kKinds };
 const char* const kKindFigure[kKinds] = {"not_unit", "wrong_side", "zero_pdf", "zero_f", "weight_mismatches",
-                                         "bad_delta"};
+                                         "bad_delta", "wrong_eta"};
 const char* const kKindText[kKinds] = {
     "wi is not a unit vector",
     "wi is on the wrong side for its flags",
@@ -56,6 +61,7 @@ const char* const kKindText[kKinds] = {
     "a continuous sample lands where f(wo, wi) is 0",
     "the weight differs from f(wo, wi) |cos theta_i| / pdf(wo, wi)",
     "a delta sample's weight is not finite and positive, or its probability exceeds 1",
+    "a continuous transmission's eta is not the claimed eta(wi) / eta(wo)",
 };
 
 struct Example {
@@ -119,8 +125,9 @@ double length(const WarpOutput& w) {
     return std::sqrt(x * x + y * y + z * z);
 }
 
-/// The rules every sample answers to: unit length, its side, and for a delta
-/// sample a finite positive weight of probability at most 1.
+/// The rules every sample answers to: unit length, its side; for a delta
+/// sample a finite positive weight of probability at most 1, for a continuous
+/// transmission the claimed eta.
 void judge_direction(const BsdfCase& bsdf, Stats& s, uint64_t index, const Example& e) {
     const BsdfRecord& r = e.record;
     const double len = length(r.wi);
@@ -128,6 +135,9 @@ void judge_direction(const BsdfCase& bsdf, Stats& s, uint64_t index, const Examp
     if (!(std::abs(len - 1.0) <= kUnitTolerance)) s.kinds[kNotUnit].add(index, e);
     if (!on_its_side(bsdf, r)) s.kinds[kWrongSide].add(index, e);
     if (r.delta() && !(e.weight > 0.0 && std::isfinite(e.weight) && r.pdf <= 1.0f)) s.kinds[kDeltaWeight].add(index, e);
+    const bool continuous_transmission = !bsdf.phase_function() && !r.delta() && has(r.flags, BsdfFlags::Transmission);
+    if (continuous_transmission && !(std::abs(r.eta / claimed_eta(bsdf) - 1.0) <= kEtaTolerance))
+        s.kinds[kWrongEta].add(index, e);
 }
 
 /// Judges a continuous sample's weight, given f(wo, wi) and pdf(wo, wi) at its wi.
@@ -204,10 +214,10 @@ Stats compute(const BsdfCase& bsdf, const CheckContext& ctx) {
 }
 
 std::string describe(const Example& e) {
-    return fmt::format("input {}: wi ({:.9g}, {:.9g}, {:.9g}), f {:.9g}, pdf {:.9g}, weight {:.9g}; f(wo, wi) {:.9g}, "
-                       "pdf(wo, wi) {:.9g}, their weight {:.9g}",
+    return fmt::format("input {}: wi ({:.9g}, {:.9g}, {:.9g}), f {:.9g}, pdf {:.9g}, weight {:.9g}, eta {:.9g}; "
+                       "f(wo, wi) {:.9g}, pdf(wo, wi) {:.9g}, their weight {:.9g}",
                        format_input(e.input, InputKind::Uniform3D), e.record.wi[0], e.record.wi[1], e.record.wi[2],
-                       e.record.f, e.record.pdf, e.weight, e.f_at, e.pdf_at, e.weight_at);
+                       e.record.f, e.record.pdf, e.weight, e.record.eta, e.f_at, e.pdf_at, e.weight_at);
 }
 
 void judge(CheckResult& r, const Stats& s) {
@@ -249,7 +259,7 @@ public:
     std::string name() const override { return "bsdf_weight"; }
     std::string description() const override {
         return "BSDF: every sample's weight f |cos| / pdf against f() and pdf() at its wi; wi a unit vector on "
-               "its flags' side; none where pdf or f is 0 (float-rounding tolerance)";
+               "its flags' side; none where pdf or f is 0; a transmission's eta as claimed (float-rounding tolerance)";
     }
 
 protected:
@@ -267,7 +277,8 @@ protected:
                      {"max_unit_error", s.max_unit_error},
                      {"excused", static_cast<double>(s.excused)},
                      {"excused_max_relative", s.excused_max_relative},
-                     {"unit_tolerance", kUnitTolerance}};
+                     {"unit_tolerance", kUnitTolerance},
+                     {"eta_tolerance", kEtaTolerance}};
         for (int k = 0; k < kKinds; ++k)
             r.figures.push_back({kKindFigure[k], static_cast<double>(s.kinds[static_cast<std::size_t>(k)].count)});
         judge(r, s);
