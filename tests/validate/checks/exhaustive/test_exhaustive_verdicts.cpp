@@ -28,7 +28,7 @@ using testing::builtin_case;
 #define SKIP_FULL_FLOAT_SWEEP() (void)0
 #endif
 
-WarpCaseInfo info_1d(const char* family, chi2::Domain domain) {
+WarpCaseInfo exhaustive_info_1d(const char* family, chi2::Domain domain) {
     WarpCaseInfo info;
     info.family = family;
     info.description = family;
@@ -50,7 +50,7 @@ float tent_invert(float x) { return x < 0.0f ? 0.5f * (x + 1.0f) * (x + 1.0f) : 
 TEST(ExhaustiveRoundtripVerdicts, ZeroDensityExactlyAtTheTentsEndIsReportedNotFailed) {
     SKIP_FULL_FLOAT_SWEEP();
     const auto tent = make_warp_case(
-        info_1d("tent", chi2::Domain::interval(-1.0, 1.0)),
+        exhaustive_info_1d("tent", chi2::Domain::interval(-1.0, 1.0)),
             warp_of(tent_sample).with_pdf([](float x) { return 1.0f - std::abs(x); }).with_invert(tent_invert));
     const CheckResult r = roundtrip(*tent);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
@@ -63,7 +63,7 @@ TEST(ExhaustiveRoundtripVerdicts, ZeroDensityInsideTheDomainStillFails) {
     SKIP_FULL_FLOAT_SWEEP();
     // The wrong twin: its density also vanishes near (not on) the end point.
     const auto tent = make_warp_case(
-        info_1d("tent_cut", chi2::Domain::interval(-1.0, 1.0)),
+        exhaustive_info_1d("tent_cut", chi2::Domain::interval(-1.0, 1.0)),
             warp_of(tent_sample)
                 .with_pdf([](float x) { return std::abs(x) > 0.999f ? 0.0f : 1.0f - std::abs(x); })
                 .with_invert(tent_invert));
@@ -78,12 +78,12 @@ TEST(ExhaustiveRoundtripVerdicts, LinearWarpWithZeroDensityAtItsStartPasses) {
     const auto sample = [](float u) { return std::sqrt(u); };
     const auto pdf = [](float x) { return 2.0f * x; };
     const auto invert = [](float x) { return x * x; };
-    const CheckResult ok = roundtrip(*make_warp_case(info_1d("linear0", chi2::Domain::interval(0.0, 1.0)),
+    const CheckResult ok = roundtrip(*make_warp_case(exhaustive_info_1d("linear0", chi2::Domain::interval(0.0, 1.0)),
         warp_of(sample).with_pdf(pdf).with_invert(invert)));
     EXPECT_EQ(ok.verdict, Verdict::Pass) << ok.message;
     EXPECT_EQ(*ok.figure("boundary_zero_pdf"), 1.0);
     // The wrong twin: the same density declared on [-1, 1], where x = 0 is inside.
-    const CheckResult bad = roundtrip(*make_warp_case(info_1d("linear0_inside", chi2::Domain::interval(-1.0, 1.0)),
+    const CheckResult bad = roundtrip(*make_warp_case(exhaustive_info_1d("linear0_inside", chi2::Domain::interval(-1.0, 1.0)),
                                                       warp_of(sample).with_pdf(pdf).with_invert(invert)));
     EXPECT_EQ(bad.verdict, Verdict::Fail);
     EXPECT_EQ(*bad.figure("bad_pdf"), 1.0);
@@ -94,7 +94,7 @@ TEST(ExhaustiveRoundtripVerdicts, LerpWobbleOfAFewUlpsPassesAndIsReported) {
     SKIP_FULL_FLOAT_SWEEP();
     // (1 - t) a + t b steps back by 1-2 ulps here and there; the old rule failed it.
     // (Built here: being no flaw, lerp_blend[a=1,b=3] left the flawed catalogue in issue 22.)
-    const CheckResult r = roundtrip(*make_warp_case(info_1d("lerp_blend", chi2::Domain::interval(1, 3)),
+    const CheckResult r = roundtrip(*make_warp_case(exhaustive_info_1d("lerp_blend", chi2::Domain::interval(1, 3)),
                                                     LerpInterval(1.0f, 3.0f, LerpInterval::Form::Blend)));
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
     EXPECT_GT(*r.figure("steps_back"), 0.0);
@@ -106,7 +106,7 @@ TEST(ExhaustiveRoundtripVerdicts, AStepBackOf6e4Fails) {
     SKIP_FULL_FLOAT_SWEEP();
     // The wrong twin: a lerp on [1, 3] that drops by 6e-4 once, at t = 0.5.
     const auto sample = [](float t) { return 1.0f + t * 2.0f - (t >= 0.5f ? 6e-4f : 0.0f); };
-    const auto warp = make_warp_case(info_1d("lerp_step", chi2::Domain::interval(1.0, 3.0)),
+    const auto warp = make_warp_case(exhaustive_info_1d("lerp_step", chi2::Domain::interval(1.0, 3.0)),
         warp_of(sample).with_pdf([](float) { return 0.5f; }).with_invert([](float x) { return (x - 1.0f) * 0.5f; }));
     const CheckResult r = roundtrip(*warp);
     EXPECT_EQ(r.verdict, Verdict::Fail);
