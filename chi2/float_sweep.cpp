@@ -7,6 +7,7 @@
 // exact recount of non-monotone functions chi2/sweep_recount.cpp.
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <bit>
 #include <chrono>
@@ -629,12 +630,16 @@ SweepFrame make_frame(uint64_t count, float a, float b) {
 
 
 // Pass 1: runs of equal outputs, chunk by chunk, then the runs that cross chunk
-// borders in chunk order. Returns the steps down (0: the counts are exact).
+// borders in chunk order. Returns the steps down (0: the counts are exact). Once
+// a chunk steps down, every count will be redone by the recount, which counts
+// the steps itself: chunks that have not started yet are skipped (which ones
+// depends on timing, so nothing of this pass is kept then).
 uint64_t count_runs(const FloatBlockFn& f, const FloatBordersFn& fused, uint64_t count,
                     const ParallelFor& parallel_for, bool avx512, RunCounter& total) {
     const SweepFrame& frame = *total.frame;
     const auto chunks = static_cast<std::size_t>(chunk_count(count));
     std::vector<ChunkEnds> ends(chunks);
+    std::atomic<bool> stepped{false};
     // Counters that a chunk takes and gives back (as many as chunks run at
     // once), merged at the end: merging is order-free (sums, minima and maxima,
     // ties to the smaller key), so which chunks shared a counter does not show.
@@ -649,12 +654,16 @@ uint64_t count_runs(const FloatBlockFn& f, const FloatBordersFn& fused, uint64_t
                 idle.pop_back();
             }
         }
-        if (!local) local = std::make_unique<RunCounter>(frame);
-        const uint64_t first = c * kChunkSize;
-        ends[c] = ChunkScanner(frame, *local, avx512).scan(f, fused, first, std::min(kChunkSize, count - first));
+        if (!stepped.load(std::memory_order_relaxed)) {
+            if (!local) local = std::make_unique<RunCounter>(frame);
+            const uint64_t first = c * kChunkSize;
+            ends[c] = ChunkScanner(frame, *local, avx512).scan(f, fused, first, std::min(kChunkSize, count - first));
+            if (ends[c].steps_down > 0) stepped.store(true, std::memory_order_relaxed);
+        }
         std::lock_guard lock(idle_mutex);
-        idle.push_back(std::move(local));
+        if (local) idle.push_back(std::move(local));
     });
+    if (stepped.load()) return 1;  // some chunk stepped down: every count will be redone
     for (const auto& local : idle) total.merge(*local);
     uint64_t steps_down = 0;
     bool have_carry = false;
@@ -682,6 +691,27 @@ uint64_t count_runs(const FloatBlockFn& f, const FloatBordersFn& fused, uint64_t
     return steps_down;
 }
 
+// Where the outputs of f lie, for the recount's first window: the binades of f
+// on 2^16 inputs, runs of 16 at 4096 points evenly spaced over [0, count) (all
+// of them when there are fewer), so that a binade's share is known to about
+// count / 4096 inputs even where f follows its input closely.
+std::array<uint64_t, kGroups> sample_mass(const FloatBlockFn& f, uint64_t count) {
+    constexpr uint64_t kPoints = 4096, kRun = 16;
+    std::array<uint64_t, kGroups> mass{};
+    float values[kRun];
+    const auto add = [&](uint64_t first, std::size_t n) {
+        f(first, n, values);
+        for (std::size_t i = 0; i < n; ++i) ++mass[static_cast<std::size_t>(group_of(float_key(values[i])))];
+    };
+    if (count <= kPoints * kRun) {
+        for (uint64_t first = 0; first < count; first += kRun)
+            add(first, static_cast<std::size_t>(std::min(kRun, count - first)));
+    } else {
+        for (uint64_t p = 0; p < kPoints; ++p) add(p * (count / kPoints), kRun);
+    }
+    return mass;
+}
+
 }  // namespace
 
 SweepSummary exhaustive_sweep(const FloatBlockFn& f, uint64_t count, float a, float b,
@@ -706,17 +736,17 @@ SweepSummary exhaustive_sweep(const FloatBlockFn& f, const FloatBordersFn& borde
                                         avx512 && !limits.portable, total);
     const double runs_seconds = since(start);
     const auto recount_start = Clock::now();
+    RecountTrace trace;
     if (steps_down > 0) {
-        // Equal outputs may not be adjacent: recount exactly.
-        const std::array<uint64_t, kGroups> mass = total.group_inputs_all;
-        const std::array<uint8_t, kGroups> reach = total.reach;
+        // Equal outputs may not be adjacent: recount exactly (with the steps down).
         total = RunCounter(frame);
-        if (count <= limits.sort_limit) recount_sorted(f, count, parallel_for, total);
-        else recount_windows(f, count, parallel_for, mass, reach, limits.window_binades, total);
+        if (count <= limits.sort_limit) trace = recount_sorted(f, count, parallel_for, total);
+        else trace = recount_windows(f, count, parallel_for, sample_mass(f, count), limits.window_binades, total);
     }
     SweepSummary s = summarize(frame, total, count);
-    s.non_monotone_steps = steps_down;
+    s.non_monotone_steps = trace.steps_down;
     s.exact_fallback = steps_down > 0;
+    s.recount_passes = trace.passes;
     s.recount_seconds = steps_down > 0 ? since(recount_start) : 0.0;
     s.runs_seconds = runs_seconds;
     return s;

@@ -16,15 +16,18 @@
 // ever smaller than the one before (a non-monotone step), equal outputs may be
 // far apart, and the counts are redone exactly: by sorting all outputs when
 // there are at most 2^26 inputs, otherwise by counting windows of binades. The
-// first pass stops counting runs in a chunk once it steps down (it only counts
-// the steps and notes where the outputs lie). The recount's first window takes
-// the 64 binades where most outputs lay, with a one-byte counter per float
+// first pass stops once a chunk steps down (chunks not started are skipped, the
+// one that stepped only counts its steps on): the recount counts every step
+// down itself, in input order. The recount's first window takes the 64 binades
+// where most outputs lie (ranked by f on 2^16 inputs evenly spread over the
+// range: a run of 16 at each of 4096 points), with a one-byte counter per float
 // (2^29 counters, 512 MiB; a counter that wraps records the wrap, at most
-// inputs / 256 records, 64 MiB); the outputs outside it are kept (at most 2^14
-// a chunk, 64 MiB) and counted by sorting. So a map whose outputs lie in 64
-// binades or in few floats beyond them (any map into [0,1) with outputs of at
-// least 2^-64, say) is recounted with one more run of f, within 1 GiB. If a
-// chunk has more outputs outside the first window, the remaining binades are
+// inputs / 256 records, 64 MiB); the outputs outside it are kept (2^14 per
+// chunk of the sweep, in one budget shared by all chunks: 64 MiB for 2^32
+// inputs) and counted by sorting. So a map whose outputs lie in 64 binades or
+// in few floats beyond them (any map into [0,1) with outputs of at least
+// 2^-64, say) is recounted with one more run of f, within 1 GiB. If more
+// outputs than that lie outside the first window, the remaining binades are
 // counted in further windows, one more run of f each. A window pass works in
 // rounds of 16 chunks: each chunk appends its outputs' counter indices to
 // blocks by the slice of counters they fall in (radix partitioning; at most
@@ -110,6 +113,7 @@ struct SweepSummary {
     uint64_t never_produced = 0;      ///< floats of [a,b) no input produced
     uint64_t non_monotone_steps = 0;  ///< i with f(i+1) < f(i) (NaN steps count as decreasing)
     bool exact_fallback = false;      ///< whether the non-monotone recount ran
+    int recount_passes = 0;           ///< runs of f over every input in that recount (0: it did not run)
     /// Wall seconds of the run-counting pass and of the non-monotone recount.
     double runs_seconds = 0.0, recount_seconds = 0.0;
     /// Total variation distance between the output distribution and the ideal

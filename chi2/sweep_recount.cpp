@@ -1,6 +1,7 @@
 #include "chi2/sweep_recount.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #if defined(__x86_64__)
@@ -46,10 +47,64 @@ constexpr std::size_t kRoundChunks = 16;
 // chunk for 257 slices, 272 MiB a round.
 constexpr uint32_t kBlockEntries = 1024;
 constexpr uint32_t kLineEntries = 16;  // indices per 64-byte line
-// Keys outside the first window kept per chunk for counting by sorting: at
-// most 2^24 (64 MiB) over 2^32 inputs. A chunk with more makes the recount
-// count the remaining binades in further windows instead.
+// Keys outside the first window kept for counting by sorting: 2^14 per chunk
+// of the sweep, 2^24 (64 MiB) over 2^32 inputs, shared by all chunks (a
+// sampler that is monotone but for local swaps puts all of its first chunks'
+// outputs outside the window, and a budget per chunk sent it through a second
+// pass of f). More than the budget makes the recount count the remaining
+// binades in further windows instead; either way the counts are exact.
 constexpr std::size_t kStraysPerChunk = std::size_t{1} << 14;
+
+// The strays' shared budget: keys kept so far by all chunks, and whether they
+// overran it (then nobody keeps more: the further windows will count them).
+// Whether it overruns depends only on the total number of strays, not on the
+// order the chunks ran in. Memory: the budget plus one block per thread.
+struct StrayBudget {
+    uint64_t limit = 0;
+    std::atomic<uint64_t> kept{0};
+    std::atomic<bool> overrun{false};
+
+    // Takes n more keys; false once the budget is overrun.
+    bool take(uint64_t n) {
+        if (overrun.load(std::memory_order_relaxed)) return false;
+        if (kept.fetch_add(n, std::memory_order_relaxed) + n <= limit) return true;
+        overrun.store(true, std::memory_order_relaxed);
+        return false;
+    }
+};
+
+// What the first window pass notes of each chunk, for the steps down and the
+// reach (the first pass of the sweep stops once it knows f is not monotone):
+// the steps down within the chunk, its first and last key, and the smallest
+// and largest key.
+struct ChunkTrace {
+    uint64_t steps_down = 0;
+    uint32_t first = 0, last = 0, lo = ~0u, hi = 0;
+
+    void add(const uint32_t* k, std::size_t n, bool chunk_start) {
+        if (n == 0) return;
+        if (chunk_start) first = last = k[0];
+        uint64_t down = k[0] < last;
+        uint32_t low = lo, high = hi;
+        for (std::size_t i = 1; i < n; ++i) down += k[i] < k[i - 1];
+        for (std::size_t i = 0; i < n; ++i) {
+            low = std::min(low, k[i]);
+            high = std::max(high, k[i]);
+        }
+        steps_down += down;
+        lo = low;
+        hi = high;
+        last = k[n - 1];
+    }
+};
+
+// The steps down over all inputs from the chunks' traces (in chunk order).
+uint64_t steps_down_of(const std::vector<ChunkTrace>& traces) {
+    uint64_t down = 0;
+    for (std::size_t c = 0; c < traces.size(); ++c)
+        down += traces[c].steps_down + (c > 0 && traces[c].first < traces[c - 1].last);
+    return down;
+}
 
 struct Window {
     // Keys [lo, lo + size) are counted at counters [base, base + size).
@@ -200,9 +255,10 @@ private:
 
 // One chunk of a round: the counter indices of its outputs that fall in the
 // window, into its blocks by slice; with `strays`, keeps the other outputs
-// there (up to kStraysPerChunk; beyond, sets strays_overflow).
+// there while the shared budget lasts (once it is overrun, drops them); with
+// `trace`, notes the chunk's steps down and reach.
 void partition_chunk(const FloatBlockFn& f, uint64_t first, uint64_t n, const Window& w, ChunkBlocks& blocks,
-                     std::vector<uint32_t>* strays, bool& strays_overflow) {
+                     std::vector<uint32_t>* strays, StrayBudget& budget, ChunkTrace* trace) {
     // Scratch reused by the thread across chunks (no page faults per chunk).
     thread_local std::vector<float> values;
     thread_local std::vector<uint32_t> keys;
@@ -217,6 +273,8 @@ void partition_chunk(const FloatBlockFn& f, uint64_t first, uint64_t n, const Wi
         f(first + done, len, values.data());
         const uint32_t* const k = keys.data();
         to_keys(values.data(), len, keys.data());
+        if (trace != nullptr) trace->add(k, len, done == 0);
+        const std::size_t strays_before = strays != nullptr ? strays->size() : 0;
         for (std::size_t i = 0; i < len; ++i) {
             const uint32_t key = k[i];
             uint32_t at = key - first_range.lo;
@@ -229,9 +287,12 @@ void partition_chunk(const FloatBlockFn& f, uint64_t first, uint64_t n, const Wi
             if (r < range_count) {
                 parts.add(ranges[r].base + (key - ranges[r].lo));
             } else if (strays != nullptr) {
-                if (strays->size() < kStraysPerChunk) strays->push_back(key);
-                else strays_overflow = true;
+                strays->push_back(key);
             }
+        }
+        if (strays != nullptr && !budget.take(strays->size() - strays_before)) {
+            std::vector<uint32_t>().swap(*strays);
+            strays = nullptr;
         }
     }
     parts.finish();
@@ -239,7 +300,8 @@ void partition_chunk(const FloatBlockFn& f, uint64_t first, uint64_t n, const Wi
 
 // Counts every chunk's outputs in the window, round by round (see above).
 void count_in_window(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, Window& w,
-                     std::vector<std::vector<uint32_t>>* strays, std::vector<uint8_t>& overflow) {
+                     std::vector<std::vector<uint32_t>>* strays, StrayBudget& budget,
+                     std::vector<ChunkTrace>* traces) {
     const auto chunks = static_cast<std::size_t>(chunk_count(count));
     const std::size_t round = std::min(kRoundChunks, chunks);
     const std::size_t capacity = kChunkSize / kBlockEntries + w.slices;  // blocks a chunk may fill
@@ -255,10 +317,9 @@ void count_in_window(const FloatBlockFn& f, uint64_t count, const ParallelFor& p
         parallel_for(here, [&](std::size_t k) {
             const std::size_t c = from + k;
             const uint64_t first = c * kChunkSize;
-            bool over = false;
             partition_chunk(f, first, std::min(kChunkSize, count - first), w, blocks[k],
-                            strays != nullptr ? &(*strays)[c] : nullptr, over);
-            overflow[c] = over;
+                            strays != nullptr ? &(*strays)[c] : nullptr, budget,
+                            traces != nullptr ? &(*traces)[c] : nullptr);
         });
         parallel_for(w.slices, [&](std::size_t s) {
             uint8_t* const counts = w.counts.data();
@@ -362,7 +423,7 @@ void add_window_counts(Window& w, const ParallelFor& parallel_for, RunCounter& t
 }  // namespace
 
 // Exact recount of a non-monotone f with at most SweepLimits::sort_limit inputs: sort all outputs.
-void recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, RunCounter& total) {
+RecountTrace recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for, RunCounter& total) {
     const auto chunks = static_cast<std::size_t>(chunk_count(count));
     std::vector<uint32_t> keys(static_cast<std::size_t>(count));
     parallel_for(chunks, [&](std::size_t c) {
@@ -375,6 +436,8 @@ void recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& pa
             to_keys(values.data(), len, keys.data() + first + done);
         }
     });
+    RecountTrace trace{.steps_down = 0, .passes = 1};
+    for (std::size_t i = 1; i < keys.size(); ++i) trace.steps_down += keys[i] < keys[i - 1];
     radix_sort(keys);
     std::size_t i = 0;
     while (i < keys.size()) {
@@ -383,6 +446,7 @@ void recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& pa
         total.add(keys[i], j - i);
         i = j;
     }
+    return trace;
 }
 
 // Exact recount of a non-monotone f with more inputs than the sort limit.
@@ -391,13 +455,12 @@ void recount_sorted(const FloatBlockFn& f, uint64_t count, const ParallelFor& pa
 // window_binades binades of most mass; the outputs outside it are kept and
 // counted by sorting, unless there are too many: then the remaining binades
 // are counted in further windows (one more run of f each).
-void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for,
-                     const std::array<uint64_t, kGroups>& mass, const std::array<uint8_t, kGroups>& reach,
-                     int window_binades, RunCounter& total) {
+RecountTrace recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& parallel_for,
+                             const std::array<uint64_t, kGroups>& mass, int window_binades, RunCounter& total) {
     const auto chunks = static_cast<std::size_t>(chunk_count(count));
     std::vector<int> candidates;
     for (int g = 0; g < kGroups; ++g)
-        if (mass[static_cast<std::size_t>(g)] > 0 || reach[static_cast<std::size_t>(g)]) candidates.push_back(g);
+        if (mass[static_cast<std::size_t>(g)] > 0) candidates.push_back(g);
     const auto per_window = static_cast<std::size_t>(std::max(window_binades, 1));
     // The first window: most mass first, then by binade; no more binades than
     // it takes to leave a quarter of the strays' room outside (a smaller
@@ -419,14 +482,16 @@ void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& p
     by_mass.resize(std::max<std::size_t>(first_window, 1));
     std::sort(by_mass.begin(), by_mass.end());
     std::vector<std::vector<uint32_t>> strays(chunks);
-    std::vector<uint8_t> overflow(chunks, 0);
+    StrayBudget budget;
+    budget.limit = chunks * kStraysPerChunk;
+    std::vector<ChunkTrace> traces(chunks);
     {
         Window w(by_mass);
-        count_in_window(f, count, parallel_for, w, &strays, overflow);
+        count_in_window(f, count, parallel_for, w, &strays, budget, &traces);
         add_window_counts(w, parallel_for, total);
     }
-    const bool overflowed = std::any_of(overflow.begin(), overflow.end(), [](uint8_t o) { return o != 0; });
-    if (!overflowed) {
+    RecountTrace trace{.steps_down = steps_down_of(traces), .passes = 1};
+    if (!budget.overrun.load()) {
         std::vector<uint32_t> keys;
         for (auto& s : strays) {
             keys.insert(keys.end(), s.begin(), s.end());
@@ -439,18 +504,26 @@ void recount_windows(const FloatBlockFn& f, uint64_t count, const ParallelFor& p
             total.add(keys[i], j - i);
             i = j;
         }
-        return;
+        return trace;
     }
     std::vector<std::vector<uint32_t>>().swap(strays);
+    // Every binade between a chunk's smallest and largest output that the
+    // first window did not hold (outputs may lie there: a superset).
+    std::array<uint8_t, kGroups> reach{};
+    for (const ChunkTrace& t : traces)
+        for (int g = group_of(t.lo); g <= group_of(t.hi); ++g) reach[static_cast<std::size_t>(g)] = 1;
+    for (const int g : by_mass) reach[static_cast<std::size_t>(g)] = 0;
     std::vector<int> rest;
-    std::set_difference(candidates.begin(), candidates.end(), by_mass.begin(), by_mass.end(), std::back_inserter(rest));
-    for (std::size_t from = 0; from < rest.size(); from += per_window) {
+    for (int g = 0; g < kGroups; ++g)
+        if (reach[static_cast<std::size_t>(g)]) rest.push_back(g);
+    for (std::size_t from = 0; from < rest.size(); from += per_window, ++trace.passes) {
         const std::vector<int> groups(rest.begin() + static_cast<std::ptrdiff_t>(from),
                                       rest.begin() + static_cast<std::ptrdiff_t>(std::min(rest.size(), from + per_window)));
         Window w(groups);
-        count_in_window(f, count, parallel_for, w, nullptr, overflow);
+        count_in_window(f, count, parallel_for, w, nullptr, budget, nullptr);
         add_window_counts(w, parallel_for, total);
     }
+    return trace;
 }
 
 }  // namespace warpcheck::chi2::sweep

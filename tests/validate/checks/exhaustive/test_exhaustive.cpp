@@ -234,6 +234,34 @@ TEST(ExhaustiveSweep, WindowRecountWithinItsMemoryBoundMatchesSorting) {
     }
 }
 
+// A sampler monotone but for swapped neighbours (i ^ 1) on a grid of 2^24
+// inputs (four chunks): with a window of nine binades, the 2^15 outputs below it
+// all come from the first chunk. The strays' budget is shared by the chunks
+// (2^16 keys here), so they are counted by sorting in the window's own pass;
+// a budget of 2^14 per chunk sent this through a second run of f. With three
+// binades (2^21 outputs outside) the budget overruns and further windows
+// count the rest. Both against the recount by sorting, field by field.
+TEST(ExhaustiveSweep, LocallySwappedSamplerIsRecountedInOnePass) {
+    const FloatBlockFn f = [](uint64_t first, std::size_t n, float* out) {
+        for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<float>((first + i) ^ 1u) * 0x1p-24f;
+    };
+    const uint64_t count = uint64_t{1} << 24;
+    ThreadPool pool(2);
+    const ParallelFor parallel = [&pool](std::size_t n, const std::function<void(std::size_t)>& body) {
+        pool.parallel_for(n, body);
+    };
+    const SweepSummary sorted = exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = count});
+    ASSERT_TRUE(sorted.exact_fallback);
+    EXPECT_EQ(sorted.recount_passes, 1);
+    EXPECT_EQ(sorted.non_monotone_steps, count / 2);
+    const SweepSummary nine = exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = 0, .window_binades = 9});
+    EXPECT_EQ(nine.recount_passes, 1);
+    expect_same_summary(nine, sorted);
+    const SweepSummary three = exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = 0, .window_binades = 3});
+    EXPECT_GT(three.recount_passes, 1);
+    expect_same_summary(three, sorted);
+}
+
 TEST(ExhaustiveSweep, NegativeAndZeroSpanningIntervals) {
     // t on the 2^-24 grid mapped to [-1, 1): x = 2t - 1 exactly, each value once.
     const SweepSummary s = sweep(
