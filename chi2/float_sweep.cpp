@@ -124,52 +124,6 @@ uint64_t keys_and_steps_down_portable(uint32_t* keys, std::size_t count, bool& e
     return down;
 }
 
-// Steps-only scan of a block once its chunk has stepped down (the counts will
-// be redone): keys of x[0..n), n a multiple of 16, against the key before each
-// (previous: the key before x[0]; on return, that of x[n - 1]); returns the steps
-// down, widens [lo, hi] to the keys seen and adds to sample[g] one for every
-// 16th key's binade g.
-uint64_t steps_only_portable(const float* x, std::size_t n, uint32_t& previous, uint32_t& lo, uint32_t& hi,
-                             std::array<uint64_t, kGroups>& sample) {
-    uint64_t down = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const uint32_t key = float_key(x[i]);
-        down += key < previous;
-        previous = key;
-        lo = std::min(lo, key);
-        hi = std::max(hi, key);
-        if (i % 16 == 0) ++sample[static_cast<std::size_t>(group_of(key))];
-    }
-    return down;
-}
-
-#if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target("avx512f,popcnt"))) uint64_t steps_only_avx512(const float* x, std::size_t n,
-                                                                     uint32_t& previous, uint32_t& lo, uint32_t& hi,
-                                                                     std::array<uint64_t, kGroups>& sample) {
-    uint64_t down = 0;
-    __m512i before = _mm512_set1_epi32(static_cast<int>(previous));
-    __m512i low = _mm512_set1_epi32(static_cast<int>(lo)), high = _mm512_set1_epi32(static_cast<int>(hi));
-    for (std::size_t i = 0; i < n; i += 16) {
-        const __m512i key = float_keys_avx512(_mm512_load_si512(x + i));
-        const __m512i shifted = _mm512_maskz_alignr_epi32(0xffff, key, before, 15);
-        down += static_cast<uint64_t>(std::popcount(static_cast<unsigned>(_mm512_cmplt_epu32_mask(key, shifted))));
-        low = _mm512_maskz_min_epu32(0xffff, low, key);
-        high = _mm512_maskz_max_epu32(0xffff, high, key);
-        ++sample[static_cast<std::size_t>(group_of(float_key(x[i])))];
-        before = key;
-    }
-    alignas(64) uint32_t lanes[16];
-    _mm512_store_si512(lanes, before);
-    previous = lanes[15];
-    _mm512_store_si512(lanes, low);
-    lo = *std::min_element(lanes, lanes + 16);
-    _mm512_store_si512(lanes, high);
-    hi = *std::max_element(lanes, lanes + 16);
-    return down;
-}
-#endif
-
 // Per-lane accumulators of the running binade's runs (the fast part of
 // GroupCounts). The AVX-512 scan gives lane l the runs l, l + 16, ... of each
 // group of 16; the portable scan uses lane 0 only. Within a lane the first run
@@ -230,7 +184,7 @@ public:
         for (uint64_t done = 0; done < n;) {
             const auto len = static_cast<std::size_t>(std::min<uint64_t>(kBlockSize, n - done));
             std::size_t count = 0;
-            if (fused && ends.steps_down == 0) {
+            if (fused) {
                 count = fused(first + done, len, last_bits, static_cast<uint32_t>(done), positions.data() + 1,
                               keys.data() + 1, last_bits);
             } else {
@@ -239,22 +193,15 @@ public:
                 last_bits = float_to_bits(values[len - 1]);
                 const std::size_t padded = (len + 63) / 64 * 64;
                 for (std::size_t i = len; i < padded; ++i) values[i] = values[len - 1];  // no borders in the padding
-                if (ends.steps_down > 0) {
-                    // Non-monotone: the counts will be redone; keep only the
-                    // steps down, the keys' reach and a sample of their binades.
-                    uint32_t lo = keys[0], hi = keys[0];
-                    ends.steps_down += block_steps_only(values, padded, keys[0], lo, hi);
-                    for (int g = group_of(lo); g <= group_of(hi); ++g) out_.reach[static_cast<std::size_t>(g)] = 1;
-                    positions[0] = static_cast<uint32_t>(done + len - 1);  // the tail: one output, not a run
-                    done += len;
-                    continue;
-                }
                 count = block_borders(values, padded, static_cast<uint32_t>(done), positions.data() + 1,
                                       keys.data() + 1);
             }
             bool equal = false;
             // Dropping a border between equal keys leaves the steps down as they are.
             ends.steps_down += block_keys_and_steps_down(keys.data(), count, equal);
+            // Non-monotone: the sweep will be recounted (count_runs keeps
+            // nothing of this pass then), so the chunk stops here.
+            if (ends.steps_down > 0) return ends;
             if (equal) count = merge_equal_keys(positions.data(), keys.data(), count);
             std::size_t start = 0;  // the first run done in this block
             if (!have_head_ && count > 0) {
@@ -262,11 +209,8 @@ public:
                 have_head_ = true;
                 start = 1;
             }
-            // Runs start..count-1 end in this block; run `count` goes on. Once
-            // the chunk has stepped down, the whole sweep will be recounted:
-            // only the steps down and where outputs lie are kept.
-            if (ends.steps_down == 0) add_runs(positions.data() + start, keys.data() + start, count - start);
-            else note_reach(keys.data(), count);
+            // Runs start..count-1 end in this block; run `count` goes on.
+            add_runs(positions.data() + start, keys.data() + start, count - start);
             positions[0] = positions[count];
             keys[0] = keys[count];
             done += len;
@@ -288,13 +232,6 @@ private:
         return borders_portable(x, n, base, positions, keys);
     }
 
-    uint64_t block_steps_only(const float* x, std::size_t n, uint32_t& previous, uint32_t& lo, uint32_t& hi) {
-#if defined(__x86_64__) && defined(__GNUC__)
-        if (avx512_) return steps_only_avx512(x, n, previous, lo, hi, out_.group_inputs_all);
-#endif
-        return steps_only_portable(x, n, previous, lo, hi, out_.group_inputs_all);
-    }
-
     uint64_t block_keys_and_steps_down(uint32_t* keys, std::size_t count, bool& equal) const {
 #if defined(__x86_64__) && defined(__GNUC__)
         if (avx512_) return keys_and_steps_down_avx512(keys, count, equal);
@@ -313,18 +250,6 @@ private:
             positions[kept] = positions[k];
         }
         return kept;
-    }
-
-    // For the recount of a non-monotone sweep (keys[0..count]): the binades
-    // between the smallest and the largest key, and a sample of where they lie.
-    void note_reach(const uint32_t* keys, std::size_t count) {
-        uint32_t lo = keys[0], hi = keys[0];
-        for (std::size_t k = 1; k <= count; ++k) {
-            lo = std::min(lo, keys[k]);
-            hi = std::max(hi, keys[k]);
-        }
-        for (int g = group_of(lo); g <= group_of(hi); ++g) out_.reach[static_cast<std::size_t>(g)] = 1;
-        for (std::size_t k = 0; k <= count; k += 16) ++out_.group_inputs_all[static_cast<std::size_t>(group_of(keys[k]))];
     }
 
     // Adds runs i in [0, n): key keys[i], multiplicity positions[i + 1] - positions[i].
@@ -633,7 +558,8 @@ SweepFrame make_frame(uint64_t count, float a, float b) {
 // borders in chunk order. Returns the steps down (0: the counts are exact). Once
 // a chunk steps down, every count will be redone by the recount, which counts
 // the steps itself: chunks that have not started yet are skipped (which ones
-// depends on timing, so nothing of this pass is kept then).
+// depends on timing, so nothing of this pass is kept then), and the chunk that
+// stepped stops there.
 uint64_t count_runs(const FloatBlockFn& f, const FloatBordersFn& fused, uint64_t count,
                     const ParallelFor& parallel_for, bool avx512, RunCounter& total) {
     const SweepFrame& frame = *total.frame;

@@ -16,9 +16,9 @@
 // ever smaller than the one before (a non-monotone step), equal outputs may be
 // far apart, and the counts are redone exactly: by sorting all outputs when
 // there are at most 2^26 inputs, otherwise by counting windows of binades. The
-// first pass stops once a chunk steps down (chunks not started are skipped, the
-// one that stepped only counts its steps on): the recount counts every step
-// down itself, in input order. The recount's first window takes the 64 binades
+// first pass stops once a chunk steps down (that chunk stops, and chunks not
+// started are skipped): the recount counts every step down itself, in input
+// order. The recount's first window takes the 64 binades
 // where most outputs lie (ranked by f on 2^16 inputs evenly spread over the
 // range: a run of 16 at each of 4096 points), with a one-byte counter per float
 // (2^29 counters, 512 MiB; a counter that wraps records the wrap, at most

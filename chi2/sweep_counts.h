@@ -124,11 +124,6 @@ struct RunCounter {
     const SweepFrame* frame = nullptr;
     std::array<GroupCounts, kGroups> groups{};
     std::array<uint64_t, kGroups> group_inputs_all{};  // inputs per group, outside outputs included
-    // Binades where outputs may lie that group_inputs_all does not show: once a
-    // chunk is known to be non-monotone its runs are no longer counted (the
-    // recount redoes them); then group_inputs_all holds a sample and this the
-    // binades between each block's smallest and largest output.
-    std::array<uint8_t, kGroups> reach{};
     uint64_t outside_distinct = 0, outside_inputs = 0;
     std::vector<std::pair<uint32_t, uint64_t>> outside;  // smallest keys, sorted
 
@@ -184,7 +179,6 @@ struct RunCounter {
         for (std::size_t g = 0; g < kGroups; ++g) {
             groups[g].merge(o.groups[g]);
             group_inputs_all[g] += o.group_inputs_all[g];
-            reach[g] |= o.reach[g];
         }
         outside_distinct += o.outside_distinct;
         outside_inputs += o.outside_inputs;
