@@ -124,7 +124,9 @@ const std::vector<std::pair<std::string_view, std::vector<Spec>>> kSpecs = {
           {"zero_f", "continuous samples where f(wo, wi) is 0", Rule::Zero},
           {"bad_delta", "delta samples with a weight not finite and positive", Rule::Zero},
           {"wrong_eta", "continuous transmissions whose eta is not the case's", Rule::Zero},
-          {"excused", "samples at the float resolution of f and pdf (excused)", Rule::Counted}}},
+          {"excused", "samples at the float resolution of f and pdf (excused)", Rule::Counted},
+          {"excused_random", "of them, from random inputs", Rule::AtMost, "excused_random_limit"},
+          {"excused_outside_support", "of them, where f or pdf at wi is 0 (a neighbour's is not)", Rule::Counted}}},
         {"bsdf_delta",
          {{"off_direction", "delta samples off their mirror or Snell direction", Rule::Zero},
           {"wrong_eta", "delta samples whose eta is not the case's", Rule::Zero}}},
@@ -359,7 +361,7 @@ const std::vector<std::pair<std::string_view, CheckLegend>> kLegends = {
       "Anderson\u2013Darling on both and Kuiper on the azimuth, each sample within its float band where that matters.",
       "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged tests."}},
     {"bsdf_weight", {"Every sample's weight f |cos| / pdf against f() and pdf() at its wi (2^-12 relative; samples at "
-                     "f's and pdf's float resolution excused and counted); wi a unit vector on its flags' side; no "
+                     "f's and pdf's float resolution excused, counted, and at most 2^-10 of the random inputs'); wi a unit vector on its flags' side; no "
                      "sample where pdf or f is 0.", ""}},
     {"bsdf_delta", {"Each delta lobe's share of draws against the probability its samples claim (exact binomial), and "
                     "its direction (mirror, Snell) and eta within float rounding.",

@@ -67,9 +67,8 @@ struct EtaSetting {
 // From outside and inside, near normal and grazing, sharp and wide, at etas
 // 1.5, 1.33 and 2.4 (none has a float inverse: from inside, the sample's
 // 1 / eta is a float rounding of the claim's).
-// (Not alpha 0.05: there the glass's own samples at the edge input u.x =
-// 2^-36 land where f() and pdf() recomputed at wi are 0, which the check's
-// other rules fail; a finding of its own, issue 38's note.)
+// (Sharper glass, whose edge inputs refract through facets on the horizon, is
+// test_bsdf_weight_edges.cpp's.)
 const std::vector<EtaSetting> kEtaSettings = {{0.1f, 1.5f, 30}, {0.1f, 1.5f, 150}, {0.5f, 1.33f, 95},
                                         {0.5f, 1.33f, 175}, {0.1f, 2.4f, 85},   {0.1f, 2.4f, 100}};
 
