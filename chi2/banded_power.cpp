@@ -36,36 +36,59 @@ const std::vector<double>& banded_bridges() {
     return b;
 }
 
+/// u (1 - u) at the grid's points u = j / kBandedGrid, j = 1 .. kBandedGrid - 1.
+const std::vector<double>& banded_weights() {
+    static const std::vector<double> w = [] {
+        std::vector<double> out;
+        for (int j = 1; j < kBandedGrid; ++j) {
+            const double u = static_cast<double>(j) / kBandedGrid;
+            out.push_back(u * (1.0 - u));
+        }
+        return out;
+    }();
+    return w;
+}
+
 /// The banded statistic of one bridge (its kBandedGrid - 1 values from `bridge`)
 /// plus the drift delta u (1 - u), against the band [-c, c].
 double banded_statistic(UnbinnedTest test, const double* bridge, double delta, double c) {
     // The grid's extremes fall short of the continuous ones by ~0.5826 / sqrt(kBandedGrid)
     // (the continuity correction of chi2/power.cpp).
     static const double correction = 0.5826 * std::sqrt(1.0 / kBandedGrid);
-    double hi = 0.0, lo = 0.0, ad = 0.0;
-    for (int j = 1; j < kBandedGrid; ++j) {
-        const double u = static_cast<double>(j) / kBandedGrid, weight = u * (1.0 - u);
-        const double y = bridge[j - 1] + delta * weight;
+    const double* weight = banded_weights().data();
+    if (test == UnbinnedTest::AndersonDarling) {
+        // In grid order, as the sum always was; a term outside the band adds 0.
+        double ad = 0.0;
+        for (int j = 0; j < kBandedGrid - 1; ++j) {
+            const double d = std::abs(bridge[j] + delta * weight[j]) - c;
+            if (d > 0.0) ad += d * d / weight[j];
+        }
+        return ad / kBandedGrid;
+    }
+    double hi = 0.0, lo = 0.0;
+    for (int j = 0; j < kBandedGrid - 1; ++j) {
+        const double y = bridge[j] + delta * weight[j];
         hi = std::max(hi, y);
         lo = std::min(lo, y);
-        const double d = std::max(0.0, std::abs(y) - c);
-        ad += d * d / weight;
     }
     const double d_plus = std::max(0.0, hi + correction - c), d_minus = std::max(0.0, -lo + correction - c);
-    switch (test) {
-        case UnbinnedTest::KolmogorovSmirnov: return std::max(d_plus, d_minus);
-        case UnbinnedTest::Kuiper: return d_plus + d_minus;
-        case UnbinnedTest::AndersonDarling: return ad / kBandedGrid;
-    }
-    return std::nan("");
+    return test == UnbinnedTest::Kuiper ? d_plus + d_minus : std::max(d_plus, d_minus);
 }
 
-double simulated_power(UnbinnedTest test, double critical, double delta, double c) {
+/// Whether the simulated power, the share of the kBandedBridges bridges whose
+/// statistic exceeds `critical`, is at least `power`: the bridges are counted
+/// only until that is decided (the answer is the full count's).
+bool reaches_power(UnbinnedTest test, double critical, double delta, double c, double power) {
+    int needed = 0;  // the fewest hits h with h / kBandedBridges >= power, as the share is compared
+    while (needed <= kBandedBridges && !(static_cast<double>(needed) / kBandedBridges >= power)) ++needed;
     const std::vector<double>& b = banded_bridges();
     int hits = 0;
-    for (int r = 0; r < kBandedBridges; ++r)
+    for (int r = 0; r < kBandedBridges; ++r) {
+        if (hits >= needed) return true;
+        if (hits + (kBandedBridges - r) < needed) return false;
         hits += banded_statistic(test, b.data() + static_cast<std::size_t>(r) * (kBandedGrid - 1), delta, c) > critical;
-    return static_cast<double>(hits) / kBandedBridges;
+    }
+    return hits >= needed;
 }
 
 }  // namespace
@@ -78,11 +101,11 @@ double banded_tilt_for_power(UnbinnedTest test, double level, double shift, uint
     const double critical = asymptotic_critical_value(test, level);
     const double root_n = std::sqrt(static_cast<double>(n)), c = root_n * shift;
     constexpr double kMaxDrift = 512.0;
-    if (simulated_power(test, critical, kMaxDrift, c) < power) return std::nan("");
+    if (!reaches_power(test, critical, kMaxDrift, c, power)) return std::nan("");
     double lo = 0.0, hi = kMaxDrift;
     for (int i = 0; i < 24; ++i) {  // to 3e-5 of the range: far below the simulation's ~1.5% noise
         const double mid = 0.5 * (lo + hi);
-        (simulated_power(test, critical, mid, c) >= power ? hi : lo) = mid;
+        (reaches_power(test, critical, mid, c, power) ? hi : lo) = mid;
     }
     return hi / root_n;
 }

@@ -95,12 +95,21 @@ double drifted_statistic(UnbinnedTest test, const Eigen::ArrayXXf::ConstColXpr& 
     return std::nan("");
 }
 
-double simulated_power(UnbinnedTest test, double critical, double delta) {
+/// Whether the simulated power, the share of the kBridges bridges whose
+/// statistic exceeds `critical`, is at least `power`: the bridges are counted
+/// only until that is decided (the answer is the full count's).
+bool reaches_power(UnbinnedTest test, double critical, double delta, double power) {
+    int needed = 0;  // the fewest hits h with h / kBridges >= power, as the share is compared
+    while (needed <= kBridges && !(static_cast<double>(needed) / kBridges >= power)) ++needed;
     const Eigen::ArrayXXf& b = bridges();
     Eigen::ArrayXd y(kGrid - 1);
     int hits = 0;
-    for (int r = 0; r < kBridges; ++r) hits += drifted_statistic(test, b.col(r), delta, y) > critical;
-    return static_cast<double>(hits) / kBridges;
+    for (int r = 0; r < kBridges; ++r) {
+        if (hits >= needed) return true;
+        if (hits + (kBridges - r) < needed) return false;
+        hits += drifted_statistic(test, b.col(r), delta, y) > critical;
+    }
+    return hits >= needed;
 }
 
 /// The drift sqrt(n) eps at which the simulated power reaches `power`.
@@ -109,7 +118,7 @@ double drift_for_power(UnbinnedTest test, double level, double power) {
     double lo = 0.0, hi = 128.0;
     for (int i = 0; i < 20; ++i) {  // to 1e-4 of the range: far below the simulation's ~1.5% noise
         const double mid = 0.5 * (lo + hi);
-        (simulated_power(test, critical, mid) >= power ? hi : lo) = mid;
+        (reaches_power(test, critical, mid, power) ? hi : lo) = mid;
     }
     return hi;
 }
