@@ -16,7 +16,10 @@
 //    times (eta(wi) / eta(wo))^2 in radiance transport (undoing radiance's
 //    1 / etap^2, BsdfCase::energy_factor), may exceed 1 by at most the
 //    quadrature's error bound plus 2^-20 (the density's float rounding, as
-//    chi2::kIntegralTolerance): more is energy created by the surface (FAIL).
+//    chi2::kIntegralTolerance) plus the same float-noise allowance as the
+//    albedo's, times the largest energy factor (the energy integral's noise
+//    is the albedo's, weighted by it): more is energy created by the surface
+//    (FAIL).
 //    One-sided: an albedo below 1 is a surface that absorbs.
 // Evidence: the albedo and energy albedo against theta_o at this case's
 // azimuth (a cheaper quadrature per angle, kSweepAccuracySamples), and the
@@ -165,6 +168,9 @@ Outcome evaluate(const BsdfCase& bsdf, const CheckContext& ctx, const Draws& d) 
     o.float_allowance = ctx.options().strict ? 0.0 : chi2::kFloatNoiseFactor * o.integral.float_noise;
     o.test = chi2::mean_test(d.weights, o.albedo, std::hypot(o.integral.error, kRoundingAllowance * o.albedo),
                              o.float_allowance);
+    // energy_factor depends only on wi's side of the surface.
+    const double largest_factor = std::max(bsdf.energy_factor({0.0f, 0.0f, 1.0f}), bsdf.energy_factor({0.0f, 0.0f, -1.0f}));
+    o.energy_tolerance += o.float_allowance * std::max(1.0, largest_factor);
     return o;
 }
 

@@ -32,7 +32,12 @@
 // judged at what a float sampler can do. A cell integrated as zero where
 // continuous samples landed is integrated again around them, as the chi2
 // check does (integrate_and_draw); a sample where the pdf is still 0 is a
-// failure, and a failure is reported before any error.
+// failure, and a failure is reported before any error. Where the tolerance
+// of T is as large as T itself (a lobe so sharp that the float pdf's noise
+// exceeds its integral: Henyey-Greenstein at g = 0.9999, whose peak is
+// narrower than the float directions around it), no cell's expected count is
+// known within 100%, and the row is not applicable with that reason, its
+// failures (samples off the sphere, NaN, in cells of pdf 0) still judged.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -250,6 +255,14 @@ void judge(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual
     } else if (!o.errors.empty()) {
         r.verdict = Verdict::Error;
         r.message = join_reasons(o.errors);
+    } else if (!(n.tolerance < n.integral)) {
+        // The reference is unknown within its own size: no p-value means anything.
+        r.p_value.reset();
+        r.verdict = Verdict::NotApplicable;
+        r.summary = fmt::format("not applicable: pdf(wo, .)'s integral {:.4g} is known only within {:.3g} (its "
+                                "float noise): no cell can be tested", n.integral, n.tolerance);
+        r.message = r.summary.substr(std::string("not applicable: ").size()) +
+                    "; the lobe is narrower than the float directions that evaluate it";
     } else {
         r.message = fmt::format("Pearson p {:.3g}, largest residual {:.3g} (p {:.3g}), landing p {:.3g}: {} of {} "
                                 "non-delta draws landed, {:.6g} expected from the pdf's integral",
