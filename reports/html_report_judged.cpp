@@ -134,7 +134,8 @@ const std::vector<std::pair<std::string_view, std::vector<Spec>>> kSpecs = {
          {{"max_relative_error", "largest relative error |f(wo, wi) s − f(wi, wo)|, not excused", Rule::AtMost,
            "tolerance"},
           {"violations", "pairs beyond the tolerance", Rule::Zero},
-          {"excused_pairs", "pairs at f's float resolution (excused)", Rule::Counted}}},
+          {"excused_pairs", "pairs at f's float resolution (excused)", Rule::Counted},
+          {"grid_excused_pairs", "of them, on the evenly spread grid", Rule::AtMost, "grid_excused_pairs_bound"}}},
 };
 
 const std::vector<Spec>& specs_of(std::string_view check) {

@@ -20,7 +20,8 @@
 // wi.wm near 0) a few roundings of the half vector move f by any fraction of
 // itself; those pairs are excused, counted and their largest error reported
 // (excused_pairs, excused_max_error), while a non-reciprocal factor moves f
-// far more than its neighbours differ.
+// far more than its neighbours differ. More than kMaxExcusedFraction of the
+// grid's pairs excused is a failure (f noisy everywhere, not at a cancellation).
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -108,12 +109,23 @@ constexpr double kResolutionFactor = 2.0;
 /// (a single distance of 16 floats missed a 0.14% jump of rough glass's f at
 /// theta_o 85, a pair whose neighbours there all fell on one side of it).
 constexpr double kNeighbourSteps[] = {0x1p-24, 0x1p-22, kFloatStep};
-/// At most 2^-7 of the pairs may be excused by f's float resolution: its
-/// rounding noise exceeds the relative tolerance only near cancellations (the
-/// critical angle, facets edge-on), which the built-in rough glass shows on at
-/// most 35 of 67,990 pairs (seed 1), 1/15 of this bound; an f noisier than that
-/// is unstable, not float-limited, and fails.
-constexpr double kMaxExcusedFraction = 0x1p-7;
+/// At most 2^-4 of the grid's pairs may be excused by f's float resolution:
+/// its rounding noise exceeds the relative tolerance only near cancellations
+/// (the critical angle, facets edge-on), bands of directions that hold up to
+/// 20 of the evenly spread grid's 4,096 (0.5%: the built-in rough glass seen
+/// from inside), while an f noisy everywhere is excused wherever it is
+/// positive (most of the grid: NoisyGlass in the tests, thousands); 2^-4 (256)
+/// leaves the first 12 times its count and fails the second: f is then
+/// unstable, not float-limited. The bound is on the grid alone because the
+/// sampled directions follow the lobe, and a sharp lobe may lie inside such a
+/// band as a whole: rough glass at alpha 0.005 seen at 89 degrees transmits
+/// every sample near the direction whose reverse meets the surface at the
+/// critical angle, where f(wi, wo)'s 1 - F loses 1e-4 to 2e-4 of itself to the
+/// cancellation in cos_t = sqrt(1 - sin^2 t) (measured against double), and
+/// 2,400 of its 68,672 pairs, each within f's float resolution, failed the
+/// former bound of 2^-7 of all pairs. The sampled pairs excused are counted
+/// (excused_pairs), not bounded.
+constexpr double kMaxExcusedFraction = 0x1p-4;
 
 /// How much f(wo, wi) s and f(wi, wo) move over wi's neighbours: their float resolution at the pair.
 double float_resolution(const BsdfCase& bsdf, const Pair& p) {
@@ -136,6 +148,7 @@ double float_resolution(const BsdfCase& bsdf, const Pair& p) {
 
 struct ReciprocityStats {
     uint64_t pairs = 0, violations = 0, excused = 0;
+    uint64_t grid_pairs = 0, grid_excused = 0;  ///< of the pairs and the excused: the grid's
     double max_error = 0.0, excused_max_error = 0.0;
     double excused_max_fraction = 0.0;  ///< of the excused pairs: the largest discrepancy over the resolution
     WorstK<Pair> worst{10};
@@ -149,14 +162,18 @@ ReciprocityStats compute_reciprocity(const BsdfCase& bsdf, const CheckContext& c
     bsdf.f(wo, wi, forward);
     bsdf.f(wi, wo, backward);
     ReciprocityStats s;
+    const std::size_t first_grid = wi.size() - static_cast<std::size_t>(kGridDirections);  // directions(): grid last
     for (std::size_t i = 0; i < wi.size(); ++i) {
         Pair p{wi[i], forward[i], backward[i], reciprocity_scale(bsdf, wi[i]), 0.0};
         p.error = relative_difference(p.forward * p.scale, p.backward);
         ++s.pairs;
+        const bool on_grid = i >= first_grid;
+        s.grid_pairs += on_grid;
         if (!(p.error <= kReciprocityTolerance)) {
             const double gap = std::abs(p.forward * p.scale - p.backward), resolution = float_resolution(bsdf, p);
             if (gap <= kResolutionFactor * resolution) {
                 ++s.excused;
+                s.grid_excused += on_grid;
                 s.excused_max_error = max_nan_wins(s.excused_max_error, p.error);
                 s.excused_max_fraction = max_nan_wins(s.excused_max_fraction, gap / resolution);
                 continue;
@@ -226,15 +243,20 @@ protected:
                      {"tolerance", kReciprocityTolerance}};
         r.summary = fmt::format("max rel. error {:.3g} over {} pairs, {} at float resolution", s.max_error, s.pairs,
                                 s.excused);
-        const double excused_bound = kMaxExcusedFraction * static_cast<double>(s.pairs);
-        r.figures.push_back({"excused_pairs_bound", excused_bound});
-        r.verdict = s.violations == 0 && static_cast<double>(s.excused) <= excused_bound ? Verdict::Pass : Verdict::Fail;
+        const double excused_bound = kMaxExcusedFraction * static_cast<double>(s.grid_pairs);
+        r.figures.push_back({"grid_pairs", static_cast<double>(s.grid_pairs)});
+        r.figures.push_back({"grid_excused_pairs", static_cast<double>(s.grid_excused)});
+        r.figures.push_back({"grid_excused_pairs_bound", excused_bound});
+        r.verdict =
+            s.violations == 0 && static_cast<double>(s.grid_excused) <= excused_bound ? Verdict::Pass : Verdict::Fail;
         if (s.violations == 0 && r.verdict == Verdict::Fail) {
-            r.summary = fmt::format("f's float noise excuses {} of {} pairs", s.excused, s.pairs);
-            r.message = fmt::format("{} of {} pairs differ by more than {:.3g} relative and are within f's float "
-                                    "resolution, more than the {:.0f} ({:.3g} of the pairs) that cancellations near "
-                                    "the critical angle or edge-on facets explain: f is unstable, not float-limited",
-                                    s.excused, s.pairs, kReciprocityTolerance, excused_bound, kMaxExcusedFraction);
+            r.summary = fmt::format("f's float noise excuses {} of the {} grid pairs", s.grid_excused, s.grid_pairs);
+            r.message = fmt::format("{} of the {} pairs of the evenly spread grid differ by more than {:.3g} relative "
+                                    "and are within f's float resolution, more than the {:.0f} ({:.3g} of them) that "
+                                    "cancellations near the critical angle or edge-on facets explain: f is unstable, "
+                                    "not float-limited ({} of all {} pairs excused)",
+                                    s.grid_excused, s.grid_pairs, kReciprocityTolerance, excused_bound,
+                                    kMaxExcusedFraction, s.excused, s.pairs);
         }
         if (s.violations > 0) {
             const Pair& p = s.worst.front().item;
