@@ -39,7 +39,7 @@ struct GainingHg {
     }
 };
 
-std::unique_ptr<WarpCase> hg(float g, float gain = 1.0f) {
+std::unique_ptr<WarpCase> sharp_hg(float g, float gain = 1.0f) {
     return make_phase_case({.family = gain == 1.0f ? "hg" : "hg_gaining", .params = {{"g", g}, {"gain", gain}}},
                            bsdf_direction(30), GainingHg{HenyeyGreenstein(g), gain});
 }
@@ -47,7 +47,7 @@ std::unique_ptr<WarpCase> hg(float g, float gain = 1.0f) {
 /// 200,000 samples: the cells' quadrature of a lobe this sharp costs ~10 s a
 /// row at validate's 10^6 (its accuracy target scales with 1 / sqrt(N)); the
 /// float noise that decides these rows does not depend on N.
-CheckResult run(const WarpCase& c, const std::string& check, uint64_t seed) {
+CheckResult sharp_run(const WarpCase& c, const std::string& check, uint64_t seed) {
     Registry registry;
     register_builtin_checks(registry);
     RunOptions options;
@@ -58,44 +58,44 @@ CheckResult run(const WarpCase& c, const std::string& check, uint64_t seed) {
     return run_jobs({Job{&c, registry.find_check(check)}}, options).results.at(0);
 }
 
-double figure(const CheckResult& r, const std::string& name) { return r.figure(name).value_or(std::nan("")); }
+double sharp_figure(const CheckResult& r, const std::string& name) { return r.figure(name).value_or(std::nan("")); }
 
 TEST(SharpLobe, HgAtPointNineNineNineNineIsNotApplicableToCellsOnSeveralSeeds) {
-    const auto c = hg(0.9999f);
+    const auto c = sharp_hg(0.9999f);
     for (uint64_t seed : {1, 2}) {
-        const CheckResult r = run(*c, "bsdf_chi2", seed);
+        const CheckResult r = sharp_run(*c, "bsdf_chi2", seed);
         EXPECT_EQ(r.verdict, Verdict::NotApplicable) << "seed " << seed << ": " << r.summary << " " << r.message;
         EXPECT_FALSE(r.p_value.has_value()) << "seed " << seed;
-        EXPECT_GE(figure(r, "integral_tolerance"), figure(r, "pdf_integral")) << "seed " << seed;
+        EXPECT_GE(sharp_figure(r, "integral_tolerance"), sharp_figure(r, "pdf_integral")) << "seed " << seed;
         EXPECT_NE(r.summary.find("no cell can be tested"), std::string::npos) << r.summary;
     }
 }
 
 TEST(SharpLobe, HgAtPointNineNineNineIsStillTestedByCellsOnSeveralSeeds) {
-    const auto c = hg(0.999f);
+    const auto c = sharp_hg(0.999f);
     for (uint64_t seed : {1, 2}) {
-        const CheckResult r = run(*c, "bsdf_chi2", seed);
+        const CheckResult r = sharp_run(*c, "bsdf_chi2", seed);
         EXPECT_EQ(r.verdict, Verdict::Pass) << "seed " << seed << ": " << r.summary << " " << r.message;
-        EXPECT_LT(figure(r, "integral_tolerance"), figure(r, "pdf_integral")) << "seed " << seed;
+        EXPECT_LT(sharp_figure(r, "integral_tolerance"), sharp_figure(r, "pdf_integral")) << "seed " << seed;
     }
 }
 
 TEST(SharpLobe, HgEnergyAlbedoIsHeldWithinItsFloatNoiseOnSeveralSeeds) {
     for (float g : {0.99f, 0.999f, 0.9999f}) {
-        const auto c = hg(g);
+        const auto c = sharp_hg(g);
         for (uint64_t seed : {1, 2, 3}) {
-            const CheckResult r = run(*c, "bsdf_albedo", seed);
+            const CheckResult r = sharp_run(*c, "bsdf_albedo", seed);
             EXPECT_EQ(r.verdict, Verdict::Pass) << "g " << g << " seed " << seed << ": " << r.message;
-            EXPECT_GE(figure(r, "energy_tolerance"), figure(r, "float_noise_allowance")) << "g " << g;
+            EXPECT_GE(sharp_figure(r, "energy_tolerance"), sharp_figure(r, "float_noise_allowance")) << "g " << g;
         }
     }
 }
 
 TEST(SharpLobe, HgCreatingEnergyFailsAtTheSameSharpness) {
     for (auto [g, gain] : {std::pair{0.99f, 1.02f}, std::pair{0.9999f, 4.0f}}) {
-        const auto c = hg(g, gain);
+        const auto c = sharp_hg(g, gain);
         for (uint64_t seed : {1, 2, 3}) {
-            const CheckResult r = run(*c, "bsdf_albedo", seed);
+            const CheckResult r = sharp_run(*c, "bsdf_albedo", seed);
             EXPECT_EQ(r.verdict, Verdict::Fail) << "g " << g << " seed " << seed << ": " << r.message;
             EXPECT_NE(r.message.find("the surface creates energy"), std::string::npos) << r.message;
         }

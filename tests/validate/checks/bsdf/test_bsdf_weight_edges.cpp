@@ -57,7 +57,7 @@ struct GlassWithHorizonFlaw {
     float pdf(Vector3f wo, Vector3f wi) const { return glass.pdf(wo, wi); }
 };
 
-std::unique_ptr<WarpCase> glass(float alpha, double theta_o, HorizonFlaw flaw) {
+std::unique_ptr<WarpCase> edge_glass(float alpha, double theta_o, HorizonFlaw flaw) {
     const char* family = flaw == HorizonFlaw::None        ? "glass"
                          : flaw == HorizonFlaw::WeightOff ? "glass_horizon_weight_off"
                                                           : "glass_horizon_beyond_edge";
@@ -79,7 +79,7 @@ struct LambertianWithHoles {
     float pdf(Vector3f wo, Vector3f wi) const { return hole(wi) ? 0.0f : lambert.pdf(wo, wi); }
 };
 
-CheckResult bsdf_weight_of(const WarpCase& bsdf, uint64_t seed) {
+CheckResult edges_weight_of(const WarpCase& bsdf, uint64_t seed) {
     Registry registry;
     register_builtin_checks(registry);
     RunOptions options;
@@ -90,39 +90,39 @@ CheckResult bsdf_weight_of(const WarpCase& bsdf, uint64_t seed) {
     return run_jobs({Job{&bsdf, registry.find_check("bsdf_weight")}}, options).results.at(0);
 }
 
-double figure(const CheckResult& r, const std::string& name) { return r.figure(name).value_or(std::nan("")); }
+double edges_figure(const CheckResult& r, const std::string& name) { return r.figure(name).value_or(std::nan("")); }
 
-struct Setting {
+struct EdgeSetting {
     float alpha;
     double theta_o;
 };
 // Sharp and very sharp, near normal and grazing, from outside and inside.
-constexpr Setting kSettings[] = {{0.05f, 30}, {0.05f, 85}, {0.02f, 30}, {0.05f, 150}};
+constexpr EdgeSetting kEdgeSettings[] = {{0.05f, 30}, {0.05f, 85}, {0.02f, 30}, {0.05f, 150}};
 
 TEST(BsdfWeightEdges, SharpGlassPassesOnSeveralSeedsWithItsHorizonSamplesExcused) {
-    for (const Setting& s : kSettings)
+    for (const EdgeSetting& s : kEdgeSettings)
         for (uint64_t seed : {1, 2, 3, 4, 5}) {
-            const auto bsdf = glass(s.alpha, s.theta_o, HorizonFlaw::None);
-            const CheckResult r = bsdf_weight_of(*bsdf, seed);
+            const auto bsdf = edge_glass(s.alpha, s.theta_o, HorizonFlaw::None);
+            const CheckResult r = edges_weight_of(*bsdf, seed);
             EXPECT_EQ(r.verdict, Verdict::Pass) << bsdf->name() << " seed " << seed << ": " << r.message;
             if (s.theta_o < 90) {  // from outside, the horizon facets refract: the rule is exercised
-                EXPECT_GT(figure(r, "excused_outside_support"), 0.0) << bsdf->name();
+                EXPECT_GT(edges_figure(r, "excused_outside_support"), 0.0) << bsdf->name();
             }
-            EXPECT_LE(figure(r, "excused_random"), figure(r, "excused_random_limit")) << bsdf->name();
-            EXPECT_EQ(figure(r, "zero_pdf"), 0.0) << bsdf->name();
+            EXPECT_LE(edges_figure(r, "excused_random"), edges_figure(r, "excused_random_limit")) << bsdf->name();
+            EXPECT_EQ(edges_figure(r, "zero_pdf"), 0.0) << bsdf->name();
         }
 }
 
 TEST(BsdfWeightEdges, GlassWrongAtItsHorizonFacetsFailsOnSeveralSeeds) {
     for (HorizonFlaw flaw : {HorizonFlaw::WeightOff, HorizonFlaw::BeyondEdge})
-        for (const Setting& s : kSettings) {
+        for (const EdgeSetting& s : kEdgeSettings) {
             if (s.theta_o > 90) continue;  // from inside no horizon facet refracts
             for (uint64_t seed : {1, 2, 3}) {
-                const auto bsdf = glass(s.alpha, s.theta_o, flaw);
-                const CheckResult r = bsdf_weight_of(*bsdf, seed);
+                const auto bsdf = edge_glass(s.alpha, s.theta_o, flaw);
+                const CheckResult r = edges_weight_of(*bsdf, seed);
                 EXPECT_EQ(r.verdict, Verdict::Fail) << bsdf->name() << " seed " << seed;
-                EXPECT_GT(figure(r, "zero_pdf"), 0.0) << bsdf->name() << " seed " << seed;
-                EXPECT_EQ(figure(r, "excused_outside_support"), 0.0) << bsdf->name() << " seed " << seed;
+                EXPECT_GT(edges_figure(r, "zero_pdf"), 0.0) << bsdf->name() << " seed " << seed;
+                EXPECT_EQ(edges_figure(r, "excused_outside_support"), 0.0) << bsdf->name() << " seed " << seed;
             }
         }
 }
@@ -131,9 +131,9 @@ TEST(BsdfWeightEdges, DiffuseWithHolesInItsPdfFailsByTheExcuseBound) {
     for (uint64_t seed : {1, 2, 3}) {
         const auto bsdf = make_bsdf_case({.family = "lambertian_with_holes", .params = {}},
                                          {.wo = bsdf_direction(30)}, LambertianWithHoles{});
-        const CheckResult r = bsdf_weight_of(*bsdf, seed);
+        const CheckResult r = edges_weight_of(*bsdf, seed);
         EXPECT_EQ(r.verdict, Verdict::Fail) << "seed " << seed;
-        EXPECT_GT(figure(r, "excused_random"), figure(r, "excused_random_limit")) << "seed " << seed;
+        EXPECT_GT(edges_figure(r, "excused_random"), edges_figure(r, "excused_random_limit")) << "seed " << seed;
         EXPECT_NE(r.message.find("more random inputs' samples at float resolution"), std::string::npos) << r.message;
     }
 }
