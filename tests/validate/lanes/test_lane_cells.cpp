@@ -15,6 +15,9 @@
 #pragma GCC diagnostic ignored "-Wpsabi"  // lane vectors between inline test helpers
 
 namespace warpcheck {
+// chi2's names for this file alone: a using-directive at warpcheck's scope
+// reached the other files of a unity batch (kTwoPi became ambiguous).
+namespace lane_cells_test {
 using namespace chi2;
 namespace {
 
@@ -119,4 +122,5 @@ TEST(LaneCells, ComparisonCanFail) {
 }
 
 }  // namespace
+}  // namespace lane_cells_test
 }  // namespace warpcheck

@@ -18,7 +18,7 @@ namespace warpcheck {
 namespace {
 
 using testing::run_check;
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kWordsNaN = std::numeric_limits<float>::quiet_NaN();
 
 /// Every check of `makers` that applies to the warp must FAIL (not ERROR), with a message that names NaN.
 void expect_nan_fails(const WarpCase& warp, std::initializer_list<std::unique_ptr<Check> (*)()> makers) {
@@ -37,34 +37,34 @@ void expect_nan_fails(const WarpCase& warp, std::initializer_list<std::unique_pt
 
 TEST(NaNEverywhere, PointsAndPdfFailConsistency) {
     auto warp = make_warp_case({.family = "nan_everywhere"},
-        warp_of([](Point2f) { return Point2f{kNaN, kNaN}; }).with_pdf([](Point2f) { return kNaN; }));
+        warp_of([](Point2f) { return Point2f{kWordsNaN, kWordsNaN}; }).with_pdf([](Point2f) { return kWordsNaN; }));
     expect_nan_fails(*warp, {make_consistency_check});
 }
 
 TEST(NaNEverywhere, ReturnedPdfFailsConsistencyAndTheMeanOfItsInverse) {
     auto warp = make_warp_case({.family = "nan_returned_pdf"},
-                               warp_of([](Point2f) { return PdfSample<Point2f>{{kNaN, kNaN}, kNaN}; }));
+                               warp_of([](Point2f) { return PdfSample<Point2f>{{kWordsNaN, kWordsNaN}, kWordsNaN}; }));
     expect_nan_fails(*warp, {make_consistency_check, make_inverse_pdf_mean_check});
 }
 
 TEST(NaNEverywhere, WeightedSamplerFailsTheMeanWeight) {
     auto warp = make_warp_case({.family = "nan_weighted", .domain = chi2::Domain::hemisphere()},
-                                   warp_of([](Point2f) { return WeightedSample<Vector3f>{{kNaN, kNaN, kNaN}, kNaN}; })
-                                       .with_pdf([](Vector3f) { return kNaN; })
-                                       .with_eval([](Vector3f) { return kNaN; }));
+                                   warp_of([](Point2f) { return WeightedSample<Vector3f>{{kWordsNaN, kWordsNaN, kWordsNaN}, kWordsNaN}; })
+                                       .with_pdf([](Vector3f) { return kWordsNaN; })
+                                       .with_eval([](Vector3f) { return kWordsNaN; }));
     expect_nan_fails(*warp, {make_consistency_check, make_weight_mean_check});
 }
 
 TEST(NaNEverywhere, DiscreteSamplerFailsItsChecks) {
     auto warp = make_warp_case({.family = "nan_discrete", .categories = 4},
-                               warp_of([](float) { return DiscreteSample{0, kNaN}; })
-                                   .with_pdf([](uint32_t) { return kNaN; }));
+                               warp_of([](float) { return DiscreteSample{0, kWordsNaN}; })
+                                   .with_pdf([](uint32_t) { return kWordsNaN; }));
     expect_nan_fails(*warp, {make_pmf_check, make_discrete_chi2_check, make_remapped_u_check});
 }
 
 TEST(NaNEverywhere, FloatSamplersFailTheirChecks) {
     auto bits64 = make_warp_case({.family = "nan_bits64", .domain = chi2::Domain::interval(0, 1)},
-                                 warp_of([](uint64_t) { return kNaN; }).with_pdf([](float) { return kNaN; }));
+                                 warp_of([](uint64_t) { return kWordsNaN; }).with_pdf([](float) { return kWordsNaN; }));
     expect_nan_fails(*bits64, {make_binade_check, make_consistency_check});
 }
 

@@ -185,7 +185,7 @@ TEST(ExhaustiveSweep, NonMonotoneFunctionsAreRecountedExactlyByHistogramWindows)
 // few outputs outside the first window counted by sorting), against the
 // recount by sorting every output, field by field; and outputs produced
 // thousands of times each (one-byte counters that wrap).
-void expect_same_summary(const SweepSummary& x, const SweepSummary& y) {
+void expect_same_recount(const SweepSummary& x, const SweepSummary& y) {
     EXPECT_EQ(x.distinct, y.distinct);
     EXPECT_EQ(x.never_produced, y.never_produced);
     EXPECT_EQ(x.outside_inputs, y.outside_inputs);
@@ -217,7 +217,7 @@ TEST(ExhaustiveSweep, WindowRecountWithinItsMemoryBoundMatchesSorting) {
     EXPECT_GT(sorted.binades.size(), 5u);
     for (const int window : {3, 7, 20}) {
         SCOPED_TRACE(window);
-        expect_same_summary(exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = 0, .window_binades = window}),
+        expect_same_recount(exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = 0, .window_binades = window}),
                             sorted);
     }
     const FloatBlockFn coarse = [](uint64_t first, std::size_t n, float* out) {
@@ -228,7 +228,7 @@ TEST(ExhaustiveSweep, WindowRecountWithinItsMemoryBoundMatchesSorting) {
     EXPECT_GT(coarse_sorted.binade(1, -1)->most_multiplicity, 3000u);  // 1024 outputs, ~4096 times each
     for (const int window : {2, 64}) {
         SCOPED_TRACE(window);
-        expect_same_summary(
+        expect_same_recount(
             exhaustive_sweep(coarse, count, 0.0f, 1.0f, parallel, {.sort_limit = 0, .window_binades = window}),
             coarse_sorted);
     }
@@ -257,11 +257,11 @@ TEST(ExhaustiveSweep, LocallySwappedSamplerIsRecountedInOnePass) {
     const SweepSummary nine = exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = 0, .window_binades = 9});
     EXPECT_EQ(nine.recount_passes, 1);
     EXPECT_EQ(nine.non_monotone_steps, count / 2);  // counted in the window pass, chunk borders included
-    expect_same_summary(nine, sorted);
+    expect_same_recount(nine, sorted);
     const SweepSummary three = exhaustive_sweep(f, count, 0.0f, 1.0f, parallel, {.sort_limit = 0, .window_binades = 3});
     EXPECT_GT(three.recount_passes, 1);
     EXPECT_EQ(three.non_monotone_steps, count / 2);
-    expect_same_summary(three, sorted);
+    expect_same_recount(three, sorted);
 }
 
 TEST(ExhaustiveSweep, NegativeAndZeroSpanningIntervals) {
