@@ -19,8 +19,7 @@
 #include "sampling/bsdf_diffuse.h"
 #include "support/check_harness.h"
 #include "validate/api/bsdf_case.h"
-#include "validate/api/registry.h"
-#include "validate/run/runner.h"
+#include "validate/checks/bsdf/bsdf_checks.h"
 
 namespace warpcheck {
 namespace {
@@ -80,14 +79,8 @@ struct LambertianWithHoles {
 };
 
 CheckResult edges_weight_of(const WarpCase& bsdf, uint64_t seed) {
-    Registry registry;
-    register_builtin_checks(registry);
-    RunOptions options;
-    options.seed = seed;
-    options.threads = 2;
-    options.samples = 200'000;
-    options.check_time_budget = testing::kTestTimeBudget;
-    return run_jobs({Job{&bsdf, registry.find_check("bsdf_weight")}}, options).results.at(0);
+    static const std::unique_ptr<Check> check = bsdf::make_bsdf_weight_check();
+    return testing::run_check(*check, bsdf, 200'000, 2, seed);
 }
 
 double edges_figure(const CheckResult& r, const std::string& name) { return r.figure(name).value_or(std::nan("")); }
