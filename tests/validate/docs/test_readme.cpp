@@ -67,7 +67,7 @@ TEST(Readme, SnippetsMatchTheFilesTheyQuote) {
         // A path, not std::string + "/" + ...: GCC 12 warned of a bogus
         // array-bounds overflow in that inlined concatenation (-Werror) for some
         // lengths of WARPCHECK_SOURCE_DIR, as a fresh clone's in /tmp.
-        const std::string file = read_file((fs::path(WARPCHECK_SOURCE_DIR) / s.path).string());
+        const std::string file = read_file((std::filesystem::path(WARPCHECK_SOURCE_DIR) / s.path).string());
         ASSERT_FALSE(file.empty()) << s.path;
         EXPECT_NE(file.find(s.code), std::string::npos) << "README snippet no longer matches " << s.path << ":\n"
                                                         << s.code;
