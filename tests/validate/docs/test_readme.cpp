@@ -133,7 +133,7 @@ TEST(Readme, BuiltinRanksAreAsTheReadmeSays) {
                 largest = std::max(largest, std::stoi(text.substr(at + marker.size())));
     }
     ASSERT_GT(largest, 0);
-    const std::string readme = read_file(std::string(WARPCHECK_SOURCE_DIR) + "/README.md");
+    const std::string readme = read_file((std::filesystem::path(WARPCHECK_SOURCE_DIR) / "README.md").string());
     EXPECT_NE(readme.find("families use 10 to " + std::to_string(largest) + ")"), std::string::npos)
         << "README.md names another range of ranks than 10 to " << largest;
 }
