@@ -95,6 +95,10 @@ struct TableSpec {
     int strips = kStrips;
     double accuracy_fraction = kCdfAccuracyFraction;
     double target_scale = 0.03;
+    /// The density's points (directions) scaled by this before they are
+    /// rounded to float: the pdf's response to its input's length (see
+    /// measure_length_shift). 1 for the table that is tested against.
+    double input_scale = 1.0;
 };
 /// A CDF whose error is carried into the test is tabulated again like this to
 /// check its error (check_cdf_error): about twice the strips (2 x 1021, 1021
@@ -125,6 +129,13 @@ struct Marginal {
     double cdf_error = 0.0;  ///< the bound the judge uses (see cdf_error_of)
     /// The largest difference to a finer tabulation, where one was made.
     std::optional<double> table_difference;
+    /// How far the CDF moves when the pdf's input directions are longer or
+    /// shorter by the source's length_mismatch (measure_length_shift), carried
+    /// into the test with the CDF's error; the pilot's estimate where that is
+    /// negligible and not carried (length_shift_measured false).
+    double length_shift = 0.0;
+    bool length_shift_measured = false;
+    double length_delta = 0.0;  ///< the relative length change it was measured for
     std::vector<chi2::UnbinnedTest> judged_by;
 };
 
@@ -152,12 +163,14 @@ std::vector<chi2::UnbinnedTest> judging_tests(const chi2::Domain& domain, int ax
     return {chi2::UnbinnedTest::AndersonDarling};
 }
 
-chi2::BatchPdf batch_pdf(const WarpCase& warp) {
-    return [&warp](std::span<const chi2::DomainPoint> points, std::span<double> density) {
+/// The warp's pdf at the points, each scaled by `scale` (a direction made
+/// longer or shorter: see measure_length_shift) and rounded to float.
+chi2::BatchPdf batch_pdf(const WarpCase& warp, double scale = 1.0) {
+    return [&warp, scale](std::span<const chi2::DomainPoint> points, std::span<double> density) {
         std::vector<WarpOutput> x(points.size());
         for (std::size_t i = 0; i < points.size(); ++i)
-            x[i] = {static_cast<float>(points[i][0]), static_cast<float>(points[i][1]),
-                    static_cast<float>(points[i][2])};
+            x[i] = {static_cast<float>(scale * points[i][0]), static_cast<float>(scale * points[i][1]),
+                    static_cast<float>(scale * points[i][2])};
         warp.pdf(x, density);
     };
 }
@@ -224,8 +237,8 @@ Tabulate natural_tabulator(const WarpCase& warp, const CheckContext& ctx, int ax
             chi2::pilot_strip_binning(warp.domain(), axis, spec.strips, *pilot, line_resolution(warp));
         chi2::CdfRefinement r = refinement(ctx.options().samples, spec);
         r.cross_cuts = cuts;
-        return chi2::tabulate_marginal_cdf(strips, axis, batch_pdf(warp), quadrature(ctx.options().samples, spec),
-                                           parallel(ctx), r);
+        return chi2::tabulate_marginal_cdf(strips, axis, batch_pdf(warp, spec.input_scale),
+                                           quadrature(ctx.options().samples, spec), parallel(ctx), r);
     };
 }
 
@@ -434,6 +447,84 @@ struct Computed {
 /// the marginals that float resolution cannot move (most of them).
 constexpr double kModelBandFraction = 0.1;
 
+/// The pilot's estimate of the pdf's response to the length of its input
+/// directions (UnbinnedSource::length_mismatch): 2 E|e| over the pilot's directions,
+/// e = pdf(x (1 +- delta)) / pdf(x) - 1, the larger of the two, capped at 1
+/// (a NaN counts 1). A density multiplied by 1 + e has a CDF within
+/// 2 E_p|e| of the first (|int_{<t} p e - F(t) int p e| <= 2 int p |e|, to
+/// first order), and the pilot's directions are drawn from p.
+double pilot_length_response(const WarpCase& warp, const std::vector<WarpOutput>& pilot, double delta) {
+    std::vector<WarpOutput> x, longer, shorter;
+    const auto scaled = [](const WarpOutput& o, double s) {
+        return WarpOutput{static_cast<float>(s * o[0]), static_cast<float>(s * o[1]), static_cast<float>(s * o[2])};
+    };
+    for (const WarpOutput& o : pilot) {
+        if (!warp.domain().contains(to_domain_point(o))) continue;
+        x.push_back(o);
+        longer.push_back(scaled(o, 1.0 + delta));
+        shorter.push_back(scaled(o, 1.0 - delta));
+    }
+    std::vector<double> p(x.size()), pl(x.size()), ps(x.size());
+    warp.pdf(x, p);
+    warp.pdf(longer, pl);
+    warp.pdf(shorter, ps);
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        if (!(p[i] > 0.0)) continue;  // a sample where pdf = 0 is judged by the other checks
+        const double e = std::max(std::abs(pl[i] - p[i]), std::abs(ps[i] - p[i])) / p[i];
+        sum += e <= 1.0 ? e : 1.0;
+        ++n;
+    }
+    return n == 0 ? 0.0 : 2.0 * sum / static_cast<double>(n);
+}
+
+/// The relative length change at which the pdf's response is measured:
+/// 2^-23 moves the largest coordinate of a unit direction (at least 1/sqrt(3),
+/// so in [0.5, 1)) by at least one float step; a wo's length error is
+/// usually smaller (2^-26 at theta_o 91), and a smaller change would round
+/// away, so the response is measured here and scaled to it, to first order.
+constexpr double kLengthProbe = 0x1p-23;
+
+/// The table that measures the pdf's response to its directions' length: a
+/// quarter of the tested table's accuracy (its error bound, 4 times larger,
+/// is carried with the response, which is scaled by delta / kLengthProbe,
+/// an eighth at theta_o 91), for a third of its cost on a sharp lobe.
+constexpr TableSpec kLengthTable{kStrips, 4.0 * kCdfAccuracyFraction, 4.0 * 0.03, 1.0 + kLengthProbe};
+
+/// Sets each natural marginal's length_shift (directions only, 3D points),
+/// for a source whose pdf compares its input with a direction of known length
+/// error delta (a BSDF's wo): the pilot's estimate; where that is above a
+/// tenth of the negligible shift (the same fraction as band_model's), the
+/// measured one, carried into the test with the CDF's error. Measured: the
+/// CDF tabulated with every direction handed to the pdf kLengthProbe longer
+/// (to first order, the response to shorter is its negative), the largest
+/// difference d to the tested table plus both tables' error bounds (the
+/// response lies within that of d), scaled by delta / kLengthProbe while d
+/// is under kMaxCdfBand (a response small against the lobe: first order),
+/// unscaled beyond (no first-order claim). delta alone: the tabulation's own
+/// rounding of its nodes to float is zero-mean and averages over a strip's
+/// nodes, as the samples' does.
+void measure_length_shift(std::vector<Marginal>& marginals, const WarpCase& warp, const CheckContext& ctx,
+                          const std::vector<WarpOutput>& pilot, double delta) {
+    if (warp.domain().point_dimension() != 3 || !(delta > 0.0)) return;
+    const double scale = std::min(1.0, delta / kLengthProbe);
+    const double estimate = scale * pilot_length_response(warp, pilot, std::max(delta, kLengthProbe));
+    const double small = kModelBandFraction * kCdfErrorScale / std::sqrt(static_cast<double>(ctx.options().samples));
+    for (Marginal& m : marginals) {
+        m.length_shift = estimate;
+        m.length_delta = delta;
+        if (!(estimate > small)) continue;
+        TableSpec spec = kLengthTable;
+        spec.input_scale = 1.0 + std::max(delta, kLengthProbe);
+        const chi2::MarginalCdf moved = m.tabulate(spec);
+        const double d = largest_difference(m.cdf, moved);
+        m.length_shift = d < kMaxCdfBand ? scale * (d + m.cdf.error_bound() + moved.error_bound()) : d;
+        m.length_shift_measured = true;
+        m.cdf.evaluations += moved.evaluations;
+    }
+}
+
 /// Sets m.band_model where the model of a parameter's float band
 /// (chi2::largest_band_probability) is far below the negligible shift.
 void band_model(Marginal& m, uint64_t samples) {
@@ -578,10 +669,13 @@ Computed compute(const WarpCase& warp, const CheckContext& ctx, const UnbinnedSo
     const uint64_t samples = ctx.options().samples;
     const auto start = Clock::now();
     Computed c;
-    c.marginals = natural_marginals(warp, ctx, draw_pilot(warp, ctx, source));
+    const std::vector<WarpOutput> pilot = draw_pilot(warp, ctx, source);
+    c.marginals = natural_marginals(warp, ctx, pilot);
+    measure_length_shift(c.marginals, warp, ctx, pilot, source.length_mismatch);
     for (Marginal& m : declared_marginals(warp, ctx, c.marginals)) c.marginals.push_back(std::move(m));
     for (Marginal& m : c.marginals) {
         check_cdf_error(m, samples, source);
+        if (m.length_shift_measured) m.cdf_error += m.length_shift;
         band_model(m, samples);
     }
     const auto tabulated = Clock::now();
@@ -622,6 +716,10 @@ std::string band_note(const Computed& c, std::size_t m, uint64_t samples) {
         std::string s = fmt::format("CDF error +-{} carried into the test", number(marginal.cdf_error));
         if (marginal.table_difference)
             s += fmt::format(" (a finer tabulation differs by {})", number(*marginal.table_difference));
+        if (marginal.length_shift_measured && marginal.length_shift >= small)
+            s += fmt::format(" (of it +-{}: the pdf's response to its directions {} longer or shorter, the length "
+                             "error of the direction it compares them with)",
+                             number(marginal.length_shift), number(marginal.length_delta));
         parts.push_back(s);
     }
     if (c.nan[m] > 0)
@@ -760,6 +858,8 @@ void add_figures(CheckResult& r, const Computed& c, const RunOptions& options, i
             r.figures.push_back({fmt::format("{}_{}_p_value", name, chi2::short_name(t)), c.stats[m].p_value(t)});
         }
         r.figures.push_back({name + "_cdf_error", c.marginals[m].cdf_error});
+        r.figures.push_back({name + "_pdf_length_shift", c.marginals[m].length_shift});
+        r.figures.push_back({name + "_pdf_length_shift_carried", c.marginals[m].length_shift_measured ? 1.0 : 0.0});
         r.figures.push_back({name + "_cdf_integral", c.marginals[m].cdf.total});
         r.figures.push_back({name + "_cdf_evaluations", static_cast<double>(c.marginals[m].cdf.evaluations)});
         r.figures.push_back({name + "_nan", static_cast<double>(c.nan[m])});

@@ -18,6 +18,7 @@
 // in a cell a sample fell: a roughness or a g that is off by a percent moves
 // every sample a little and a 1024-strip CDF sees it where 32 x 64 cells
 // average it away.
+#include <cmath>
 #include <vector>
 
 #include "validate/checks/bsdf/bsdf_checks.h"
@@ -78,6 +79,9 @@ protected:
         const chi2::CellIntegrals t = pdf_integral(bsdf, ctx);
         source.total = t.total;
         source.total_error = t.error_total;
+        const Vector3f wo = bsdf.claims().wo;
+        source.length_mismatch = std::abs(
+            std::hypot(static_cast<double>(wo.x), static_cast<double>(wo.y), static_cast<double>(wo.z)) - 1.0);
         CheckResult r = run_unbinned(bsdf, ctx, source);
         r.figures.push_back({"pdf_integral", t.total});
         r.figures.push_back({"pdf_integral_error", t.error_total});
