@@ -219,7 +219,7 @@ void bsdf_bound_lines(const CheckResult& r, std::vector<JudgedLine>& out) {
                        *integral <= room ? State::Within : State::Beyond});
     }
     const auto energy = r.figure("energy_albedo"), bound = r.figure("energy_tolerance");
-    if (r.check_name == "bsdf_albedo" && energy && bound)
+    if (r.check_name == "bsdf_albedo" && energy && bound && r.figure("albedo_known").value_or(1.0) != 0.0)
         out.push_back({"energy albedo", fmt::format("{:.9g}", *energy), "\u2264 1 + " + general(*bound),
                        *energy <= 1.0 + *bound ? State::Within : State::Beyond});
 }
@@ -334,7 +334,8 @@ const std::vector<std::pair<std::string_view, CheckLegend>> kLegends = {
     {"remapped_u", {"The remapped u: overall KS against uniform, and a X\u00b2 of u within each category.",
                     "min(p_KS / 0.5, p_X\u00b2 / 0.5) (weighted Bonferroni)."}},
     {"weight_mean", {"The mean weight eval/pdf against the integral of eval (quadrature).",
-                     "The t-test's two-sided p-value."}},
+                     "The t-test's two-sided p-value; where f's float noise reaches half its integral (no albedo "
+                     "known), the one-sided p-value of the mean energy weight against 1."}},
     {"inverse_pdf_mean", {"The mean of 1/pdf against the domain's measure.", "The t-test's two-sided p-value."}},
     {"roundtrip", {"|invert(sample(u)) \u2212 u| against the case's tolerance (float resolution); excused "
                    "classes (resolution-limited, degenerate, other preimage, rounded to 1) are counted and bounded.",
@@ -369,7 +370,8 @@ const std::vector<std::pair<std::string_view, CheckLegend>> kLegends = {
                     "The smallest lobe's p-value, \u0160id\u00e1k-corrected over the lobes tested."}},
     {"bsdf_albedo", {"The mean weight against the directional albedo (the integral of f |cos| plus the delta lobes), "
                      "and the energy albedo against 1 (energy created fails).",
-                     "The t-test's two-sided p-value."}},
+                     "The t-test's two-sided p-value; where f's float noise reaches half its integral (no albedo "
+                     "known), the one-sided p-value of the mean energy weight against 1."}},
     {"bsdf_reciprocity", {"f(wo, wi) against f(wi, wo) (the eta\u00b2 rule across an interface) at every sampled wi "
                           "and a Fibonacci grid, within 2^-12 relative or f's float resolution.", ""}},
 };

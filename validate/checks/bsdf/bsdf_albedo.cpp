@@ -21,6 +21,13 @@
 //    is the albedo's, weighted by it): more is energy created by the surface
 //    (FAIL).
 //    One-sided: an albedo below 1 is a surface that absorbs.
+//  - where that float-noise allowance reaches half the integral of f |cos|
+//    (kUnknownAlbedoShare: a lobe narrower than the float directions that
+//    evaluate it), the quadrature knows no albedo: the two rules above are not
+//    made, and energy is judged from the samples alone, a one-sided t-test of
+//    the mean energy weight against 1 (the row's p-value, in the Sidak family
+//    as the first test's; a sampler whose weights are not f |cos| / pdf is
+//    bsdf_weight's to find).
 // Evidence: the albedo and energy albedo against theta_o at this case's
 // azimuth (a cheaper quadrature per angle, kSweepAccuracySamples), and the
 // case's points on its family's plots across its grid (the mean weight with
@@ -56,6 +63,14 @@ constexpr chi2::BinResolution kAlbedoCells{16, 32};
 /// curve's features, and reported).
 constexpr chi2::BinResolution kSweepCells{4, 8};
 constexpr uint64_t kSweepAccuracySamples = 10'000;
+/// Where f's float-noise allowance is at least this share of the integral of
+/// f |cos|, the integral is known only within a factor of 3 (I/2 to 3I/2),
+/// which is no albedo to hold weights or energy to, and it is more float
+/// rounding than f: the first-order noise estimate (the change over one float
+/// step of wi) no longer even bounds it. Henyey-Greenstein, albedo 1: at
+/// g = 0.99999 the integral is 273 with an allowance of 232, at 0.9999 3.06
+/// with 2.28; at 0.999 it is 0.988 with 0.24 (24%), at 0.99 1 - 1e-4 with 0.005.
+constexpr double kUnknownAlbedoShare = 0.5;
 
 struct Draws {
     chi2::Moments weights, energy;
@@ -152,8 +167,20 @@ struct Outcome {
     /// the integral of f |cos|'s float noise (0 under --strict), as chi2's and
     /// bsdf_chi2's normalisation rules grant the pdf's.
     double float_allowance = 0.0;
+    /// False where the allowance reaches kUnknownAlbedoShare of the integral:
+    /// `test` is then the one-sided test of the mean energy weight against 1.
+    bool albedo_known = true;
     chi2::MeanTest test;
 };
+
+/// One-sided t-test of H0: mean energy weight <= 1 (a surface that absorbs is
+/// correct): the two-sided test's p halved above 1, 1 at or below it. The
+/// mean's rounding (2^-20 of it) is the reference's uncertainty, as above.
+chi2::MeanTest energy_weight_test(const chi2::Moments& energy) {
+    chi2::MeanTest t = chi2::mean_test(energy, 1.0, kRoundingAllowance);
+    if (!std::isnan(t.p_value)) t.p_value = t.mean > 1.0 ? 0.5 * t.p_value : 1.0;
+    return t;
+}
 
 Outcome evaluate(const BsdfCase& bsdf, const CheckContext& ctx, const Draws& d) {
     Outcome o;
@@ -171,10 +198,29 @@ Outcome evaluate(const BsdfCase& bsdf, const CheckContext& ctx, const Draws& d) 
     // energy_factor depends only on wi's side of the surface.
     const double largest_factor = std::max(bsdf.energy_factor({0.0f, 0.0f, 1.0f}), bsdf.energy_factor({0.0f, 0.0f, -1.0f}));
     o.energy_tolerance += o.float_allowance * std::max(1.0, largest_factor);
+    if (o.float_allowance > 0.0 && o.float_allowance >= kUnknownAlbedoShare * o.integral.albedo) {
+        o.albedo_known = false;
+        o.test = energy_weight_test(d.energy);
+    }
     return o;
 }
 
+/// The verdict where the quadrature knows no albedo (Outcome::albedo_known).
+void judge_by_weights(CheckResult& r, const Outcome& o) {
+    r.p_value = o.test.p_value;  // judged by the runner at the run's corrected level
+    r.verdict = Verdict::Pass;
+    r.summary = fmt::format("mean energy weight {:.6g} vs 1 (one-sided t = {:.2f}); albedo unknown to the quadrature "
+                            "(f's float noise {:.3g} of its integral {:.3g})",
+                            o.test.mean, o.test.t, o.float_allowance, o.integral.albedo);
+    r.message = fmt::format("the lobe is narrower than the float directions that evaluate f: its integral {:.9g} "
+                            "carries a float-noise allowance of {:.3g}, at least {} of itself, so no albedo is known "
+                            "to hold the mean weight or the energy to; energy is judged from the samples: mean energy "
+                            "weight {:.9g}, {:.2f} standard errors above 1 (one-sided)",
+                            o.integral.albedo, o.float_allowance, kUnknownAlbedoShare, o.test.mean, o.test.t);
+}
+
 void judge(CheckResult& r, const Outcome& o) {
+    if (!o.albedo_known) return judge_by_weights(r, o);
     r.p_value = o.test.p_value;  // judged by the runner at the run's corrected level
     r.summary = fmt::format("mean weight {:.6g} vs albedo {:.6g} (t = {:.2f}); energy {:.6g}", o.test.mean, o.albedo,
                             o.test.t, o.energy);
@@ -199,6 +245,11 @@ void judge(CheckResult& r, const Outcome& o) {
 std::vector<FamilyPoint> albedo_points(const BsdfCase& bsdf, const Outcome& o) {
     const double half = 2.576 * o.test.standard_error;
     FamilyPoint albedo = family_point(bsdf, "albedo against theta_o", "albedo");
+    if (!o.albedo_known) {  // no albedo to plot or to subtract: the energy weights against their bound
+        albedo.values = {{"mean energy weight (99% interval)", o.test.mean, o.test.mean - half, o.test.mean + half}};
+        albedo.limits = {{"energy bound", 1.0}};
+        return {std::move(albedo)};
+    }
     albedo.values = {{"mean weight (99% interval)", o.test.mean, o.test.mean - half, o.test.mean + half},
                      {"albedo", o.albedo}};
     if (o.energy != o.albedo) albedo.values.push_back({"energy albedo", o.energy});
@@ -242,6 +293,7 @@ protected:
                      {"energy_mean_weight", d.energy.mean},
                      {"energy_tolerance", o.energy_tolerance},
                      {"float_noise_allowance", o.float_allowance},
+                     {"albedo_known", o.albedo_known ? 1.0 : 0.0},
                      {"power_weight_error", detectable},
                      {"power_relative_weight_error", detectable / o.albedo},
                      {"power_level", level}};
