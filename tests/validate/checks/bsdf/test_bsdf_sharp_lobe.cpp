@@ -190,7 +190,7 @@ TEST(SharpLobe, GrazingGlassAtTheSmallestRoughnessPassesUnbinnedOnSeveralSeeds) 
     }
 }
 
-TEST(SharpLobe, GrazingGlassSampledWithItsRoughness5PercentOffFailsUnbinnedOnSeveralSeeds) {
+TEST(SharpLobe, GrazingGlassSampledWithItsRoughnessFivePercentOffFailsUnbinnedOnSeveralSeeds) {
     const auto c = grazing_glass(1.05e-4f);
     for (uint64_t seed : {3, 4}) {
         const CheckResult r = sharp_run(*c, "bsdf_unbinned", seed, 1'000'000);
