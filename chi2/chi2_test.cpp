@@ -232,6 +232,22 @@ Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const Sample
     return run_chi2_test(binning, samples, histogram, pdf, options, parallel_for);
 }
 
+namespace {
+
+/// Cell c of `q` integrated again as `g` (value, bound, float noise), totals kept.
+void replace_cell(CellIntegrals& q, std::size_t c, const GuidedIntegral& g) {
+    q.total += g.value - q.probability[c];
+    q.error_total += g.error - q.error[c];
+    q.probability[c] = g.value;
+    q.error[c] = g.error;
+    if (!q.float_noise.empty()) {
+        q.float_noise_total += g.float_noise - q.float_noise[c];
+        q.float_noise[c] = g.float_noise;
+    }
+}
+
+}  // namespace
+
 std::size_t reintegrate_missed_support(const Binning& binning, const Histogram& hist, const BatchPdf& pdf,
                                        const QuadratureOptions& qo, CellIntegrals& q) {
     if (hist.zero_cell_points.empty()) return 0;
@@ -269,18 +285,70 @@ std::size_t reintegrate_missed_support(const Binning& binning, const Histogram& 
     std::size_t redone = 0;
     for (std::size_t c : order) {
         const GuidedIntegral g = integrate_around(binning, binning.cell_rect(c), at[c], pdf, qo);
-        q.total += g.value - q.probability[c];
-        q.error_total += g.error - q.error[c];
-        q.probability[c] = g.value;
-        q.error[c] = g.error;
-        if (!q.float_noise.empty()) {
-            q.float_noise_total += g.float_noise - q.float_noise[c];
-            q.float_noise[c] = g.float_noise;
-        }
+        replace_cell(q, c, g);
         q.evaluations += g.evaluations;
         ++redone;
     }
     return redone;
+}
+
+PilotRefinement refine_by_pilot(const Binning& binning, std::span<const SamplePoint> pilot, const BatchPdf& pdf,
+                                const QuadratureOptions& qo, CellIntegrals& q, const ParallelFor& parallel_for) {
+    PilotRefinement out;
+    std::vector<std::vector<std::array<double, 2>>> at(q.probability.size());
+    for (const SamplePoint& s : pilot) {
+        const DomainPoint p{s[0], s[1], s[2]};
+        const std::ptrdiff_t c = binning.cell_of(p);
+        if (c < 0 || static_cast<std::size_t>(c) >= at.size()) continue;
+        const ParamRect r = binning.cell_rect(static_cast<std::size_t>(c));
+        std::array<double, 2> uv = binning.parameters_of(p);
+        if (!std::isfinite(uv[0]) || !std::isfinite(uv[1])) continue;
+        uv[0] = std::clamp(uv[0], r.u0, r.u1);
+        uv[1] = std::clamp(uv[1], r.v0, r.v1);
+        at[static_cast<std::size_t>(c)].push_back(uv);
+    }
+    std::vector<std::size_t> cut;
+    for (std::size_t c = 0; c < at.size(); ++c)
+        for (const ParamRect& piece : binning.integration_pieces(c)) {
+            std::vector<std::array<double, 2>> inside;
+            for (const auto& p : at[c])
+                if (p[0] >= piece.u0 && p[0] <= piece.u1 && p[1] >= piece.v0 && p[1] <= piece.v1) inside.push_back(p);
+            if (needs_pilot_partition(binning, piece, inside)) {
+                cut.push_back(c);
+                break;
+            }
+        }
+    std::vector<GuidedIntegral> redone(cut.size());
+    parallel_for(cut.size(), [&](std::size_t k) {
+        const std::size_t c = cut[k];
+        for (const ParamRect& piece : binning.integration_pieces(c)) {
+            std::vector<std::array<double, 2>> inside;
+            for (const auto& p : at[c])
+                if (p[0] >= piece.u0 && p[0] <= piece.u1 && p[1] >= piece.v0 && p[1] <= piece.v1) inside.push_back(p);
+            const GuidedIntegral g = integrate_partitioned(binning, piece, inside, pdf, qo);
+            redone[k].value += g.value;
+            redone[k].error += g.error;
+            redone[k].float_noise += g.float_noise;
+            redone[k].evaluations += g.evaluations;
+            redone[k].pieces += g.pieces;
+        }
+    });
+    out.cells_cut = cut.size();
+    for (std::size_t k = 0; k < cut.size(); ++k) {
+        const std::size_t c = cut[k];
+        const GuidedIntegral& g = redone[k];
+        q.evaluations += g.evaluations;
+        const double noise = q.float_noise.empty() ? 0.0 : q.float_noise[c];
+        const double slack = noise + g.float_noise + 0x1p-20 * std::abs(g.value);
+        // Within both bounds the cell's first value stands (the pieces saw
+        // what its nodes saw); beyond them, the pieces, placed where the
+        // pilot's mass is, saw what the nodes stepped over.
+        if (!std::isfinite(g.value) || std::abs(g.value - q.probability[c]) <= g.error + q.error[c] + slack) continue;
+        out.missed_mass += g.value - q.probability[c];
+        replace_cell(q, c, g);
+        ++out.cells_changed;
+    }
+    return out;
 }
 
 Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const SampleHistogram& histogram,
@@ -295,6 +363,8 @@ Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const Sample
     const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     const auto start = Clock::now();
     CellIntegrals integrals = integrate_cells(binning, pdf, qo, parallel_for);
+    PilotRefinement refined;
+    if (!options.pilot.empty()) refined = refine_by_pilot(binning, options.pilot, pdf, qo, integrals, parallel_for);
     double integration = since(start);
     const auto sampling_start = Clock::now();
     Histogram hist = histogram(zero_cells_of(integrals));
@@ -312,6 +382,7 @@ Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const Sample
     const auto statistics_start = Clock::now();
     Chi2Outcome out = evaluate_chi2(binning, std::move(hist), std::move(integrals), samples, options);
     out.reintegrated_cells = redone;
+    out.pilot_refinement = refined;
     out.integration_seconds = integration;
     out.sampling_seconds = sampling;
     out.statistics_seconds = since(statistics_start);

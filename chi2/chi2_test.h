@@ -52,6 +52,9 @@ inline constexpr double kFloatNoiseFactor = 2.0;
 /// for an edge that falls inside a float's rounding interval.
 inline constexpr double kEdgeFloatSteps = 1.5;
 
+/// A sample point as warps produce it: float coordinates, unused ones 0.
+using SamplePoint = std::array<float, 3>;
+
 struct Chi2Options {
     BinResolution resolution;
     double min_expected = kMinExpectedCount;
@@ -65,10 +68,13 @@ struct Chi2Options {
     /// rule (validate --strict): a pdf whose float rounding moves its integral
     /// then fails.
     bool strict = false;
+    /// A pilot drawn from the sampler, independent of the tested samples
+    /// (the one that placed cells of equal probability): the cells where it
+    /// clusters are integrated again on pieces it places (refine_by_pilot).
+    /// Empty: none. Not owned.
+    std::span<const SamplePoint> pilot;
 };
 
-/// A sample point as warps produce it: float coordinates, unused ones 0.
-using SamplePoint = std::array<float, 3>;
 /// Fills `out` with the samples of chunk `chunk` (every chunk has chunk_size
 /// samples except possibly the last). Called from several threads at once.
 using SampleChunk = std::function<void(std::size_t chunk, std::span<SamplePoint> out)>;
@@ -85,6 +91,14 @@ std::size_t histogram_count(uint64_t work_items, std::size_t cells);
 Histogram sample_histogram(const Binning& binning, uint64_t samples, std::size_t chunk_size,
                            const SampleChunk& generate, std::span<const unsigned char> zero_cells = {},
                            const ParallelFor& parallel_for = serial_for);
+
+/// What refine_by_pilot did: cells whose pilot points called for a
+/// partition (chi2/quadrature.h's kPilotClusterDensity), those whose value it
+/// changed, and the mass it added (negative: removed).
+struct PilotRefinement {
+    std::size_t cells_cut = 0, cells_changed = 0;
+    double missed_mass = 0.0;
+};
 
 struct Chi2Outcome {
     uint64_t samples = 0;
@@ -108,6 +122,7 @@ struct Chi2Outcome {
     /// Cells integrated as zero where samples landed and the density is
     /// positive at them: integrated again around those samples.
     std::size_t reintegrated_cells = 0;
+    PilotRefinement pilot_refinement;  ///< with Chi2Options::pilot
     std::size_t zero_expected_cells = 0;  ///< cells where the density integrates to zero
     uint64_t zero_expected_hits = 0;      ///< samples that landed in them
     uint64_t boundary_hits = 0;           ///< of those, exactly on the domain's boundary (accepted up to a cap)
@@ -145,6 +160,17 @@ inline constexpr std::size_t kMaxReintegratedCells = 64;
 /// again with zero_cells_of(q) when any was redone.
 std::size_t reintegrate_missed_support(const Binning& binning, const Histogram& hist, const BatchPdf& pdf,
                                        const QuadratureOptions& options, CellIntegrals& q);
+
+/// The cells of `q` whose pilot points (drawn from the sampler, independent
+/// of the tested samples) cluster in a part of the cell the first rule's
+/// nodes can step over, integrated again on the partition the points place
+/// (integrate_partitioned); where that differs from the first value by more
+/// than both bounds (and the float noise), it replaces it in `q`, totals
+/// included. Depends on the pilot only, so the expected counts are fixed
+/// before the tested samples are drawn.
+PilotRefinement refine_by_pilot(const Binning& binning, std::span<const SamplePoint> pilot, const BatchPdf& pdf,
+                                const QuadratureOptions& options, CellIntegrals& q,
+                                const ParallelFor& parallel_for = serial_for);
 
 /// Everything after sampling: expected counts, failures, pooling, statistic.
 Chi2Outcome evaluate_chi2(const Binning& binning, Histogram histogram, CellIntegrals integrals, uint64_t samples,

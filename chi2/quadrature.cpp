@@ -471,18 +471,172 @@ void guided(RegionRule& rr, const ParamRect& r, const std::vector<std::array<dou
         }
 }
 
+/// The cut of `r` that partitioned() makes, if any: the axis and the pieces'
+/// edges along it (2 or 3 pieces) around the pilot's densest cluster.
+struct PilotCut {
+    int axis = -1;
+    std::vector<double> edges;
+};
+
+/// Along one axis: the run of consecutive points (sorted coordinates) whose
+/// spacings are all under 1 / kPilotClusterDensity of an even spread's
+/// (side / n), with the most points; kMinPilotCluster or more of them, cut
+/// around it (its extent widened by itself each way, and by no less than
+/// `resolution`, the float step of a sample there: points that round to one
+/// float stand for its whole interval) where that leaves the cluster's piece
+/// under half the side. Returns the share of the side the cluster's piece
+/// keeps (1: no cut).
+double cluster_cut(std::vector<double> c, double lo, double hi, double resolution, std::vector<double>& edges) {
+    const double side = hi - lo;
+    if (c.size() < kMinPilotCluster || !(side > 0.0) || !std::isfinite(side)) return 1.0;
+    std::sort(c.begin(), c.end());
+    const double close = side / (kPilotClusterDensity * static_cast<double>(c.size()));
+    std::size_t best_first = 0, best_count = 0;
+    for (std::size_t i = 0; i < c.size();) {
+        std::size_t j = i;
+        while (j + 1 < c.size() && c[j + 1] - c[j] < close) ++j;
+        if (j - i + 1 > best_count) best_first = i, best_count = j - i + 1;
+        i = j + 1;
+    }
+    if (best_count < kMinPilotCluster) return 1.0;
+    const double a = c[best_first], b = c[best_first + best_count - 1];
+    const double margin = std::max(b - a, resolution);
+    const std::array<double, 4> cuts = {lo, std::max(lo, a - margin), std::min(hi, b + margin), hi};
+    const double kept = (cuts[2] - cuts[1]) / side;
+    if (!(kept < 0.5)) return 1.0;
+    edges = {lo};
+    if (cuts[1] > lo) edges.push_back(cuts[1]);
+    if (cuts[2] < hi) edges.push_back(cuts[2]);
+    edges.push_back(hi);
+    return kept;
+}
+
+/// Along one axis: the widest stretch of the side that holds no point (the
+/// side's ends count as points); where it exceeds kPilotGapShare of the
+/// side, the cut an eighth of the gap away from the points on each side that
+/// has points (so a cluster's piece keeps a margin for its density's tails),
+/// unless that eighth is under `resolution` (points that round to one float
+/// stand for its whole interval: no narrower piece is meant). Returns the
+/// gap's share of the side (0: no cut).
+double gap_cut(std::vector<double> c, double lo, double hi, double resolution, std::vector<double>& edges) {
+    const double side = hi - lo;
+    if (c.size() < 2 || !(side > 0.0) || !std::isfinite(side)) return 0.0;
+    std::sort(c.begin(), c.end());
+    std::array<double, 2> gap{lo, c.front()};
+    for (std::size_t k = 1; k <= c.size(); ++k) {
+        const double a = c[k - 1], b = k == c.size() ? hi : c[k];
+        if (b - a > gap[1] - gap[0]) gap = {a, b};
+    }
+    const double share = (gap[1] - gap[0]) / side;
+    const double margin = (gap[1] - gap[0]) / 8.0;
+    if (!(share > kPilotGapShare) || !(margin >= resolution)) return 0.0;
+    edges = {lo};
+    if (gap[0] > lo) edges.push_back(gap[0] + margin);
+    if (gap[1] < hi) edges.push_back(gap[1] - margin);
+    edges.push_back(hi);
+    return share;
+}
+
+/// `within`: whether `r` is a piece of a cell already cut, where 2 points
+/// suffice to go on narrowing towards a cluster found in the cell.
+PilotCut pilot_cut(const Binning& binning, const ParamRect& r, const std::vector<std::array<double, 2>>& points,
+                   bool within) {
+    PilotCut cut;
+    double best = 1.0;
+    if (points.size() < (within ? 2 : kMinPilotCluster)) return cut;
+    // The float step of a sample, read at the points' mean.
+    double um = 0.0, vm = 0.0;
+    for (const auto& p : points) {
+        um += p[0];
+        vm += p[1];
+    }
+    um /= static_cast<double>(points.size());
+    vm /= static_cast<double>(points.size());
+    for (int axis = 0; axis < binning.parameter_dimension(); ++axis) {
+        const double lo = axis == 0 ? r.u0 : r.v0, hi = axis == 0 ? r.u1 : r.v1;
+        std::vector<double> c;
+        c.reserve(points.size());
+        for (const auto& p : points) c.push_back(std::clamp(p[static_cast<std::size_t>(axis)], lo, hi));
+        std::vector<double> edges;
+        // A wide gap first (a cluster at a piece's edge, or two apart: the
+        // gap's share as the share the cut removes), then a dense run.
+        const double step = binning.float_resolution(axis, um, vm);
+        const double resolution = std::isfinite(step) ? step : 0.0;
+        const double gap = gap_cut(c, lo, hi, resolution, edges);
+        const double kept = gap > 0.0 ? 1.0 - gap : cluster_cut(std::move(c), lo, hi, resolution, edges);
+        if (kept < best) {
+            best = kept;
+            cut.axis = axis;
+            cut.edges = std::move(edges);
+        }
+    }
+    return cut;
+}
+
+/// The piece integrated as usual where its points form no cluster
+/// (cluster_cut) along either parameter, or 16 cuts were made; otherwise cut
+/// around the cluster that narrows most (pilot_cut) and each piece treated
+/// the same way, so a cluster of points narrower than the rule's nodes ends
+/// in a piece of its own scale.
+void partitioned(const Binning& binning, RegionRule& rr, const ParamRect& r,
+                 const std::vector<std::array<double, 2>>& points, int depth, bool one_d,
+                 const QuadratureOptions& options, std::vector<Region>& heap, GuidedIntegral& sum) {
+    const PilotCut cut = depth < 16 ? pilot_cut(binning, r, points, depth > 0) : PilotCut{};
+    if (cut.axis < 0) {
+        const CellOutcome o = integrate_cell(rr, r, one_d, options, heap);
+        sum.value += o.value;
+        sum.error += o.error;
+        sum.float_noise += o.float_noise;
+        ++sum.pieces;
+        return;
+    }
+    const std::size_t a = static_cast<std::size_t>(cut.axis);
+    for (std::size_t k = 0; k + 1 < cut.edges.size(); ++k) {
+        ParamRect piece = r;
+        (a == 0 ? piece.u0 : piece.v0) = cut.edges[k];
+        (a == 0 ? piece.u1 : piece.v1) = cut.edges[k + 1];
+        const bool last = k + 2 == cut.edges.size();
+        std::vector<std::array<double, 2>> inside;
+        for (const auto& p : points)
+            if (p[a] >= cut.edges[k] && (p[a] < cut.edges[k + 1] || (last && p[a] <= cut.edges[k + 1])))
+                inside.push_back(p);
+        partitioned(binning, rr, piece, inside, depth + 1, one_d, options, heap, sum);
+    }
+}
+
+/// One cell integrated by `walk` (guided or partitioned) over its points,
+/// with the evaluations counted.
+template <typename Walk>
+GuidedIntegral walk_cell(const Binning& binning, const BatchPdf& pdf, const QuadratureOptions& options, Walk&& walk) {
+    rule();
+    RegionRule rr(binning, pdf, options.float_noise);
+    std::vector<Region> heap;
+    GuidedIntegral sum;
+    walk(rr, binning.parameter_dimension() == 1, heap, sum);
+    sum.evaluations = rr.evaluations;
+    return sum;
+}
+
 }  // namespace
 
 GuidedIntegral integrate_around(const Binning& binning, const ParamRect& cell,
                                 std::span<const std::array<double, 2>> points, const BatchPdf& pdf,
                                 const QuadratureOptions& options) {
-    rule();
-    RegionRule rr(binning, pdf, options.float_noise);
-    std::vector<Region> heap;
-    GuidedIntegral sum;
-    guided(rr, cell, {points.begin(), points.end()}, 0, binning.parameter_dimension() == 1, options, heap, sum);
-    sum.evaluations = rr.evaluations;
-    return sum;
+    return walk_cell(binning, pdf, options, [&](RegionRule& rr, bool one_d, std::vector<Region>& heap, GuidedIntegral& sum) {
+        guided(rr, cell, {points.begin(), points.end()}, 0, one_d, options, heap, sum);
+    });
+}
+
+bool needs_pilot_partition(const Binning& binning, const ParamRect& cell, std::span<const std::array<double, 2>> points) {
+    return pilot_cut(binning, cell, {points.begin(), points.end()}, false).axis >= 0;
+}
+
+GuidedIntegral integrate_partitioned(const Binning& binning, const ParamRect& cell,
+                                     std::span<const std::array<double, 2>> points, const BatchPdf& pdf,
+                                     const QuadratureOptions& options) {
+    return walk_cell(binning, pdf, options, [&](RegionRule& rr, bool one_d, std::vector<Region>& heap, GuidedIntegral& sum) {
+        partitioned(binning, rr, cell, {points.begin(), points.end()}, 0, one_d, options, heap, sum);
+    });
 }
 
 double cell_tolerance(double probability, const QuadratureOptions& options) {

@@ -117,9 +117,59 @@ CellIntegrals integrate_rects(const Binning& binning, std::span<const ParamRect>
 struct GuidedIntegral {
     double value = 0.0, error = 0.0, float_noise = 0.0;
     uint64_t evaluations = 0;
+    std::size_t pieces = 0;  ///< integrate_partitioned: the pieces integrated
 };
 GuidedIntegral integrate_around(const Binning& binning, const ParamRect& cell,
                                 std::span<const std::array<double, 2>> points, const BatchPdf& pdf,
                                 const QuadratureOptions& options);
+
+/// A pilot's cluster narrower than the rule's nodes. The 15-point rule on a
+/// cell puts its nodes ~1/15 of the side apart (closer near the ends), so a
+/// spot or sliver of the density a few hundred times narrower than the cell
+/// (glass of eta 1.001 refracting a grazing wo into a 5e-5 rad spot; an
+/// anisotropic conductor of alpha 1e-3 x 1, whose lobe is a sheet) can lie
+/// between all of them and those of the verifying split alike: both agree on
+/// a value that leaves its mass out, and the bound is as small as they are
+/// wrong. A pilot drawn from the sampler (chi2/equal_probability.h) shows
+/// where the mass is. Along each parameter, a run of kMinPilotCluster or more
+/// of a cell's pilot points, each within 1 / kPilotClusterDensity of an even
+/// spread's spacing of the next, is a cluster: the cell is cut around it (its
+/// extent widened by itself each way, for its tails) where that keeps under
+/// half the side, and each piece is treated the same way (16 cuts at most),
+/// so a cluster ends in a piece of its own scale, which the rule's nodes see;
+/// the pieces are integrated as usual (verified, with their float noise).
+/// 16: spacings of points spread evenly are exponential, so 7 in a row under
+/// a sixteenth of their mean has probability ~(1/16)^7 ~ 4e-9 per run, and a
+/// density smooth over a cell (cells of equal probability hold ~64 pilot
+/// points each) varies far less than 16-fold across it; a cut that was not
+/// needed costs evaluations only, since a value changes only where the
+/// pieces disagree with the first beyond both bounds.
+inline constexpr double kPilotClusterDensity = 16.0;
+/// A cluster at the edge of a cell, or two clusters apart, with too few
+/// points for a run (glass of eta 1.001: 2 of a cell's 64 pilot points in
+/// the refracted spot at its lower edge, the rest 1e-2 away above the
+/// horizon) leaves a gap: where the widest empty stretch between a cell's
+/// points (its ends counting as points) exceeds this share of a side, the
+/// cell is cut an eighth of the gap away from the points on each side. A
+/// quarter: the widest gap between 64 points spread evenly is ~ln(64)/64 =
+/// 6.5% of the side (a quarter has probability ~1e-6 there).
+inline constexpr double kPilotGapShare = 0.25;
+/// A cell with fewer pilot points than this is not cut, nor is a run of
+/// fewer a cluster: too few to tell one from a tail's stragglers, whose cuts
+/// only cost evaluations (a smaller run, under ~13% of a cell of ~64 pilot
+/// points, is left to the rule: mass it misses there still counts against
+/// the sampler). Once a cell is cut, its pieces go on narrowing at a gap
+/// while they hold 2 points (a spot of 2 points at a cell's edge).
+inline constexpr std::size_t kMinPilotCluster = 8;
+
+/// Whether `points` (parameters, inside `cell`) form a cluster that
+/// integrate_partitioned cuts around.
+bool needs_pilot_partition(const Binning& binning, const ParamRect& cell, std::span<const std::array<double, 2>> points);
+
+/// One cell integrated on the partition that its pilot points place (see
+/// kPilotClusterDensity); the pieces' values, bounds and float noise summed.
+GuidedIntegral integrate_partitioned(const Binning& binning, const ParamRect& cell,
+                                     std::span<const std::array<double, 2>> points, const BatchPdf& pdf,
+                                     const QuadratureOptions& options);
 
 }  // namespace warpcheck::chi2

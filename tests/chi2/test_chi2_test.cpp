@@ -349,5 +349,82 @@ TEST(Chi2Outcome, TooFewSamplesIsAnErrorNotAPass) {
     EXPECT_TRUE(std::isnan(o.p_value()));
 }
 
+
+// A cluster of the density narrower than the cubature's nodes (refine_by_pilot,
+// chi2/quadrature.h's kPilotClusterDensity). On [0, 1] in 200 cells: mass 0.9
+// uniform on [0, 0.5), 0.01 uniform on [0.5, 1), and 0.09 in a one-sided
+// spot exp(-(x - 0.5) / 3e-7) at the left edge of cell 100, [0.5, 0.505):
+// every node of the 15-point rule on that cell and of its verifying split
+// lies at least 8e-6 (27 spot widths) from the edge, so both see only the
+// uniform 0.02 and agree on 1e-4 where the cell holds 0.0901. A pilot drawn
+// from the density puts ~1150 points in the spot and one or two beyond.
+double spotted(double x) {
+    if (x < 0.5) return 1.8;
+    return 0.02 + (x >= 0.5 ? 0.3e6 * std::exp(-(x - 0.5) / 3e-7) : 0.0);
+}
+double spotted_cell(double a, double b) {
+    auto cdf = [](double x) {
+        if (x <= 0.5) return 1.8 * x;
+        return 0.9 + 0.02 * (x - 0.5) + 0.09 * (1.0 - std::exp(-(x - 0.5) / 3e-7));
+    };
+    return cdf(b) - cdf(a);
+}
+std::vector<SamplePoint> spotted_pilot(std::size_t n, uint64_t seed, bool with_spot) {
+    Pcg32 rng(seed, 3);
+    std::vector<SamplePoint> out;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double u = rng.next_double(), v = rng.next_double();
+        double x;
+        if (!with_spot) x = u;  // a sampler that misses the spot (and the shape)
+        else if (u < 0.9) x = 0.5 * v;
+        else if (u < 0.91) x = 0.5 + 0.5 * v;
+        else x = 0.5 - 3e-7 * std::log1p(-v);
+        out.push_back({static_cast<float>(x), 0.0f, 0.0f});
+    }
+    return out;
+}
+
+TEST(PilotRefinement, ASpotBetweenTheNodesIsIntegratedWhereThePilotShowsItOnSeveralSeeds) {
+    const Binning b(Domain::interval(0.0, 1.0));
+    QuadratureOptions q;
+    q.verify = true;
+    q.float_noise = true;
+    const BatchPdf pdf = pointwise([](const DomainPoint& p) { return spotted(p[0]); });
+    const CellIntegrals first = integrate_cells(b, pdf, q);
+    const std::size_t spot = 100;
+    ASSERT_EQ(b.cell_rect(spot).u0, 0.5);
+    const double exact = spotted_cell(0.5, b.cell_rect(spot).u1);
+    // The hardness: the verified first value misses the spot beyond its own bound.
+    EXPECT_GT(std::abs(first.probability[spot] - exact), 100.0 * first.error[spot]) << first.probability[spot];
+    for (uint64_t seed : {1, 2, 3}) {
+        CellIntegrals q2 = first;
+        const PilotRefinement r = refine_by_pilot(b, spotted_pilot(64 * b.cell_count(), seed, true), pdf, q, q2);
+        EXPECT_EQ(r.cells_changed, 1u) << "seed " << seed << " cut " << r.cells_cut;
+        EXPECT_GE(r.cells_cut, 1u) << "seed " << seed;
+        EXPECT_NEAR(q2.probability[spot], exact, q2.error[spot] + 1e-12) << "seed " << seed;
+        EXPECT_NEAR(q2.total, 1.0, 1e-6) << "seed " << seed;
+        EXPECT_NEAR(r.missed_mass, exact - first.probability[spot], 1e-6) << "seed " << seed;
+        for (std::size_t c = 0; c < b.cell_count(); ++c)
+            if (c != spot) {
+                EXPECT_EQ(q2.probability[c], first.probability[c]) << "seed " << seed << " cell " << c;
+            }
+    }
+}
+
+TEST(PilotRefinement, APilotThatMissesTheSpotChangesNothing) {
+    // A sampler that never draws the spot (its pilot uniform) gives no cell
+    // a cluster to cut at: the first values stand, and the test against them
+    // sees the sampler's error.
+    const Binning b(Domain::interval(0.0, 1.0));
+    QuadratureOptions q;
+    q.verify = true;
+    const BatchPdf pdf = pointwise([](const DomainPoint& p) { return spotted(p[0]); });
+    const CellIntegrals first = integrate_cells(b, pdf, q);
+    CellIntegrals q2 = first;
+    const PilotRefinement r = refine_by_pilot(b, spotted_pilot(64 * b.cell_count(), 1, false), pdf, q, q2);
+    EXPECT_EQ(r.cells_changed, 0u);
+    EXPECT_EQ(q2.total, first.total);
+}
+
 }  // namespace
 }  // namespace warpcheck::chi2
