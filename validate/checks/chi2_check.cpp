@@ -59,10 +59,12 @@ std::vector<Plot> line_plots(const chi2::Binning& b, const chi2::Chi2Outcome& o,
 
 /// The compute part: samples drawn chunk by chunk, binned, and the density
 /// integrated over the cells (chi2::run_chi2_test).
-chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const chi2::Binning& binning) {
+chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const chi2::Binning& binning,
+                          std::span<const chi2::SamplePoint> pilot) {
     chi2::Chi2Options options;
     options.resolution = binning.resolution();
     options.strict = ctx.options().strict;
+    options.pilot = pilot;
     const InputKind kind = warp.input_kind();
     const chi2::BatchPdf pdf = [&](std::span<const chi2::DomainPoint> points, std::span<double> density) {
         std::vector<WarpOutput> x(points.size());
@@ -172,6 +174,9 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
         {"unconverged_cells", static_cast<double>(o.integrals.unconverged_cells)},
         {"verification_mismatches", static_cast<double>(o.integrals.verification_mismatches)},
         {"reintegrated_cells", static_cast<double>(o.reintegrated_cells)},
+        {"pilot_partitioned_cells", static_cast<double>(o.pilot_refinement.cells_cut)},
+        {"pilot_corrected_cells", static_cast<double>(o.pilot_refinement.cells_changed)},
+        {"pilot_corrected_mass", o.pilot_refinement.missed_mass},
         {"float_noise", o.integrals.float_noise_total},
         {"float_noise_allowance", o.float_noise_allowance},
         {"edge_band", o.edge_band_total},
@@ -251,7 +256,7 @@ public:
             cells = chi2::equal_probability_cells(grid, pilot, ctx.options().samples);
         const chi2::Binning binning =
             cells.edges.empty() ? grid : chi2::Binning(warp.domain(), grid.resolution(), cells.edges);
-        const chi2::Chi2Outcome outcome = compute(warp, ctx, binning);
+        const chi2::Chi2Outcome outcome = compute(warp, ctx, binning, pilot);
         CheckResult r;
         const chi2::LocalResidual local = local_residual(outcome, ctx.options().samples);
         add_figures(r, outcome, local, binning, ctx.options());

@@ -34,6 +34,7 @@
 // its 99% interval, the albedo, the energy albedo and its bound 1; the mean
 // weight minus the albedo with that interval).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -43,6 +44,7 @@
 #include <fmt/format.h>
 
 #include "chi2/chi2_test.h"
+#include "chi2/equal_probability.h"
 #include "chi2/mean_test.h"
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/bsdf/bsdf_common.h"
@@ -103,16 +105,26 @@ struct Albedo {
     double albedo = 0.0, energy = 0.0, error = 0.0;
     double float_noise = 0.0;  ///< the integral of f |cos|'s change over one float step of wi
     uint64_t evaluations = 0;
+    chi2::PilotRefinement pilot_refinement;
 };
 
+/// With a pilot of the sampler's continuous samples, the cells where it
+/// clusters are integrated again on pieces it places (chi2::refine_by_pilot):
+/// a lobe thinner than the cells' nodes (an anisotropic conductor of alpha
+/// 1e-3 x 1 seen from grazing: a sheet whose mass the nodes stepped over,
+/// 0.2% of the albedo, t = 13 against a correct sampler) is integrated where
+/// the samples show it is.
 Albedo integrate(const BsdfCase& bsdf, Vector3f wo, chi2::BinResolution cells, uint64_t accuracy_samples,
-                 const chi2::ParallelFor& parallel, bool float_noise = false) {
+                 const chi2::ParallelFor& parallel, bool float_noise = false,
+                 std::span<const std::array<float, 3>> pilot = {}) {
     const chi2::Binning binning(bsdf.domain(), cells);
     chi2::QuadratureOptions q;
     q.sample_count = accuracy_samples;
     q.float_noise = float_noise;
-    const chi2::CellIntegrals c = chi2::integrate_cells(binning, albedo_integrand(bsdf, wo), q, parallel);
-    Albedo a{0.0, 0.0, c.error_total, c.float_noise_total, c.evaluations};
+    chi2::CellIntegrals c = chi2::integrate_cells(binning, albedo_integrand(bsdf, wo), q, parallel);
+    chi2::PilotRefinement refined;
+    if (!pilot.empty()) refined = chi2::refine_by_pilot(binning, pilot, albedo_integrand(bsdf, wo), q, c, parallel);
+    Albedo a{0.0, 0.0, c.error_total, c.float_noise_total, c.evaluations, refined};
     for (std::size_t i = 0; i < c.probability.size(); ++i) {
         const chi2::ParamRect r = binning.cell_rect(i);
         // The factor is constant on each side of the surface, and no cell straddles it.
@@ -184,7 +196,9 @@ chi2::MeanTest energy_weight_test(const chi2::Moments& energy) {
 
 Outcome evaluate(const BsdfCase& bsdf, const CheckContext& ctx, const Draws& d) {
     Outcome o;
-    o.integral = integrate(bsdf, bsdf.wo(), kAlbedoCells, ctx.options().samples, ctx.executor(), true);
+    const std::vector<std::array<float, 3>> pilot =
+        continuous_pilot(bsdf, ctx, chi2::kPilotPointsPerCell * chi2::Binning(bsdf.domain(), kAlbedoCells).cell_count());
+    o.integral = integrate(bsdf, bsdf.wo(), kAlbedoCells, ctx.options().samples, ctx.executor(), true, pilot);
     o.albedo = o.integral.albedo + delta_albedo(d.delta, false);
     o.energy = o.integral.energy + delta_albedo(d.delta, true);
     o.energy_tolerance = o.integral.error + kRoundingAllowance;
@@ -294,6 +308,9 @@ protected:
                      {"energy_tolerance", o.energy_tolerance},
                      {"float_noise_allowance", o.float_allowance},
                      {"albedo_known", o.albedo_known ? 1.0 : 0.0},
+                     {"pilot_partitioned_cells", static_cast<double>(o.integral.pilot_refinement.cells_cut)},
+                     {"pilot_corrected_cells", static_cast<double>(o.integral.pilot_refinement.cells_changed)},
+                     {"pilot_corrected_mass", o.integral.pilot_refinement.missed_mass},
                      {"power_weight_error", detectable},
                      {"power_relative_weight_error", detectable / o.albedo},
                      {"power_level", level}};

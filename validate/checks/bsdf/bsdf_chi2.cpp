@@ -106,6 +106,7 @@ struct Counted {
     chi2::CellIntegrals integrals;
     Draws draws;
     std::size_t reintegrated_cells = 0;
+    chi2::PilotRefinement pilot_refinement;
 };
 
 /// pdf(wo, .) integrated over the cells and the draws binned; then, as the
@@ -115,7 +116,7 @@ struct Counted {
 /// and the same draws binned again if any was. What is still zero there after
 /// that is a sample where the pdf is 0: a failure (evaluate_chi2).
 Counted integrate_and_draw(const BsdfCase& bsdf, const CheckContext& ctx, const chi2::Binning& binning,
-                           const chi2::Chi2Options& options) {
+                           std::span<const chi2::SamplePoint> pilot, const chi2::Chi2Options& options) {
     chi2::QuadratureOptions q;
     q.sample_count = ctx.options().samples;
     q.accuracy_fraction = options.accuracy_fraction;
@@ -124,6 +125,7 @@ Counted integrate_and_draw(const BsdfCase& bsdf, const CheckContext& ctx, const 
     q.float_noise = true;
     Counted c;
     c.integrals = chi2::integrate_cells(binning, pdf_integrand(bsdf), q, ctx.executor());
+    c.pilot_refinement = chi2::refine_by_pilot(binning, pilot, pdf_integrand(bsdf), q, c.integrals, ctx.executor());
     c.draws = draw(bsdf, ctx, binning, chi2::zero_cells_of(c.integrals));
     c.reintegrated_cells = chi2::reintegrate_missed_support(binning, c.draws.hist, pdf_integrand(bsdf), q, c.integrals);
     if (c.reintegrated_cells > 0) c.draws = draw(bsdf, ctx, binning, chi2::zero_cells_of(c.integrals));
@@ -222,19 +224,6 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
     add_cell_power(r, binning, o, level, n.landed);
 }
 
-/// The continuous samples of a pilot drawn from the pilot streams
-/// (kPilotChunkBase): chi2::kPilotPointsPerCell per cell of `grid`.
-std::vector<chi2::SamplePoint> draw_pilot(const BsdfCase& bsdf, const CheckContext& ctx, const chi2::Binning& grid) {
-    const std::vector<WarpInput> in =
-        pilot_inputs(ctx, InputKind::Uniform3D, chi2::kPilotPointsPerCell * grid.cell_count());
-    std::vector<BsdfRecord> records(in.size());
-    bsdf.sample_bsdf(in, records);
-    std::vector<chi2::SamplePoint> pilot;
-    for (const BsdfRecord& r : records)
-        if (r.sampled() && !r.delta()) pilot.push_back(r.wi);
-    return pilot;
-}
-
 void judge(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalResidual& local, const Normalisation& n) {
     const double share = 1.0 - chi2::kLocalLevelShare - kLandingLevelShare;
     if (o.dof() >= 1)
@@ -310,14 +299,15 @@ protected:
         // the continuous samples fills under a quarter of it, as the chi2
         // check chooses (chi2/equal_probability.h).
         const chi2::Binning grid(bsdf.domain(), options.resolution);
-        const std::vector<chi2::SamplePoint> pilot = draw_pilot(bsdf, ctx, grid);
+        const std::vector<chi2::SamplePoint> pilot =
+            continuous_pilot(bsdf, ctx, chi2::kPilotPointsPerCell * grid.cell_count());
         chi2::EqualProbabilityCells cells;
         if (chi2::effective_cells(grid, pilot) < chi2::kMinEffectiveCellShare * static_cast<double>(grid.cell_count()))
             cells = chi2::equal_probability_cells(grid, pilot, ctx.options().samples);
         const chi2::Binning binning =
             cells.edges.empty() ? grid : chi2::Binning(bsdf.domain(), grid.resolution(), cells.edges);
         options.resolution = binning.resolution();
-        const Counted c = integrate_and_draw(bsdf, ctx, binning, options);
+        const Counted c = integrate_and_draw(bsdf, ctx, binning, pilot, options);
         const Draws& d = c.draws;
         const Normalisation n = normalisation(c.integrals, d, options.strict);
         chi2::Chi2Outcome o = chi2::evaluate_chi2(binning, d.hist, conditional(c.integrals), n.landed, options);
@@ -325,6 +315,10 @@ protected:
         const chi2::LocalResidual local = local_residual(o, n.landed);
         CheckResult r;
         add_figures(r, o, local, n, d, ctx.options(), binning);
+        r.figures.insert(r.figures.end(),
+                         {{"pilot_partitioned_cells", static_cast<double>(c.pilot_refinement.cells_cut)},
+                          {"pilot_corrected_cells", static_cast<double>(c.pilot_refinement.cells_changed)},
+                          {"pilot_corrected_mass", c.pilot_refinement.missed_mass}});
         judge(r, o, local, n);
         if (r.verdict == Verdict::Pass) r.weak = weakness(r);
         r.plots.push_back(cell_heatmaps(binning, o, "wi cells of " + bsdf.name() + " (continuous lobes)"));

@@ -17,6 +17,16 @@ std::vector<WarpOutput> nodes_as_outputs(std::span<const chi2::DomainPoint> poin
 
 }  // namespace
 
+std::vector<std::array<float, 3>> continuous_pilot(const BsdfCase& bsdf, const CheckContext& ctx, std::size_t count) {
+    const std::vector<WarpInput> in = pilot_inputs(ctx, InputKind::Uniform3D, count);
+    std::vector<BsdfRecord> records(in.size());
+    bsdf.sample_bsdf(in, records);
+    std::vector<std::array<float, 3>> pilot;
+    for (const BsdfRecord& r : records)
+        if (r.sampled() && !r.delta()) pilot.push_back(r.wi);
+    return pilot;
+}
+
 chi2::BatchPdf pdf_integrand(const BsdfCase& bsdf) {
     return [&bsdf](std::span<const chi2::DomainPoint> points, std::span<double> out) {
         bsdf.pdf(nodes_as_outputs(points), out);

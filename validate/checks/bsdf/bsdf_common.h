@@ -57,6 +57,12 @@ std::vector<Result> map_bsdf_chunks(const CheckContext& ctx, const BsdfCase& bsd
                                     });
 }
 
+/// The continuous samples' directions among `count` draws from the pilot
+/// streams (pilot_inputs: independent of the tested samples), where the
+/// sampler puts its mass: equal-probability cells and the cubature's pieces
+/// (chi2::refine_by_pilot) are placed by them.
+std::vector<std::array<float, 3>> continuous_pilot(const BsdfCase& bsdf, const CheckContext& ctx, std::size_t count);
+
 /// pdf(wo, .) at quadrature nodes.
 chi2::BatchPdf pdf_integrand(const BsdfCase& bsdf);
 /// f(wo, .) |cos theta_i| at quadrature nodes (p for a phase function), for
