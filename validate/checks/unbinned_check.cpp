@@ -48,6 +48,7 @@
 #include "chi2/unbinned.h"
 #include "validate/checks/cell_power.h"
 #include "validate/checks/checks.h"
+#include "validate/checks/direction_length.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/input_chunks.h"
 #include "validate/checks/line_resolution.h"
@@ -455,14 +456,11 @@ constexpr double kModelBandFraction = 0.1;
 /// first order), and the pilot's directions are drawn from p.
 double pilot_length_response(const WarpCase& warp, const std::vector<WarpOutput>& pilot, double delta) {
     std::vector<WarpOutput> x, longer, shorter;
-    const auto scaled = [](const WarpOutput& o, double s) {
-        return WarpOutput{static_cast<float>(s * o[0]), static_cast<float>(s * o[1]), static_cast<float>(s * o[2])};
-    };
     for (const WarpOutput& o : pilot) {
         if (!warp.domain().contains(to_domain_point(o))) continue;
         x.push_back(o);
-        longer.push_back(scaled(o, 1.0 + delta));
-        shorter.push_back(scaled(o, 1.0 - delta));
+        longer.push_back(scaled_direction(o, 1.0 + delta));
+        shorter.push_back(scaled_direction(o, 1.0 - delta));
     }
     std::vector<double> p(x.size()), pl(x.size()), ps(x.size());
     warp.pdf(x, p);
@@ -478,13 +476,6 @@ double pilot_length_response(const WarpCase& warp, const std::vector<WarpOutput>
     }
     return n == 0 ? 0.0 : 2.0 * sum / static_cast<double>(n);
 }
-
-/// The relative length change at which the pdf's response is measured:
-/// 2^-23 moves the largest coordinate of a unit direction (at least 1/sqrt(3),
-/// so in [0.5, 1)) by at least one float step; a wo's length error is
-/// usually smaller (2^-26 at theta_o 91), and a smaller change would round
-/// away, so the response is measured here and scaled to it, to first order.
-constexpr double kLengthProbe = 0x1p-23;
 
 /// The table that measures the pdf's response to its directions' length: a
 /// quarter of the tested table's accuracy (its error bound, 4 times larger,

@@ -33,6 +33,7 @@
 
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/bsdf/bsdf_common.h"
+#include "validate/checks/direction_length.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/formatting.h"
 
@@ -144,15 +145,6 @@ double spread_over(const BsdfCase& bsdf, const Pair& p, const std::vector<WarpOu
     return spread_f + spread_b;
 }
 
-/// The relative length change at which f's response to its inputs' length is
-/// measured: 2^-23 moves the largest coordinate of a unit direction (in
-/// [0.5, 1)) by at least one float step, where a smaller change rounds away.
-constexpr double kLengthProbe = 0x1p-23;
-
-double length_error(const WarpOutput& w) {
-    return std::abs(std::hypot(static_cast<double>(w[0]), static_cast<double>(w[1]), static_cast<double>(w[2])) - 1.0);
-}
-
 /// f's response to the lengths of its two inputs, which are unit only to
 /// their rounding (a sampler's wi often to a few float steps, more than the
 /// neighbours' own rounding shows): the pair with wi kLengthProbe (or the
@@ -164,11 +156,8 @@ double length_spread(const BsdfCase& bsdf, const Pair& p) {
     const double delta = length_error(p.wi) + length_error(detail::to_output_of(bsdf.wo()));
     if (!(delta > 0.0)) return 0.0;
     const double probe = std::max(delta, kLengthProbe);
-    const auto scaled = [&p](double s) {
-        return WarpOutput{static_cast<float>(s * p.wi[0]), static_cast<float>(s * p.wi[1]),
-                          static_cast<float>(s * p.wi[2])};
-    };
-    return delta / probe * spread_over(bsdf, p, {scaled(1.0 + probe), scaled(1.0 - probe)}, true);
+    return delta / probe *
+           spread_over(bsdf, p, {scaled_direction(p.wi, 1.0 + probe), scaled_direction(p.wi, 1.0 - probe)}, true);
 }
 
 /// f's float resolution at the pair: how much f(wo, wi) s and f(wi, wo) move

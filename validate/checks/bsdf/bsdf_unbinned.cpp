@@ -24,6 +24,7 @@
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/bsdf/bsdf_common.h"
 #include "validate/checks/checks.h"
+#include "validate/checks/direction_length.h"
 
 namespace warpcheck::bsdf {
 namespace {
@@ -79,9 +80,7 @@ protected:
         const chi2::CellIntegrals t = pdf_integral(bsdf, ctx);
         source.total = t.total;
         source.total_error = t.error_total;
-        const Vector3f wo = bsdf.claims().wo;
-        source.length_mismatch = std::abs(
-            std::hypot(static_cast<double>(wo.x), static_cast<double>(wo.y), static_cast<double>(wo.z)) - 1.0);
+        source.length_mismatch = length_error(detail::to_output_of(bsdf.claims().wo));
         CheckResult r = run_unbinned(bsdf, ctx, source);
         r.figures.push_back({"pdf_integral", t.total});
         r.figures.push_back({"pdf_integral_error", t.error_total});
