@@ -307,25 +307,30 @@ PilotRefinement refine_by_pilot(const Binning& binning, std::span<const SamplePo
         uv[1] = std::clamp(uv[1], r.v0, r.v1);
         at[static_cast<std::size_t>(c)].push_back(uv);
     }
-    std::vector<std::size_t> cut;
-    for (std::size_t c = 0; c < at.size(); ++c)
-        for (const ParamRect& piece : binning.integration_pieces(c)) {
-            std::vector<std::array<double, 2>> inside;
+    // Each cell's pieces with the pilot points inside them, kept for the
+    // cells that call for a partition.
+    struct Cut {
+        std::size_t cell = 0;
+        std::vector<ParamRect> pieces;
+        std::vector<std::vector<std::array<double, 2>>> inside;
+    };
+    std::vector<Cut> cuts;
+    for (std::size_t c = 0; c < at.size(); ++c) {
+        if (at[c].empty()) continue;
+        Cut k{c, binning.integration_pieces(c), {}};
+        bool needed = false;
+        for (const ParamRect& piece : k.pieces) {
+            std::vector<std::array<double, 2>>& in = k.inside.emplace_back();
             for (const auto& p : at[c])
-                if (p[0] >= piece.u0 && p[0] <= piece.u1 && p[1] >= piece.v0 && p[1] <= piece.v1) inside.push_back(p);
-            if (needs_pilot_partition(binning, piece, inside)) {
-                cut.push_back(c);
-                break;
-            }
+                if (p[0] >= piece.u0 && p[0] <= piece.u1 && p[1] >= piece.v0 && p[1] <= piece.v1) in.push_back(p);
+            needed = needed || needs_pilot_partition(binning, piece, in);
         }
-    std::vector<GuidedIntegral> redone(cut.size());
-    parallel_for(cut.size(), [&](std::size_t k) {
-        const std::size_t c = cut[k];
-        for (const ParamRect& piece : binning.integration_pieces(c)) {
-            std::vector<std::array<double, 2>> inside;
-            for (const auto& p : at[c])
-                if (p[0] >= piece.u0 && p[0] <= piece.u1 && p[1] >= piece.v0 && p[1] <= piece.v1) inside.push_back(p);
-            const GuidedIntegral g = integrate_partitioned(binning, piece, inside, pdf, qo);
+        if (needed) cuts.push_back(std::move(k));
+    }
+    std::vector<GuidedIntegral> redone(cuts.size());
+    parallel_for(cuts.size(), [&](std::size_t k) {
+        for (std::size_t i = 0; i < cuts[k].pieces.size(); ++i) {
+            const GuidedIntegral g = integrate_partitioned(binning, cuts[k].pieces[i], cuts[k].inside[i], pdf, qo);
             redone[k].value += g.value;
             redone[k].error += g.error;
             redone[k].float_noise += g.float_noise;
@@ -333,9 +338,9 @@ PilotRefinement refine_by_pilot(const Binning& binning, std::span<const SamplePo
             redone[k].pieces += g.pieces;
         }
     });
-    out.cells_cut = cut.size();
-    for (std::size_t k = 0; k < cut.size(); ++k) {
-        const std::size_t c = cut[k];
+    out.cells_cut = cuts.size();
+    for (std::size_t k = 0; k < cuts.size(); ++k) {
+        const std::size_t c = cuts[k].cell;
         const GuidedIntegral& g = redone[k];
         q.evaluations += g.evaluations;
         const double noise = q.float_noise.empty() ? 0.0 : q.float_noise[c];

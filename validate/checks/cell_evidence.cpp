@@ -83,4 +83,10 @@ Table worst_cells(const chi2::Binning& b, const chi2::Chi2Outcome& o, const Cell
     return t;
 }
 
+void add_pilot_refinement_figures(std::vector<Figure>& figures, const chi2::PilotRefinement& p) {
+    figures.push_back({"pilot_partitioned_cells", static_cast<double>(p.cells_cut)});
+    figures.push_back({"pilot_corrected_cells", static_cast<double>(p.cells_changed)});
+    figures.push_back({"pilot_corrected_mass", p.missed_mass});
+}
+
 }  // namespace warpcheck

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "chi2/binning.h"
 #include "chi2/chi2_test.h"
@@ -29,5 +30,10 @@ Plot cell_heatmaps(const chi2::Binning& binning, const chi2::Chi2Outcome& o, con
 /// The eight cells with the largest |residual| (a sample in a cell of zero
 /// expectation first; ties to the lower cell).
 Table worst_cells(const chi2::Binning& binning, const chi2::Chi2Outcome& o, const CellAxes& axes = {});
+
+/// What chi2::refine_by_pilot did to a check's cubature, as the figures
+/// pilot_partitioned_cells, pilot_corrected_cells and pilot_corrected_mass
+/// (chi2, bsdf_chi2, bsdf_albedo).
+void add_pilot_refinement_figures(std::vector<Figure>& figures, const chi2::PilotRefinement& p);
 
 }  // namespace warpcheck

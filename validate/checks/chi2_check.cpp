@@ -174,9 +174,6 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
         {"unconverged_cells", static_cast<double>(o.integrals.unconverged_cells)},
         {"verification_mismatches", static_cast<double>(o.integrals.verification_mismatches)},
         {"reintegrated_cells", static_cast<double>(o.reintegrated_cells)},
-        {"pilot_partitioned_cells", static_cast<double>(o.pilot_refinement.cells_cut)},
-        {"pilot_corrected_cells", static_cast<double>(o.pilot_refinement.cells_changed)},
-        {"pilot_corrected_mass", o.pilot_refinement.missed_mass},
         {"float_noise", o.integrals.float_noise_total},
         {"float_noise_allowance", o.float_noise_allowance},
         {"edge_band", o.edge_band_total},
@@ -260,6 +257,7 @@ public:
         CheckResult r;
         const chi2::LocalResidual local = local_residual(outcome, ctx.options().samples);
         add_figures(r, outcome, local, binning, ctx.options());
+        add_pilot_refinement_figures(r.figures, outcome.pilot_refinement);
         r.figures.insert(r.figures.end(), {{"pilot_effective_cells", effective},
                                            {"pilot_samples_used", static_cast<double>(cells.pilot_used)},
                                            {"rows_merged", static_cast<double>(cells.rows_merged)},

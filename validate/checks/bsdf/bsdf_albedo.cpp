@@ -49,6 +49,7 @@
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/bsdf/bsdf_common.h"
 #include "validate/checks/bsdf/bsdf_statistics.h"
+#include "validate/checks/cell_evidence.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/power_level.h"
 
@@ -308,12 +309,10 @@ protected:
                      {"energy_tolerance", o.energy_tolerance},
                      {"float_noise_allowance", o.float_allowance},
                      {"albedo_known", o.albedo_known ? 1.0 : 0.0},
-                     {"pilot_partitioned_cells", static_cast<double>(o.integral.pilot_refinement.cells_cut)},
-                     {"pilot_corrected_cells", static_cast<double>(o.integral.pilot_refinement.cells_changed)},
-                     {"pilot_corrected_mass", o.integral.pilot_refinement.missed_mass},
                      {"power_weight_error", detectable},
                      {"power_relative_weight_error", detectable / o.albedo},
                      {"power_level", level}};
+        add_pilot_refinement_figures(r.figures, o.integral.pilot_refinement);
         judge(r, o);
         r.family_points = albedo_points(bsdf, o);
         if (!bsdf.phase_function()) {

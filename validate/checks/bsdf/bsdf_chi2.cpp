@@ -315,10 +315,7 @@ protected:
         const chi2::LocalResidual local = local_residual(o, n.landed);
         CheckResult r;
         add_figures(r, o, local, n, d, ctx.options(), binning);
-        r.figures.insert(r.figures.end(),
-                         {{"pilot_partitioned_cells", static_cast<double>(c.pilot_refinement.cells_cut)},
-                          {"pilot_corrected_cells", static_cast<double>(c.pilot_refinement.cells_changed)},
-                          {"pilot_corrected_mass", c.pilot_refinement.missed_mass}});
+        add_pilot_refinement_figures(r.figures, c.pilot_refinement);
         judge(r, o, local, n);
         if (r.verdict == Verdict::Pass) r.weak = weakness(r);
         r.plots.push_back(cell_heatmaps(binning, o, "wi cells of " + bsdf.name() + " (continuous lobes)"));
