@@ -347,7 +347,11 @@ PilotRefinement refine_by_pilot(const Binning& binning, std::span<const SamplePo
         const double slack = noise + g.float_noise + 0x1p-20 * std::abs(g.value);
         // Within both bounds the cell's first value stands (the pieces saw
         // what its nodes saw); beyond them, the pieces, placed where the
-        // pilot's mass is, saw what the nodes stepped over.
+        // pilot's mass is, saw what the nodes stepped over. The slack is
+        // what verify_cell grants two node sets of one float density (a float
+        // pdf's values differ between two sets of points by its float noise,
+        // and each sum rounds by 2^-20 of the value), with both sets' noise,
+        // since both were measured.
         if (!std::isfinite(g.value) || std::abs(g.value - q.probability[c]) <= g.error + q.error[c] + slack) continue;
         out.missed_mass += g.value - q.probability[c];
         replace_cell(q, c, g);
