@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "support/flawed_catalogue.h"
 #include "validate/api/registry.h"
 #include "validate/run/runner.h"
 
@@ -22,22 +23,10 @@ constexpr const char* kBsdfChecks[] = {"bsdf_chi2",   "bsdf_unbinned",   "bsdf_w
 std::vector<std::string> bsdf_checks() { return {std::begin(kBsdfChecks), std::end(kBsdfChecks)}; }
 
 RunResult run(const Registry& registry, const std::vector<std::string>& cases, uint64_t seed, uint64_t samples) {
-    RunOptions options;
-    options.seed = seed;
-    options.samples = samples;
-    options.threads = 2;
-    options.include_flawed = true;
-    options.check_time_budget = 600.0;
-    return run_jobs(select_jobs(registry, cases, bsdf_checks(), options), options);
+    return testing::run_including_flawed(registry, cases, bsdf_checks(), seed, samples);
 }
 
-std::string failures_of(const RunResult& r) {
-    std::string out;
-    for (const CheckResult& c : r.results)
-        if (c.verdict != Verdict::Pass && c.verdict != Verdict::NotApplicable)
-            out += fmt::format("\n  {} {}: {} {}", c.check_name, c.case_name, c.summary, c.message);
-    return out;
-}
+using testing::failures_of;
 
 // The hardest of the default grid (the sharpest lobes at 85 degrees, the
 // anisotropic lobe across its long axis, a peaky phase function, both delta
@@ -71,28 +60,7 @@ TEST(BsdfFlawed, EachIsCaughtByItsCheckAndOnlyByTheChecksItsBugTouches) {
     Registry registry;
     register_builtin_checks(registry);
     register_flawed_bsdf_cases(registry);
-    const std::vector<FlawedBsdf> catalogue = bsdf_flawed_catalogue();
-    ASSERT_EQ(registry.cases().size(), catalogue.size());
-    const RunResult r = run(registry, {}, 1, 1'000'000);
-    for (std::size_t i = 0; i < catalogue.size(); ++i) {
-        const FlawedBsdf& flawed = catalogue[i];
-        const std::string name = registry.cases()[i]->name();
-        EXPECT_NE(registry.known_flaw(*registry.cases()[i]), "") << name;
-        bool caught = false;
-        for (const CheckResult& c : r.results) {
-            if (c.case_name != name) continue;
-            const bool expected_failure =
-                c.check_name == flawed.caught_by ||
-                std::find(flawed.also_fails.begin(), flawed.also_fails.end(), c.check_name) != flawed.also_fails.end();
-            if (c.check_name == flawed.caught_by) caught = c.verdict == Verdict::Fail;
-            if (!expected_failure)
-                EXPECT_TRUE(c.verdict == Verdict::Pass || c.verdict == Verdict::NotApplicable)
-                    << name << ": " << c.check_name << " should not fail: " << c.summary << " " << c.message;
-            else
-                EXPECT_EQ(c.verdict, Verdict::Fail) << name << ": " << c.check_name << " " << c.summary;
-        }
-        EXPECT_TRUE(caught) << name << " (" << flawed.flaw << ") not caught by " << flawed.caught_by;
-    }
+    testing::expect_each_caught(registry, bsdf_flawed_catalogue(), run(registry, {}, 1, 1'000'000));
 }
 
 // The evidence across a family's grid (issue 23): each albedo row is a point
