@@ -7,6 +7,7 @@
 set(warpcheck_public_entry_headers
   validate/api/external.h
   validate/api/bsdf_grid.h
+  validate/api/light_case.h
   validate/api/register17.h
   validate/gtest/warpcheck_gtest.h)
 

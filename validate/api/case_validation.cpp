@@ -9,6 +9,7 @@
 
 #include "validate/api/bsdf_case.h"
 #include "validate/api/exhaustive_sweep.h"
+#include "validate/api/light_case.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -103,6 +104,20 @@ std::string claims_problem(const BsdfClaims& c) {
     return "";
 }
 
+/// A light's claims: the first thing wrong, or "".
+std::string light_claims_problem(const LightClaims& c) {
+    if (!(std::isfinite(c.ref.x) && std::isfinite(c.ref.y) && std::isfinite(c.ref.z)))
+        return fmt::format("the reference point ({}, {}, {}) is not finite", c.ref.x, c.ref.y, c.ref.z);
+    if (c.normal == Vector3f{}) return "";
+    const double len = std::hypot(static_cast<double>(c.normal.x), static_cast<double>(c.normal.y),
+                                  static_cast<double>(c.normal.z));
+    // As for a BSDF's wo: a rounded unit vector is within 2^-23 of unit length.
+    if (!(std::abs(len - 1.0) <= 0x1p-16))
+        return fmt::format("the normal ({}, {}, {}) is neither zero (a point in a medium) nor a unit vector "
+                           "(length {})", c.normal.x, c.normal.y, c.normal.z, len);
+    return "";
+}
+
 /// One view against the warp's input and domain.
 void view_problems(const WarpCase& warp, const MonotoneMarginal& m, std::vector<std::string>& out) {
     const std::string name = "view '" + m.label + "'";
@@ -140,6 +155,9 @@ std::vector<std::string> case_problems(const WarpCase& warp) {
     if (std::string problem = type_problem(warp); !problem.empty()) out.push_back(std::move(problem));
     if (const BsdfCase* bsdf = as_bsdf(warp))
         if (std::string problem = claims_problem(bsdf->claims()); !problem.empty()) out.push_back(std::move(problem));
+    if (const LightCase* light = as_light(warp))
+        if (std::string problem = light_claims_problem(light->claims()); !problem.empty())
+            out.push_back(std::move(problem));
     setting_problems(warp, out);
     std::set<std::string> labels;
     for (const MonotoneMarginal& m : warp.info().views) {

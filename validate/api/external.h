@@ -21,6 +21,7 @@
 #include "validate/api/case_grid.h"
 #include "validate/api/exhaustive_sweep.h"
 #include "validate/api/float_template_warp.h"
+#include "validate/api/light_case.h"
 #include "validate/api/positional_cases.h"
 #include "validate/api/registry.h"
 #include "validate/api/warp_case.h"

@@ -99,6 +99,14 @@ std::vector<FlawedBsdf> bsdf_flawed_catalogue();
 /// register_flawed_interval_cases).
 void register_flawed_bsdf_cases(Registry& registry);
 
+/// A known-bad light (validate/cases/light_flawed.cpp), described as a
+/// known-bad BSDF is: how to make it, its check, its bug, what else it fails.
+using FlawedLight = FlawedBsdf;
+/// The catalogue of known-bad lights, one per bug class renderers have shipped.
+std::vector<FlawedLight> light_flawed_catalogue();
+/// Registers the catalogue, each marked as a known flaw.
+void register_flawed_light_cases(Registry& registry);
+
 namespace detail {
 using RegisterCasesFn = void (*)(Registry&);
 /// Records a family's registration function; called during static initialisation.

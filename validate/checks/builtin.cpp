@@ -8,6 +8,7 @@
 
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/checks.h"
+#include "validate/checks/light/light_checks.h"
 #include "validate/api/registry.h"
 
 namespace warpcheck {
@@ -64,6 +65,9 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(bsdf::make_bsdf_delta_check());
     registry.add_check(bsdf::make_bsdf_albedo_check());
     registry.add_check(bsdf::make_bsdf_reciprocity_check());
+    registry.add_check(light::make_light_radiance_check());
+    registry.add_check(light::make_light_support_check());
+    registry.add_check(light::make_light_irradiance_check());
 }
 
 }  // namespace warpcheck

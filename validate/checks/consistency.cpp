@@ -35,34 +35,16 @@
 
 #include "chi2/count_bounds.h"
 #include "sampling/float_bits.h"
+#include "validate/api/light_case.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
+#include "validate/checks/float_probe.h"
 #include "validate/checks/formatting.h"
 #include "validate/checks/input_chunks.h"
 
 namespace warpcheck {
 namespace {
 
-/// How far a zero-pdf sample's neighbours are probed: kProbeUlps float
-/// spacings at the domain's extent (Domain::slack's scale) in each coordinate.
-/// A float warp computes a coordinate from terms as large as the domain (a
-/// lerp over it, (bucket + du) / n) in a handful of roundings of half such a
-/// spacing each, so 4 is the error of about eight of them; a sample a wrong
-/// warp puts where its pdf is 0 lies, but for a set of vanishing measure,
-/// further from any positive pdf.
-constexpr int kProbeUlps = 4;
-/// The per-sample rate of samples a correct warp rounds across its support's
-/// edge, for the count bound: only samples whose exact value lies within a
-/// few spacings of an edge can be rounded across it, a band that holds about
-/// 2^-24 of the samples per spacing along an edge that is the image of a line
-/// of inputs (2^-24 is the largest input spacing). 2^-16 allows 256 such
-/// line-spacings, a table with dozens of boundaries between empty and full
-/// rows, while a warp that puts mass on an edge itself (clamping onto it)
-/// puts a fixed fraction of its samples there. 15 per 10^6 samples.
-constexpr double kRoundedAcrossEdgeRate = 0x1p-16;
-/// The chance that a correct warp's count exceeds the bound (the round trip's
-/// other-preimage bound uses the same): far below any run's level.
-constexpr double kConsistencyBoundTail = 1e-9;
 /// Every kEdgeBandStride-th random sample with a positive pdf is probed
 /// kProbeUlps spacings along each coordinate both ways for a zero pdf inside
 /// the domain: the share of samples that lie that close to an edge of the
@@ -80,6 +62,7 @@ struct Example {
 
 struct ConsistencyStats {
     uint64_t count = 0, random_count = 0;
+    uint64_t declined = 0;  ///< a light's inputs that gave no sample (pdf 0 returned): skipped
     Tally<Example> nan_sample, outside, bad_pdf, zero_pdf;
     uint64_t boundary_zero = 0;
     Tally<Example> boundary_random;  ///< the boundary zeros among random inputs (bounded as rounded_random)
@@ -93,6 +76,7 @@ struct ConsistencyStats {
     void merge(const ConsistencyStats& o) {
         count += o.count;
         random_count += o.random_count;
+        declined += o.declined;
         rounded_random.merge(o.rounded_random);
         rounded_edges += o.rounded_edges;
         band_probed += o.band_probed;
@@ -142,41 +126,6 @@ bool classify(ConsistencyStats& s, const chi2::Domain& domain, uint64_t index, c
     return false;
 }
 
-/// The probe's step in each coordinate: the float spacing just below the
-/// domain's extent, the largest a coordinate inside it has (or at the
-/// coordinate itself, where that is larger: unbounded lines).
-std::array<float, 3> probe_steps(const chi2::Domain& domain, const WarpOutput& x) {
-    const chi2::Domain::Slack slack = domain.slack();
-    const double extent[3] = {slack.x, slack.y, slack.x};  // a direction's z has the x slack (unit scale)
-    std::array<float, 3> step{};
-    for (std::size_t k = 0; k < 3; ++k) {
-        const float scale = std::max(std::abs(x[k]), static_cast<float>(extent[k] / chi2::kDomainTolerance));
-        step[k] = scale - next_float_down(scale);
-    }
-    return step;
-}
-
-/// The points probed for a positive pdf around x: 1 to kProbeUlps steps
-/// along each of the 3^d - 1 sign directions of its d coordinates.
-std::vector<WarpOutput> probe_points(const chi2::Domain& domain, const WarpOutput& x) {
-    const int dims = domain.point_dimension();
-    const std::array<float, 3> step = probe_steps(domain, x);
-    std::vector<WarpOutput> out;
-    int directions = 1;
-    for (int k = 0; k < dims; ++k) directions *= 3;
-    for (int d = 0; d < directions; ++d) {
-        std::array<int, 3> sign{};
-        for (int k = 0, rest = d; k < dims; ++k, rest /= 3) sign[static_cast<std::size_t>(k)] = rest % 3 - 1;
-        if (sign == std::array<int, 3>{}) continue;
-        for (int j = 1; j <= kProbeUlps; ++j) {
-            WarpOutput y = x;
-            for (std::size_t k = 0; k < 3; ++k) y[k] += static_cast<float>(sign[k] * j) * step[k];
-            out.push_back(y);
-        }
-    }
-    return out;
-}
-
 /// Whether the pdf is positive (and finite) at one of x's probed neighbours.
 bool positive_nearby(const WarpCase& warp, const WarpOutput& x) {
     const std::vector<WarpOutput> probes = probe_points(warp.domain(), x);
@@ -210,11 +159,16 @@ bool near_support_edge(const WarpCase& warp, const WarpOutput& x) {
 
 /// One chunk of samples with their pdfs, classified.
 ConsistencyStats classify_chunk(const WarpCase& warp, std::size_t chunk, std::span<const WarpInput> inputs,
-                     std::span<const WarpOutput> x, std::span<const double> pdf) {
+                     std::span<const WarpOutput> x, std::span<const double> pdf,
+                     std::span<const unsigned char> declined) {
     const chi2::Domain& domain = warp.domain();
     ConsistencyStats s;
     if (chunk > 0) s.random_count = inputs.size();
     for (std::size_t i = 0; i < inputs.size(); ++i) {
+        if (!declined.empty() && declined[i]) {
+            ++s.declined;
+            continue;
+        }
         const uint64_t index = chunk * kInputChunkSize + i;
         const Example e{inputs[i], x[i], pdf[i]};
         if (chunk > 0 && warp.has_pdf() && i % kEdgeBandStride == 0 && pdf[i] > 0.0 && std::isfinite(pdf[i]) &&
@@ -236,13 +190,22 @@ ConsistencyStats compute(const WarpCase& warp, const CheckContext& ctx) {
                                          [&](std::size_t chunk, std::span<const WarpInput> inputs) {
         std::vector<WarpOutput> x(inputs.size());
         std::vector<double> pdf(inputs.size());
-        if (warp.has_pdf()) {
+        std::vector<unsigned char> declined;
+        if (as_light(warp) != nullptr) {
+            // A light may decline to sample (pbrt's SampleLi returns none:
+            // pdf 0): not a sample, so not judged here; light_irradiance
+            // counts it as the zero it contributes.
+            warp.sample_with_value(inputs, x, pdf);
+            declined.resize(inputs.size());
+            for (std::size_t i = 0; i < inputs.size(); ++i) declined[i] = pdf[i] == 0.0;
+            warp.pdf(x, pdf);
+        } else if (warp.has_pdf()) {
             warp.sample(inputs, x);
             warp.pdf(x, pdf);
         } else {
             warp.sample_with_value(inputs, x, pdf);  // the pdf that sample returns
         }
-        return classify_chunk(warp, chunk, inputs, x, pdf);
+        return classify_chunk(warp, chunk, inputs, x, pdf, declined);
     });
     return merge_in_order(parts);
 }
@@ -359,6 +322,7 @@ void add_figures(CheckResult& r, const ConsistencyStats& s) {
     r.samples = s.count;
     r.figures = {{"samples", static_cast<double>(s.count)},
                  {"non_finite_samples", static_cast<double>(s.nan_sample.count)},
+                 {"declined_samples", static_cast<double>(s.declined)},
                  {"outside_domain", static_cast<double>(s.outside.count)},
                  {"non_finite_or_negative_pdf", static_cast<double>(s.bad_pdf.count)},
                  {"zero_pdf", static_cast<double>(s.zero_pdf.count)},

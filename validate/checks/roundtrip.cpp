@@ -90,6 +90,7 @@
 
 #include "chi2/count_bounds.h"
 #include "sampling/float_bits.h"
+#include "validate/api/light_case.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/error_decades.h"
 #include "validate/checks/evidence.h"
@@ -167,6 +168,7 @@ struct Excused {
 /// What the compute part counts.
 struct Stats {
     uint64_t count = 0, random_count = 0;
+    uint64_t declined = 0;  ///< a light's inputs that gave no sample: no trip
     uint64_t failures = 0, outside_inputs = 0;
     uint64_t other_edges = 0;  ///< other preimages and poles among edge inputs (degenerate)
     Excused other_random;      ///< other preimages among random inputs
@@ -189,6 +191,7 @@ struct Stats {
 
     void merge(const Stats& o) {
         count += o.count;
+        declined += o.declined;
         random_count += o.random_count;
         failures += o.failures;
         outside_inputs += o.outside_inputs;
@@ -505,6 +508,12 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx, const Rule& rule) {
         std::vector<WarpOutput> x(inputs.size()), x2(rule.bits() ? inputs.size() : 0);
         std::vector<WarpInput> back(inputs.size());
         warp.sample(inputs, x);
+        // A light may decline to sample (its pdf 0, a NaN direction here):
+        // such an input has no trip; the direction inverted in its place is
+        // never judged.
+        std::vector<unsigned char> declined(as_light(warp) != nullptr ? inputs.size() : 0);
+        for (std::size_t i = 0; i < declined.size(); ++i)
+            if (!std::isfinite(x[i][0])) declined[i] = 1, x[i] = {0.0f, 0.0f, 1.0f};
         warp.invert(x, back);
         if (rule.bits()) warp.sample(back, x2);
         const uint64_t base = chunk * kInputChunkSize;  // edge inputs first, then the random stream
@@ -512,6 +521,10 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx, const Rule& rule) {
         const uint64_t search_limit = chunk == 0 ? inputs.size() : inverse_edge_bound(inputs.size());
         uint64_t tries = 0;
         for (std::size_t i = 0; i < inputs.size(); ++i) {
+            if (!declined.empty() && declined[i]) {
+                ++s.declined;
+                continue;
+            }
             const TripInputs trip_inputs(warp, rule, back[i], x[i], rule.bits() ? &x2[i] : nullptr);
             Trip trip = judge_trip(trip_inputs, inputs[i], x[i], back[i]);
             if (trip.outcome == Outcome::OtherPreimage && !segment_maps_to_x(warp, rule, trip))
@@ -618,6 +631,7 @@ void add_figures(CheckResult& r, const Stats& s, const Rule& rule) {
                  {"max_edge_error", s.max_edge_error},
                  {"tolerance", rule.bits() ? 0.0 : rule.tolerance},
                  {"failures", static_cast<double>(s.failures)},
+                 {"declined_samples", static_cast<double>(s.declined)},
                  {"outside_input_domain", static_cast<double>(s.outside_inputs)},
                  {"degenerate", static_cast<double>(s.degenerate())},
                  {"other_preimage_edge_inputs", static_cast<double>(s.other_edges)},

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
         warpcheck::register_builtin_checks(registry);
         warpcheck::register_flawed_interval_cases(registry);
         warpcheck::register_flawed_bsdf_cases(registry);
+        warpcheck::register_flawed_light_cases(registry);
     } catch (const std::exception& e) {
         std::cerr << "validate: could not register the built-in warps: " << e.what() << "\n";
         return warpcheck::kExitUsage;

@@ -1,0 +1,147 @@
+// Built-in lights (sampling/light.h), each seen from reference points where
+// its sampler is easy and where it is hard: near and far (a light a
+// thousandth of a radian across), at a grazing angle to the reference surface
+// and below it, a triangle or disk seen edge-on and from its back, inside a
+// sphere light; environment maps with a bright pixel, with empty rows, with
+// one lit pixel, and of one pixel. The reference point is the origin and its
+// surface's normal +z; `theta` is the angle of the light's centre from that
+// normal and `tilt` the angle between the light's normal and the direction
+// back to the reference point, in degrees.
+//
+// The default grid keeps validate --all under a minute; WARPCHECK_LIGHT_GRID=full
+// in the environment adds the views that repeat a default one's difficulty
+// (the triangles facing the reference point, and seen from their backs).
+#include <cmath>
+#include <cstdlib>
+#include <string_view>
+#include <numbers>
+#include <utility>
+#include <vector>
+
+#include "sampling/light.h"
+#include "validate/api/light_case.h"
+#include "validate/api/registry.h"
+
+namespace warpcheck {
+namespace {
+
+constexpr LightClaims kAtOrigin{.ref = {0.0f, 0.0f, 0.0f}, .normal = {0.0f, 0.0f, 1.0f}};
+constexpr float kLe = 2.0f;
+
+double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+
+Vector3f as_vector(double x, double y, double z) {
+    return {static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)};
+}
+
+/// Where a planar light sits: its centre `distance` from the origin at polar
+/// angle theta in the xz-plane, its normal turned `tilt` from facing the origin.
+struct Placement {
+    double distance, theta, tilt;
+
+    std::vector<Parameter> params() const { return {{"distance", distance}, {"theta", theta}, {"tilt", tilt}}; }
+    double centre(int k) const {
+        const double t = radians(theta);
+        return distance * (k == 0 ? std::sin(t) : k == 1 ? 0.0 : std::cos(t));
+    }
+    /// The point at (a, b) in the light's plane: a along the in-plane axis
+    /// that turns with the tilt, b along y.
+    Vector3f point(double a, double b) const {
+        const double n = radians(theta + tilt);
+        // The normal is -(sin n, 0, cos n); (cos n, 0, -sin n) and y span the plane.
+        return as_vector(centre(0) + a * std::cos(n), centre(1) + b, centre(2) - a * std::sin(n));
+    }
+    Vector3f normal() const {
+        const double n = radians(theta + tilt);
+        return as_vector(-std::sin(n), 0.0, -std::cos(n));
+    }
+};
+
+/// Whether WARPCHECK_LIGHT_GRID=full asks for the larger grid.
+bool full_grid() {
+    const char* v = std::getenv("WARPCHECK_LIGHT_GRID");
+    return v != nullptr && std::string_view(v) == "full";
+}
+
+/// From the side and seen edge-on; below the reference surface; far and
+/// small (1e-5 sr); with the full grid also near and facing, and from the
+/// light's back.
+std::vector<Placement> planar_placements() {
+    std::vector<Placement> p = {{2, 45, 85}, {2, 120, 0}, {200, 30, 30}};
+    if (full_grid()) p.insert(p.end(), {{2, 0, 0}, {2, 0, 180}});
+    return p;
+}
+
+template <typename Light>
+void add_light(Registry& registry, const char* family, const char* description, std::vector<Parameter> params,
+               Light light, LightClaims claims = kAtOrigin) {
+    registry.add_case(make_light_case({.family = family, .params = std::move(params), .description = description},
+                                      claims, std::move(light)));
+}
+
+void register_sphere_lights(Registry& registry) {
+    struct At {
+        double distance, theta;
+    };
+    // Near; grazing the reference surface; below it; far (1e-3 rad across); inside.
+    for (const At& at : {At{4, 0}, At{4, 89}, At{4, 120}, At{1000, 30}, At{0.5, 0}}) {
+        const double t = radians(at.theta);
+        add_light(registry, "sphere_light",
+                  "sphere light of radius 1: uniform over the visible cone from outside, by area from inside",
+                  {{"distance", at.distance}, {"theta", at.theta}},
+                  SphereLight(as_vector(at.distance * std::sin(t), 0.0, at.distance * std::cos(t)), 1.0f, kLe));
+    }
+}
+
+void register_planar_lights(Registry& registry) {
+    const std::vector<Placement> placements = planar_placements();
+    for (const Placement& p : placements) {
+        const Vector3f a = p.point(-0.5, -0.4), b = p.point(0.6, -0.3), c = p.point(0.0, 0.6);
+        add_light(registry, "triangle_light", "two-sided triangle light sampled by area, converted to solid angle",
+                  p.params(), TriangleLight(a, b, c, kLe));
+        add_light(registry, "spherical_triangle_light",
+                  "two-sided triangle light sampled uniformly by solid angle (Arvo)", p.params(),
+                  SphericalTriangleLight(a, b, c, kLe));
+    }
+    for (const Placement& p : {Placement{2, 0, 0}, placements[0], placements[2]})
+        add_light(registry, "disk_light", "two-sided disk light of radius 0.5 sampled by area, converted to solid angle",
+                  p.params(), DiskLight(p.point(0.0, 0.0), p.normal(), 0.5f, kLe));
+}
+
+/// An image of `width` x `height` pixels, each value(column, row).
+template <typename F>
+std::vector<float> image(int width, int height, F value) {
+    std::vector<float> pixels;
+    for (int j = 0; j < height; ++j)
+        for (int i = 0; i < width; ++i) pixels.push_back(static_cast<float>(value(i, j)));
+    return pixels;
+}
+
+void register_environment_lights(Registry& registry) {
+    const auto env = [&](const char* family, const char* description, int w, int h, std::vector<float> pixels) {
+        add_light(registry, family, description, {{"width", static_cast<double>(w)}, {"height", static_cast<double>(h)}},
+                  EnvironmentLight(w, h, std::move(pixels)));
+    };
+    env("environment_sky", "equirectangular sky: a gradient, dark below the horizon, and a sun 500 times brighter",
+        32, 16, image(32, 16, [](int i, int j) {
+            if (i == 9 && j == 3) return 500.0;
+            return j < 8 ? 1.0 + 0.5 * std::cos(2.0 * std::numbers::pi * i / 32.0) : 0.05;
+        }));
+    env("environment_zero_rows", "equirectangular map whose top three rows and bottom row are black", 16, 8,
+        image(16, 8, [](int i, int j) { return (j < 3 || j == 7) ? 0.0 : 1.0 + (i % 3); }));
+    env("environment_one_pixel", "equirectangular map with a single lit pixel", 64, 32,
+        image(64, 32, [](int i, int j) { return (i == 40 && j == 10) ? 1.0 : 0.0; }));
+    env("environment_constant", "a one-pixel environment map: uniform over the sphere", 1, 1, {1.0f});
+}
+
+void register_light_cases(Registry& registry) {
+    register_sphere_lights(registry);
+    register_planar_lights(registry);
+    register_environment_lights(registry);
+}
+
+}  // namespace
+
+WARPCHECK_BUILTIN_CASES(80, register_light_cases);
+
+}  // namespace warpcheck

@@ -1,0 +1,46 @@
+#include "validate/checks/float_probe.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "chi2/count_bounds.h"
+#include "sampling/float_bits.h"
+
+namespace warpcheck {
+
+std::array<float, 3> probe_steps(const chi2::Domain& domain, const WarpOutput& x) {
+    const chi2::Domain::Slack slack = domain.slack();
+    const double extent[3] = {slack.x, slack.y, slack.x};  // a direction's z has the x slack (unit scale)
+    std::array<float, 3> step{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const float scale = std::max(std::abs(x[k]), static_cast<float>(extent[k] / chi2::kDomainTolerance));
+        step[k] = scale - next_float_down(scale);
+    }
+    return step;
+}
+
+std::vector<WarpOutput> probe_points(const chi2::Domain& domain, const WarpOutput& x) {
+    const int dims = domain.point_dimension();
+    const std::array<float, 3> step = probe_steps(domain, x);
+    std::vector<WarpOutput> out;
+    int directions = 1;
+    for (int k = 0; k < dims; ++k) directions *= 3;
+    for (int d = 0; d < directions; ++d) {
+        std::array<int, 3> sign{};
+        for (int k = 0, rest = d; k < dims; ++k, rest /= 3) sign[static_cast<std::size_t>(k)] = rest % 3 - 1;
+        if (sign == std::array<int, 3>{}) continue;
+        for (int j = 1; j <= kProbeUlps; ++j) {
+            WarpOutput y = x;
+            for (std::size_t k = 0; k < 3; ++k) y[k] += static_cast<float>(sign[k] * j) * step[k];
+            out.push_back(y);
+        }
+    }
+    return out;
+}
+
+uint64_t rounded_across_edge_bound(uint64_t random_samples) {
+    return chi2::poisson_count_bound(static_cast<double>(random_samples) * kRoundedAcrossEdgeRate,
+                                     kConsistencyBoundTail);
+}
+
+}  // namespace warpcheck

@@ -1,0 +1,51 @@
+// A sample's float neighbourhood in its domain's coordinates: the points a
+// few float spacings away that a correct float warp's rounding could equally
+// have produced. Checks that find a sample where its density (or the value
+// returned with it) disagrees with the functions at x ask whether they agree
+// at one of these (a support's edge, a pixel's border, a light's silhouette),
+// and count such samples against one bound: consistency, sample_pdf and
+// light_radiance hold them to the same rule.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "validate/api/warp_case.h"
+
+namespace warpcheck {
+
+/// How far a zero-pdf sample's neighbours are probed: kProbeUlps float
+/// spacings at the domain's extent (Domain::slack's scale) in each coordinate.
+/// A float warp computes a coordinate from terms as large as the domain (a
+/// lerp over it, (bucket + du) / n) in a handful of roundings of half such a
+/// spacing each, so 4 is the error of about eight of them; a sample a wrong
+/// warp puts where its pdf is 0 lies, but for a set of vanishing measure,
+/// further from any positive pdf.
+inline constexpr int kProbeUlps = 4;
+/// The per-sample rate of samples a correct warp rounds across its support's
+/// edge, for the count bound: only samples whose exact value lies within a
+/// few spacings of an edge can be rounded across it, a band that holds about
+/// 2^-24 of the samples per spacing along an edge that is the image of a line
+/// of inputs (2^-24 is the largest input spacing). 2^-16 allows 256 such
+/// line-spacings, a table with dozens of boundaries between empty and full
+/// rows, while a warp that puts mass on an edge itself (clamping onto it)
+/// puts a fixed fraction of its samples there. 15 per 10^6 samples.
+inline constexpr double kRoundedAcrossEdgeRate = 0x1p-16;
+/// The chance that a correct warp's count exceeds the bound (the round trip's
+/// other-preimage bound uses the same): far below any run's level.
+inline constexpr double kConsistencyBoundTail = 1e-9;
+/// The probe's step in each coordinate: the float spacing just below the
+/// domain's extent, the largest a coordinate inside it has (or at the
+/// coordinate itself, where that is larger: unbounded lines).
+std::array<float, 3> probe_steps(const chi2::Domain& domain, const WarpOutput& x);
+
+/// The points probed around x: 1 to kProbeUlps steps along each of the
+/// 3^d - 1 sign directions of its d coordinates.
+std::vector<WarpOutput> probe_points(const chi2::Domain& domain, const WarpOutput& x);
+
+/// How many random samples may be excused by their neighbourhood: a Poisson
+/// bound at kRoundedAcrossEdgeRate per random sample, with tail kConsistencyBoundTail.
+uint64_t rounded_across_edge_bound(uint64_t random_samples);
+
+}  // namespace warpcheck

@@ -1,0 +1,26 @@
+// The checks of what only a light seen from a reference point has
+// (validate/api/light_case.h). Its direction distribution is tested by the
+// warp checks (chi2, unbinned, consistency, sample_pdf, roundtrip), which
+// take a light case as a warp on the sphere that returns its pdf.
+//
+// "light_radiance": every sample's returned L against the light's own
+// intersection L(ref, wi) (a sample that misses the light, or returns another
+// radiance, fails); samples behind the reference surface are counted and named.
+// "light_support": pdf(ref, w) > 0 exactly where L(ref, w) > 0, probed over
+// the sphere and around the light: a lit direction of pdf 0 is never sampled
+// (bias), a dark one of pdf > 0 is mass the pdf claims where the light is not.
+// "light_irradiance": the estimator's mean L |cos theta_i| / pdf against the
+// integral of L |cos theta_i| over the sphere (t-test).
+#pragma once
+
+#include <memory>
+
+#include "validate/checks/check.h"
+
+namespace warpcheck::light {
+
+std::unique_ptr<Check> make_light_radiance_check();
+std::unique_ptr<Check> make_light_support_check();
+std::unique_ptr<Check> make_light_irradiance_check();
+
+}  // namespace warpcheck::light

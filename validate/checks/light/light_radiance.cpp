@@ -1,0 +1,209 @@
+// "light_radiance": what a light sample returns against the light's own
+// intersection. Every sample (edge inputs included) must return a finite L
+// equal to L(ref, wi) within kRelativeTolerance, and L(ref, wi) > 0: a sample
+// whose direction misses the light (an area-to-solid-angle conversion that
+// aimed at the wrong point, a cone wider than the sphere) fails. Not
+// statistical: one violation is a failure, except the one class that float
+// rounding makes (below), which is bounded and reported.
+//
+// A direction sampled at the light's silhouette is rounded to float and its
+// ray may then graze past the light. Such a miss is excused when the light's
+// own L at one of wi's float neighbours (float_probe.h, the rule consistency
+// and sample_pdf use) equals the returned L: edge inputs, which the sampler
+// maps onto the silhouette by design, are counted; random ones are bounded
+// as consistency bounds samples rounded across a support's edge, while a
+// sampler that aims past the light misses far more often.
+// Samples below the reference surface and samples that carry no light (L = 0,
+// the back of a one-sided emitter) are counted and named in the row, not
+// failed: a light sampler does not know the surface, and a dark sample is
+// waste, not bias.
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "validate/api/light_case.h"
+#include "validate/checks/evidence.h"
+#include "validate/checks/float_probe.h"
+#include "validate/checks/formatting.h"
+#include "validate/checks/input_chunks.h"
+#include "validate/checks/light/light_checks.h"
+
+namespace warpcheck::light {
+namespace {
+
+/// Largest relative disagreement of the returned L with L(ref, wi), 2^-12
+/// (the "weight" check's tolerance): both are the light's radiance, computed
+/// along two float paths (a texture lookup from the sampled point, and again
+/// from the rounded direction), while a wrong factor is off by percent.
+constexpr double kRelativeTolerance = 0x1p-12;
+
+struct Example {
+    WarpInput input;
+    LightRecord record;
+    double reference = 0.0;
+};
+
+struct RadianceStats {
+    uint64_t count = 0, random_count = 0, no_sample = 0, behind_surface = 0, dark = 0, excused_edges = 0;
+    Tally<Example> misses, mismatches, invalid, excused_random;
+    double max_relative = 0.0;
+
+    void merge(const RadianceStats& o) {
+        count += o.count;
+        no_sample += o.no_sample;
+        behind_surface += o.behind_surface;
+        dark += o.dark;
+        random_count += o.random_count;
+        excused_edges += o.excused_edges;
+        excused_random.merge(o.excused_random);
+        misses.merge(o.misses);
+        mismatches.merge(o.mismatches);
+        invalid.merge(o.invalid);
+        max_relative = max_nan_wins(max_relative, o.max_relative);
+    }
+};
+
+/// Whether the light's L at a float neighbour of wi equals the returned L
+/// (kRelativeTolerance): wi was rounded across its silhouette or a border.
+bool agrees_nearby(const LightCase& light, const WarpOutput& wi, float returned) {
+    const std::vector<WarpOutput> n = probe_points(light.domain(), wi);
+    std::vector<double> L(n.size());
+    light.radiance(n, L);
+    return std::any_of(L.begin(), L.end(), [&](double v) {
+        return std::abs(v - static_cast<double>(returned)) <= kRelativeTolerance * static_cast<double>(returned);
+    });
+}
+
+RadianceStats compute(const LightCase& light, const CheckContext& ctx) {
+    auto parts = map_input_chunks<RadianceStats>(ctx, InputKind::Uniform2D, ctx.options().samples, true,
+                                                 [&](std::size_t chunk, std::span<const WarpInput> inputs) {
+        std::vector<LightRecord> rec(inputs.size());
+        light.sample_light(inputs, rec);
+        std::vector<WarpOutput> wi(inputs.size());
+        for (std::size_t i = 0; i < inputs.size(); ++i) wi[i] = rec[i].wi;
+        std::vector<double> L(inputs.size());
+        light.radiance(wi, L);
+        RadianceStats s;
+        if (chunk > 0) s.random_count = inputs.size();
+        for (std::size_t i = 0; i < inputs.size(); ++i) {
+            const uint64_t index = chunk * kInputChunkSize + i;
+            const LightRecord& r = rec[i];
+            ++s.count;
+            if (!r.sampled()) {
+                ++s.no_sample;
+                continue;
+            }
+            const Example e{inputs[i], r, L[i]};
+            if (!std::isfinite(r.L) || !(r.L >= 0.0f) || !std::isfinite(L[i])) {
+                s.invalid.add(index, e);
+                continue;
+            }
+            if (light.behind_surface(r.wi)) ++s.behind_surface;
+            if (r.L == 0.0f && L[i] == 0.0) {
+                ++s.dark;
+                continue;
+            }
+            const double diff = std::abs(static_cast<double>(r.L) - L[i]);
+            const double rel = diff <= FLT_MIN ? 0.0 : diff / std::max(std::abs(static_cast<double>(r.L)), L[i]);
+            if (rel <= kRelativeTolerance) continue;
+            if (agrees_nearby(light, r.wi, r.L)) {
+                if (chunk == 0) ++s.excused_edges;
+                else s.excused_random.add(index, e);
+            } else if (L[i] == 0.0) {
+                s.misses.add(index, e);
+            } else {
+                s.max_relative = max_nan_wins(s.max_relative, rel);
+                s.mismatches.add(index, e);
+            }
+        }
+        return s;
+    });
+    return merge_in_order(parts);
+}
+
+std::string describe(const Example& e) {
+    return fmt::format("u ({:.9g}, {:.9g}) -> wi {}, pdf {:.6g}, returned L {:.9g}, L(ref, wi) {:.9g}",
+                       e.input.u[0], e.input.u[1], format_output(e.record.wi, 3), e.record.pdf, e.record.L,
+                       e.reference);
+}
+
+void judge(CheckResult& r, const RadianceStats& s) {
+    const uint64_t sampled = s.count - s.no_sample;
+    const uint64_t bound = rounded_across_edge_bound(s.random_count);
+    std::vector<std::string> notes;
+    if (s.behind_surface > 0)
+        notes.push_back(fmt::format("{} samples lie behind the reference surface", s.behind_surface));
+    if (s.dark > 0) notes.push_back(fmt::format("{} samples carry no light (L = 0 on both sides)", s.dark));
+    if (s.no_sample > 0) notes.push_back(fmt::format("{} inputs gave no sample (pdf 0)", s.no_sample));
+    if (s.excused_edges + s.excused_random.count > 0)
+        notes.push_back(fmt::format("{} samples ({} of them edge inputs) find their L only at a float neighbour of "
+                                    "wi: rounded across the silhouette (at most {} random ones allowed)",
+                                    s.excused_edges + s.excused_random.count, s.excused_edges, bound));
+    r.summary = fmt::format("max rel. diff {:.3g}{}", s.max_relative,
+                            s.behind_surface > 0 ? fmt::format(", {} behind the surface", s.behind_surface) : "");
+    std::vector<std::string> failures;
+    if (s.invalid.count > 0)
+        failures.push_back(fmt::format("{} samples return a non-finite or negative L, or L(ref, wi) is not finite "
+                                       "(first: {})", s.invalid.count, describe(*s.invalid.first)));
+    if (s.misses.count > 0)
+        failures.push_back(fmt::format("{} samples point where the light's own intersection finds no light, "
+                                       "and no float neighbour does (first: {})", s.misses.count,
+                                       describe(*s.misses.first)));
+    if (s.mismatches.count > 0)
+        failures.push_back(fmt::format("{} samples return an L that differs from L(ref, wi) by more than {:.3g} "
+                                       "relative (first: {})", s.mismatches.count, kRelativeTolerance,
+                                       describe(*s.mismatches.first)));
+    if (s.excused_random.count > bound)
+        failures.push_back(fmt::format("{} random samples find their L only a float step from wi, more than the {} "
+                                       "float rounding puts across a silhouette (first: {})", s.excused_random.count,
+                                       bound, describe(*s.excused_random.first)));
+    if (failures.empty()) {
+        r.verdict = Verdict::Pass;
+        r.message = join_reasons(notes);
+        return;
+    }
+    r.verdict = Verdict::Fail;
+    r.summary = fmt::format("{} of {} samples wrong", s.invalid.count + s.misses.count + s.mismatches.count, sampled);
+    r.message = join_reasons(failures);
+    if (!notes.empty()) r.message += "; " + join_reasons(notes);
+}
+
+class LightRadianceCheck final : public Check {
+public:
+    std::string name() const override { return "light_radiance"; }
+    std::string description() const override {
+        return "light: every sample's L equals the light's own L(ref, wi) > 0 (misses named; samples behind the "
+               "surface counted)";
+    }
+    Applicability applicability(const WarpCase& warp) const override {
+        return Applicability::when(as_light(warp) != nullptr);
+    }
+    CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
+        const RadianceStats s = compute(*as_light(warp), ctx);
+        CheckResult r;
+        r.samples = s.count;
+        r.figures = {{"samples", static_cast<double>(s.count)},
+                     {"no_sample", static_cast<double>(s.no_sample)},
+                     {"invalid", static_cast<double>(s.invalid.count)},
+                     {"misses", static_cast<double>(s.misses.count)},
+                     {"mismatches", static_cast<double>(s.mismatches.count)},
+                     {"agree_at_neighbour_edge_inputs", static_cast<double>(s.excused_edges)},
+                     {"agree_at_neighbour_random", static_cast<double>(s.excused_random.count)},
+                     {"agree_at_neighbour_bound", static_cast<double>(rounded_across_edge_bound(s.random_count))},
+                     {"behind_surface", static_cast<double>(s.behind_surface)},
+                     {"dark_samples", static_cast<double>(s.dark)},
+                     {"max_relative_difference", s.max_relative},
+                     {"tolerance", kRelativeTolerance}};
+        judge(r, s);
+        return r;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Check> make_light_radiance_check() { return std::make_unique<LightRadianceCheck>(); }
+
+}  // namespace warpcheck::light
