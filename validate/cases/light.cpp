@@ -19,10 +19,16 @@
 #include <vector>
 
 #include "sampling/light.h"
+#include "sampling/light_set.h"
 #include "validate/api/light_case.h"
 #include "validate/api/registry.h"
+#include "validate/cases/light_cases.h"
 
 namespace warpcheck {
+// A named namespace around the file's own names: the unity build compiles
+// this file with the other case files, whose anonymous namespaces hold
+// names of their own (full_grid, kLe).
+namespace builtin_lights {
 namespace {
 
 constexpr LightClaims kAtOrigin{.ref = {0.0f, 0.0f, 0.0f}, .normal = {0.0f, 0.0f, 1.0f}};
@@ -134,10 +140,46 @@ void register_environment_lights(Registry& registry) {
     env("environment_constant", "a one-pixel environment map: uniform over the sphere", 1, 1, {1.0f});
 }
 
+}  // namespace
+}  // namespace builtin_lights
+
+ThreeLights three_lights() {
+    using builtin_lights::kLe;
+    using builtin_lights::Placement;
+    const Placement triangle{2, 120, 0}, disk{2, -60, 20};
+    const Vector3f a = triangle.point(-0.5, -0.4), b = triangle.point(0.6, -0.3), c = triangle.point(0.0, 0.6);
+    return {SphereLight({2.0f, 0.0f, 3.4641016f}, 1.0f, kLe), TriangleLight(a, b, c, kLe),
+            DiskLight(disk.point(0.0, 0.0), disk.normal(), 0.5f, kLe),
+            {4.0f * std::numbers::pi_v<float>, detail::Triangle(a, b, c, "triangle").area(),
+             std::numbers::pi_v<float> * 0.25f}};
+}
+
+std::array<float, 3> power_pmf(const ThreeLights& lights) {
+    // Each light's power is Le pi area, and every Le is the same.
+    const float total = lights.areas[0] + lights.areas[1] + lights.areas[2];
+    return {lights.areas[0] / total, lights.areas[1] / total, 1.0f - (lights.areas[0] + lights.areas[1]) / total};
+}
+
+namespace {
+
+using builtin_lights::add_light;
+
+/// A sphere, a triangle and a disk in three directions from the origin,
+/// chosen uniformly and by power (the sphere has 91% of it).
+void register_light_sets(Registry& registry) {
+    const ThreeLights l = three_lights();
+    add_light(registry, "light_set_uniform", "a sphere, a triangle and a disk, each chosen with probability 1/3", {},
+              LightSet<SphereLight, TriangleLight, DiskLight>({1.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f}, l.sphere,
+                                                               l.triangle, l.disk));
+    add_light(registry, "light_set_power", "a sphere, a triangle and a disk, each chosen by its power", {},
+              LightSet<SphereLight, TriangleLight, DiskLight>(power_pmf(l), l.sphere, l.triangle, l.disk));
+}
+
 void register_light_cases(Registry& registry) {
-    register_sphere_lights(registry);
-    register_planar_lights(registry);
-    register_environment_lights(registry);
+    builtin_lights::register_sphere_lights(registry);
+    builtin_lights::register_planar_lights(registry);
+    builtin_lights::register_environment_lights(registry);
+    register_light_sets(registry);
 }
 
 }  // namespace

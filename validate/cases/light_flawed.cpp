@@ -8,10 +8,15 @@
 #include <vector>
 
 #include "sampling/light.h"
+#include "sampling/light_set.h"
 #include "validate/api/light_case.h"
 #include "validate/api/registry.h"
+#include "validate/cases/light_cases.h"
 
 namespace warpcheck {
+// A named namespace around the file's own names: the unity build compiles
+// this file with validate/cases/light.cpp (kLe, kAtOrigin).
+namespace flawed_lights {
 namespace {
 
 constexpr LightClaims kAtOrigin{.ref = {0.0f, 0.0f, 0.0f}, .normal = {0.0f, 0.0f, 1.0f}};
@@ -223,9 +228,60 @@ std::unique_ptr<WarpCase> environment_half_texel() {
                            kAtOrigin, EnvironmentHalfTexel{EnvironmentLight(64, 32, std::move(pixels)), 64});
 }
 
+using ThreeLightSet = LightSet<SphereLight, TriangleLight, DiskLight>;
+
+/// A light set whose sample returns pmf times pdf while pdf() leaves the pmf
+/// out: the density MIS would use is the chosen light's, not the set's.
+struct SetPdfWithoutPmf {
+    ThreeLightSet set;
+    ThreeLights lights;
+    LightSample sample(Vector3f ref, Point2f u) const { return set.sample(ref, u); }
+    float pdf(Vector3f ref, Vector3f wi) const {
+        return lights.sphere.pdf(ref, wi) + lights.triangle.pdf(ref, wi) + lights.disk.pdf(ref, wi);
+    }
+    float L(Vector3f ref, Vector3f wi) const { return set.L(ref, wi); }
+};
+
+std::unique_ptr<WarpCase> set_pdf_without_pmf() {
+    const ThreeLights l = three_lights();
+    const float third = 1.0f / 3.0f;
+    return make_light_case(flawed_info("light_set_pdf_without_pmf", {}, "pdf() omits the pmf that sample applies"),
+                           kAtOrigin,
+                           SetPdfWithoutPmf{ThreeLightSet({third, third, third}, l.sphere, l.triangle, l.disk), l});
+}
+
+/// A light set that picks its light as floor(u.x (n - 1)): the last light
+/// is never chosen and each other one 1.5 times as often as its pmf says,
+/// while sample and pdf() claim the pmf (the u scaling that left a
+/// renderer's infinite lights unsampled).
+struct SetLastUnsampled {
+    ThreeLightSet set;
+    ThreeLights lights;
+    LightSample sample(Vector3f ref, Point2f u) const {
+        const float scaled = u.x * 2.0f;
+        const int chosen = static_cast<int>(scaled);
+        const Point2f v{std::min(scaled - static_cast<float>(chosen), kOneMinusEpsilon), u.y};
+        LightSample s = chosen == 0 ? lights.sphere.sample(ref, v) : lights.triangle.sample(ref, v);
+        s.pdf *= set.pmf(static_cast<std::size_t>(chosen));
+        return s;
+    }
+    float pdf(Vector3f ref, Vector3f wi) const { return set.pdf(ref, wi); }
+    float L(Vector3f ref, Vector3f wi) const { return set.L(ref, wi); }
+};
+
+std::unique_ptr<WarpCase> set_last_unsampled() {
+    const ThreeLights l = three_lights();
+    const float third = 1.0f / 3.0f;
+    return make_light_case(flawed_info("light_set_last_unsampled", {}, "the light is chosen as floor(u (n - 1))"),
+                           kAtOrigin,
+                           SetLastUnsampled{ThreeLightSet({third, third, third}, l.sphere, l.triangle, l.disk), l});
+}
+
 }  // namespace
+}  // namespace flawed_lights
 
 std::vector<FlawedLight> light_flawed_catalogue() {
+    using namespace flawed_lights;
     return {
         // Its pdf is the wrong cone's, consistently: chi2 passes; every sample
         // outside the sphere misses, and its Le over the too-small pdf doubles
@@ -243,6 +299,10 @@ std::vector<FlawedLight> light_flawed_catalogue() {
         // L and pdf disagree on where the pixel is: half the samples carry no
         // light, half its light is never drawn.
         {environment_half_texel, "light_support", "environment map off by half a texel", {"light_irradiance"}},
+        // The estimator divides by the returned (right) density; chi2
+        // integrates pdf(), three times too large.
+        {set_pdf_without_pmf, "sample_pdf", "light set: pdf() without the pmf", {"chi2"}},
+        {set_last_unsampled, "chi2", "light set: the last light never chosen", {"light_irradiance"}},
     };
 }
 

@@ -24,7 +24,7 @@
 namespace warpcheck {
 namespace {
 
-RunResult run(const Registry& registry, const std::vector<std::string>& cases, uint64_t seed, uint64_t samples) {
+RunResult run_lights(const Registry& registry, const std::vector<std::string>& cases, uint64_t seed, uint64_t samples) {
     return testing::run_including_flawed(registry, cases, {}, seed, samples);
 }
 
@@ -55,7 +55,7 @@ TEST(LightBuiltins, PassEveryCheckOnEverySeed) {
     const std::vector<std::string> cases = light_cases(registry);
     ASSERT_GE(cases.size(), 18u);
     for (uint64_t seed = 1; seed <= 10; ++seed) {
-        const RunResult r = run(registry, cases, seed, 50'000);
+        const RunResult r = run_lights(registry, cases, seed, 50'000);
         EXPECT_GE(r.results.size(), cases.size() * 6) << "a light lost its checks";
         EXPECT_EQ(r.count(Verdict::Fail) + r.count(Verdict::Error), 0) << "seed " << seed << failures_of(r);
     }
@@ -74,7 +74,7 @@ TEST(LightBuiltins, LightChecksApplyToLightsOnly) {
     const auto warp_jobs = select_jobs(registry, {"uniform_sphere"}, {}, options);
     ASSERT_FALSE(warp_jobs.empty());
     for (const auto& job : warp_jobs) EXPECT_EQ(job.check->name().rfind("light_", 0), std::string::npos);
-    const RunResult r = run(registry, {"sphere_light[distance=4,theta=0]"}, 1, 20'000);
+    const RunResult r = run_lights(registry, {"sphere_light[distance=4,theta=0]"}, 1, 20'000);
     bool unbinned_said_why = false;
     for (const CheckResult& c : r.results)
         if (c.check_name == "unbinned")
@@ -89,7 +89,7 @@ TEST(LightFlawed, EachIsCaughtByItsCheckAndOnlyByTheChecksItsBugTouches) {
     Registry registry;
     register_builtin_checks(registry);
     register_flawed_light_cases(registry);
-    testing::expect_each_caught(registry, light_flawed_catalogue(), run(registry, {}, 1, 1'000'000));
+    testing::expect_each_caught(registry, light_flawed_catalogue(), run_lights(registry, {}, 1, 1'000'000));
 }
 
 // The catalogue runs only when asked for: validate --all stays green.
