@@ -91,14 +91,14 @@ WarpOutput in_cap(const Cap& cap, double u0, double u1) {
     return out;
 }
 
-struct Example {
+struct ProbeExample {
     WarpOutput w{};
     double L = 0.0, pdf = 0.0;
 };
 
 struct SupportStats {
     uint64_t probes = 0, lit = 0, excused = 0;
-    Tally<Example> lit_without_pdf, pdf_without_light, invalid;
+    Tally<ProbeExample> lit_without_pdf, pdf_without_light, invalid;
     void merge(const SupportStats& o) {
         probes += o.probes;
         lit += o.lit;
@@ -139,7 +139,7 @@ SupportStats probe(const LightCase& light, const CheckContext& ctx, const Cap& c
         for (std::size_t i = 0; i < w.size(); ++i) {
             const uint64_t index = c * kInputChunkSize + i;
             ++s.probes;
-            const Example e{w[i], L[i], pdf[i]};
+            const ProbeExample e{w[i], L[i], pdf[i]};
             if (!std::isfinite(L[i]) || !std::isfinite(pdf[i]) || L[i] < 0.0 || pdf[i] < 0.0) {
                 s.invalid.add(index, e);
                 continue;
@@ -155,7 +155,7 @@ SupportStats probe(const LightCase& light, const CheckContext& ctx, const Cap& c
     return merge_in_order(parts);
 }
 
-std::string describe(const Example& e) {
+std::string describe_probe(const ProbeExample& e) {
     return fmt::format("w {}: L(ref, w) {:.6g}, pdf(ref, w) {:.6g}", format_output(e.w, 3), e.L, e.pdf);
 }
 
@@ -202,15 +202,15 @@ public:
         std::vector<std::string> failures;
         if (s.invalid.count > 0)
             failures.push_back(fmt::format("{} probes with a non-finite or negative L or pdf (first: {})",
-                                           s.invalid.count, describe(*s.invalid.first)));
+                                           s.invalid.count, describe_probe(*s.invalid.first)));
         if (s.lit_without_pdf.count > 0)
             failures.push_back(fmt::format("{} lit directions have pdf 0: the sampler never draws them, so their "
                                            "light is missing from every estimate (first: {})",
-                                           s.lit_without_pdf.count, describe(*s.lit_without_pdf.first)));
+                                           s.lit_without_pdf.count, describe_probe(*s.lit_without_pdf.first)));
         if (s.pdf_without_light.count > 0)
             failures.push_back(fmt::format("{} directions that miss the light have pdf > 0: the pdf claims mass "
                                            "where the light is not (first: {})",
-                                           s.pdf_without_light.count, describe(*s.pdf_without_light.first)));
+                                           s.pdf_without_light.count, describe_probe(*s.pdf_without_light.first)));
         if (!(static_cast<double>(s.excused) <= limit))
             failures.push_back(fmt::format("{} probes disagree within {:.3g} rad of a boundary: more than the {:.0f} "
                                            "a band that wide around the light holds", s.excused, step, limit));
