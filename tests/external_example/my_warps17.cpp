@@ -270,6 +270,59 @@ void register_float_samplers(warpcheck::Registry& registry) {
     }
 }
 
+// A renderer's sphere light in C++17, seen from the origin: uniform over the
+// cone that subtends the sphere, pdf(ref, wi) and L(ref, wi) from the ray's
+// intersection. Its wrong twin returns twice the radiance its own L() finds.
+struct SphereLight17 {
+    w17::Point c;
+    float r, le;
+    bool wrong = false;
+
+    static float dot(const w17::Point& a, const w17::Point& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+    w17::Point to_centre(const w17::Point& ref) const { return {c[0] - ref[0], c[1] - ref[1], c[2] - ref[2]}; }
+    float one_minus_cos_max(const w17::Point& ref) const {
+        const w17::Point oc = to_centre(ref);
+        const float s2 = r * r / dot(oc, oc);
+        return s2 / (1 + std::sqrt(1 - s2));
+    }
+    bool hits(const w17::Point& ref, const w17::Point& wi) const {
+        const w17::Point oc = to_centre(ref);
+        const float b = dot(oc, wi);
+        return b > 0 && dot(oc, oc) - b * b <= r * r;
+    }
+    w17::LightSample sample(const w17::Point& ref, const w17::Point2& u) const {
+        const w17::Point oc = to_centre(ref);
+        const float d = std::sqrt(dot(oc, oc)), omc_max = one_minus_cos_max(ref);
+        const w17::Point a{oc[0] / d, oc[1] / d, oc[2] / d};
+        // An orthonormal frame around a (Duff et al. 2017).
+        const float sign = std::copysign(1.0f, a[2]), p = -1 / (sign + a[2]), q = a[0] * a[1] * p;
+        const w17::Point t{1 + sign * a[0] * a[0] * p, sign * q, -sign * a[0]}, b{q, sign + a[1] * a[1] * p, -a[1]};
+        const float omc = u[0] * omc_max, st = std::sqrt(omc * (2 - omc)), phi = 2 * kPi * u[1];
+        const float x = st * std::cos(phi), y = st * std::sin(phi), z = 1 - omc;
+        w17::LightSample s;
+        s.wi = {x * t[0] + y * b[0] + z * a[0], x * t[1] + y * b[1] + z * a[1], x * t[2] + y * b[2] + z * a[2]};
+        s.pdf = 1 / (2 * kPi * omc_max);
+        s.L = wrong ? 2 * le : le;
+        s.distance = d - r;
+        return s;
+    }
+    double pdf(const w17::Point& ref, const w17::Point& wi) const {
+        return hits(ref, wi) ? 1 / (2 * kPi * one_minus_cos_max(ref)) : 0.0;
+    }
+    double L(const w17::Point& ref, const w17::Point& wi) const { return hits(ref, wi) ? le : 0.0; }
+};
+
+void register_lights(warpcheck::Registry& registry) {
+    for (bool wrong : {false, true}) {
+        w17::LightInfo info;
+        info.family = wrong ? "sphere_light_cxx17_double_radiance" : "sphere_light_cxx17";
+        info.description = "a renderer's sphere light seen from the origin, registered from C++17";
+        info.ref = {0, 0, 0};
+        info.normal = {0, 0, 1};
+        w17::add_light(registry, info, SphereLight17{{2.0f, 0.0f, 3.4641016f}, 1.0f, 2.0f, wrong});
+    }
+}
+
 }  // namespace
 
 void warpcheck_register(warpcheck::Registry& registry) {
@@ -279,10 +332,11 @@ void warpcheck_register(warpcheck::Registry& registry) {
     register_weighted_grid(registry);
     register_float_samplers(registry);
     register_bsdfs(registry);
+    register_lights(registry);
     // The wrong twins: known flaws, run by name (or with --include-flawed).
     for (const char* twin :
          {"cosine_cxx17_no_inverse_half_pdf", "cosine_cxx17_returned_pdf_wrong", "table_cxx17_no_pdf_wrong",
           "choice_cxx17_pmf_swapped", "choice_cxx17_remap_not_rescaled", "phong_cxx17_wrong[n=20]",
-          "unit_float_cxx17_swapped", "one_to_two_cxx17_swapped"})
+          "unit_float_cxx17_swapped", "one_to_two_cxx17_swapped", "sphere_light_cxx17_double_radiance"})
         w17::mark_known_flaw(registry, twin, "", "a wrong twin: run_example.sh checks that it fails");
 }

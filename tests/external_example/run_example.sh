@@ -103,6 +103,9 @@ done
 expect_row pass exhaustive unit_float_cxx17    # all 2^32 inputs, the block loop compiled as C++17
 expect_row pass exhaustive one_to_two_cxx17    # the top 23 of 64 bits
 for theta in 0 70; do expect_row pass bsdf_weight "diffuse_cxx17[theta_o=$theta]"; done
+for check in chi2 consistency sample_pdf light_radiance light_support light_irradiance; do
+  expect_row pass "$check" sphere_light_cxx17
+done
 expect_fail cosine_cxx17_no_inverse_half_pdf chi2 ", not 1 (tolerance"
 expect_fail cosine_cxx17_returned_pdf_wrong sample_pdf
 expect_fail table_cxx17_no_pdf_wrong inverse_pdf_mean
@@ -112,6 +115,7 @@ expect_fail "phong_cxx17_wrong[n=20]" weight_mean
 expect_fail unit_float_cxx17_swapped exhaustive
 expect_fail one_to_two_cxx17_swapped exhaustive
 expect_fail "diffuse_cxx17_weight_no_cos[theta_o=70]" bsdf_weight
+expect_fail sphere_light_cxx17_double_radiance light_radiance "differs from L(ref, wi)"
 # The Python package installs with the rest, where the build made it (cmake/Python.cmake),
 # and imports from the prefix with the interpreter it was built for.
 python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build_dir/CMakeCache.txt")

@@ -9,6 +9,7 @@
 #include "validate/api/bsdf_case.h"
 #include "validate/api/case_grid.h"
 #include "validate/api/external.h"
+#include "validate/api/light_case.h"
 #include "validate/api/registry.h"
 
 namespace warpcheck::cxx17 {
@@ -206,6 +207,28 @@ void add_erased_bsdf(Registry& registry, const BsdfInfo& info, BsdfSampleFn samp
         })
             .with_f([f = std::move(f)](Vector3f wo, Vector3f wi) { return f(to_point(wo), to_point(wi)); })
             .with_pdf([pdf = std::move(pdf)](Vector3f wo, Vector3f wi) { return pdf(to_point(wo), to_point(wi)); })));
+}
+
+/// A light of erased parts, as make_light_case takes it.
+struct ErasedLight {
+    LightSampleFn sample_fn;
+    LightEvalFn pdf_fn, radiance_fn;
+
+    ::warpcheck::LightSample sample(Vector3f ref, Point2f u) const {
+        const LightSample s = sample_fn(to_point(ref), {u.x, u.y});
+        return {{s.wi[0], s.wi[1], s.wi[2]}, s.pdf, s.L, s.distance};
+    }
+    double pdf(Vector3f ref, Vector3f wi) const { return pdf_fn(to_point(ref), to_point(wi)); }
+    double L(Vector3f ref, Vector3f wi) const { return radiance_fn(to_point(ref), to_point(wi)); }
+};
+
+void add_erased_light(Registry& registry, const LightInfo& info, LightSampleFn sample, LightEvalFn pdf,
+                      LightEvalFn radiance) {
+    WarpCaseInfo converted{.family = info.family, .params = to_params(info.params), .description = info.description};
+    const LightClaims claims{.ref = {info.ref[0], info.ref[1], info.ref[2]},
+                             .normal = {info.normal[0], info.normal[1], info.normal[2]}};
+    registry.add_case(make_light_case(std::move(converted), claims,
+                                      ErasedLight{std::move(sample), std::move(pdf), std::move(radiance)}));
 }
 
 }  // namespace detail

@@ -172,6 +172,28 @@ struct BsdfInfo {
     bool phase_function = false; ///< wi on the whole sphere, weight p / pdf (no cosine)
 };
 
+/// A light's sample seen from a reference point, as a renderer returns it
+/// (LightSample of sampling/light_sample.h): the unit direction wi towards
+/// the light, its pdf per solid angle (0: no sample), the radiance L arriving
+/// along wi, and the distance to the light.
+struct LightSample {
+    Point wi{};
+    float pdf = 0.0f;
+    float L = 0.0f;
+    float distance = 0.0f;
+};
+
+/// A light case: its name, and the reference point (with the normal of the
+/// surface there, or zero for a point in a medium) it is seen from
+/// (LightClaims in validate/api/light_case.h).
+struct LightInfo {
+    std::string family;
+    std::vector<std::pair<std::string, double>> params;
+    std::string description;
+    Point ref{};
+    Point normal{};
+};
+
 namespace detail {
 
 /// What a warp consumes and what its sample returns (warp_case.h: InputKind, SampleReturns).
@@ -215,6 +237,11 @@ std::vector<GridPoint> grid_points(const CaseInfo& base, const std::vector<GridA
 using BsdfSampleFn = std::function<BsdfSample(const Point& wo, float uc, const Point2& u)>;
 using BsdfEvalFn = std::function<double(const Point& wo, const Point& wi)>;
 void add_erased_bsdf(Registry& registry, const BsdfInfo& info, BsdfSampleFn sample, BsdfEvalFn f, BsdfEvalFn pdf);
+
+using LightSampleFn = std::function<LightSample(const Point& ref, const Point2& u)>;
+using LightEvalFn = std::function<double(const Point& ref, const Point& wi)>;
+void add_erased_light(Registry& registry, const LightInfo& info, LightSampleFn sample, LightEvalFn pdf,
+                      LightEvalFn radiance);
 
 /// What sample returns, when it is a point or an index: itself, and nothing with it.
 template <typename T, Returns R>
@@ -461,6 +488,22 @@ void add_bsdf(Registry& registry, const BsdfInfo& info, B bsdf) {
     };
     detail::BsdfEvalFn pdf = [b](const Point& wo, const Point& wi) { return static_cast<double>(b->pdf(wo, wi)); };
     detail::add_erased_bsdf(registry, info, std::move(sample), std::move(f), std::move(pdf));
+}
+
+/// Adds a light case (validate/api/light_case.h) that the warp checks (chi2,
+/// consistency, sample_pdf) and the light checks (light_radiance,
+/// light_support, light_irradiance) take, from a light object: const members
+/// sample(const Point& ref, const Point2& u) -> LightSample, pdf(ref, wi) per
+/// solid angle and L(ref, wi), the light's own intersection (the radiance
+/// arriving along wi, 0 on a miss). Validated as make_light_case validates (a
+/// non-finite ref or a normal neither zero nor unit throws std::invalid_argument).
+template <typename Lt>
+void add_light(Registry& registry, const LightInfo& info, Lt light) {
+    const auto l = std::make_shared<const Lt>(std::move(light));
+    detail::LightSampleFn sample = [l](const Point& ref, const Point2& u) { return LightSample(l->sample(ref, u)); };
+    detail::LightEvalFn pdf = [l](const Point& ref, const Point& wi) { return static_cast<double>(l->pdf(ref, wi)); };
+    detail::LightEvalFn radiance = [l](const Point& ref, const Point& wi) { return static_cast<double>(l->L(ref, wi)); };
+    detail::add_erased_light(registry, info, std::move(sample), std::move(pdf), std::move(radiance));
 }
 
 /// The outgoing direction at theta degrees from the normal and azimuth phi degrees.

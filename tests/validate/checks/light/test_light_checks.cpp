@@ -1,5 +1,5 @@
 // Light cases and checks (issue 37): every built-in light, seen from every
-// reference point of its grid, passes every check that applies on ten seeds,
+// reference point of its grid, passes every check that applies on several seeds,
 // judged as validate judges them (Sidak over the run); each known-bad light of
 // the catalogue (validate/cases/light_flawed.cpp) fails the check meant to
 // catch it and passes every check its bug does not touch; and the rule that
@@ -47,14 +47,17 @@ std::vector<std::string> light_cases(const Registry& registry) {
 
 // Every built-in light over its grid (near, far and 1e-3 rad across, grazing,
 // below the reference surface, edge-on, inside a sphere; environment maps with
-// a bright pixel, black rows, one lit pixel, one pixel) on ten seeds, at a
-// tenth of the default sample count to stay within ~20 s; the default count
-// runs in validate --all (ctest validate_all).
+// a bright pixel, black rows, one lit pixel, one pixel; light sets) on four
+// seeds at a twentieth of the default sample count (~20 s: the quadrature's
+// cost barely shrinks with the count). Ten seeds at the default count (about
+// 13 s each) are the command `for s in $(seq 10); do validate --filter light
+// --filter environment_ --seed $s; done`, run for issue 37; seed 1 at the
+// default count runs in validate --all (ctest validate_all).
 TEST(LightBuiltins, PassEveryCheckOnEverySeed) {
     const Registry registry = light_registry();
     const std::vector<std::string> cases = light_cases(registry);
     ASSERT_GE(cases.size(), 18u);
-    for (uint64_t seed = 1; seed <= 10; ++seed) {
+    for (uint64_t seed = 1; seed <= 4; ++seed) {
         const RunResult r = run_lights(registry, cases, seed, 50'000);
         EXPECT_GE(r.results.size(), cases.size() * 6) << "a light lost its checks";
         EXPECT_EQ(r.count(Verdict::Fail) + r.count(Verdict::Error), 0) << "seed " << seed << failures_of(r);
