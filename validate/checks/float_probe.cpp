@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "chi2/count_bounds.h"
+#include "sampling/bsdf.h"  // Frame
 #include "sampling/float_bits.h"
 
 namespace warpcheck {
@@ -34,6 +36,21 @@ std::vector<WarpOutput> probe_points(const chi2::Domain& domain, const WarpOutpu
             for (std::size_t k = 0; k < 3; ++k) y[k] += static_cast<float>(sign[k] * j) * step[k];
             out.push_back(y);
         }
+    }
+    return out;
+}
+
+std::vector<WarpOutput> float_neighbours(const WarpOutput& w, double step) {
+    const Frame frame = Frame::around({w[0], w[1], w[2]});
+    std::vector<WarpOutput> out;
+    out.reserve(kFloatNeighbours);
+    for (std::size_t k = 0; k < kFloatNeighbours; ++k) {
+        const double angle = 2.0 * std::numbers::pi * static_cast<double>(k) / kFloatNeighbours;
+        const double dt = step * std::cos(angle), db = step * std::sin(angle);
+        const double v[3] = {w[0] + dt * frame.t.x + db * frame.b.x, w[1] + dt * frame.t.y + db * frame.b.y,
+                             w[2] + dt * frame.t.z + db * frame.b.z};
+        const double len = std::hypot(v[0], v[1], v[2]);
+        out.push_back({static_cast<float>(v[0] / len), static_cast<float>(v[1] / len), static_cast<float>(v[2] / len)});
     }
     return out;
 }

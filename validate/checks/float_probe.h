@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -43,6 +44,20 @@ std::array<float, 3> probe_steps(const chi2::Domain& domain, const WarpOutput& x
 /// The points probed around x: 1 to kProbeUlps steps along each of the
 /// 3^d - 1 sign directions of its d coordinates.
 std::vector<WarpOutput> probe_points(const chi2::Domain& domain, const WarpOutput& x);
+
+/// How far the neighbours of a direction lie that measure the float
+/// resolution of a value computed at it (a BSDF's f or pdf, a light's edge): 2^-20, 8 float ulps of a unit vector's components.
+inline constexpr double kFloatStep = 0x1p-20;
+/// How many neighbours float_neighbours gives.
+inline constexpr std::size_t kFloatNeighbours = 8;
+
+/// The kFloatNeighbours directions `step` from w in eight directions of
+/// its tangent plane, renormalised and rounded to float. What f or pdf does
+/// over them (a smooth change plus each evaluation's own rounding) is the
+/// float resolution of a value computed at w: a half vector recomputed from
+/// rounded directions, a Fresnel term near the critical angle, a microfacet
+/// seen edge-on.
+std::vector<WarpOutput> float_neighbours(const WarpOutput& w, double step = kFloatStep);
 
 /// How many random samples may be excused by their neighbourhood: a Poisson
 /// bound at kRoundedAcrossEdgeRate per random sample, with tail kConsistencyBoundTail.

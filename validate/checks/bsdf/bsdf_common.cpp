@@ -42,21 +42,6 @@ chi2::BatchPdf albedo_integrand(const BsdfCase& bsdf, Vector3f wo) {
     };
 }
 
-std::vector<WarpOutput> float_neighbours(const WarpOutput& w, double step) {
-    const Frame frame = Frame::around({w[0], w[1], w[2]});
-    std::vector<WarpOutput> out;
-    out.reserve(kFloatNeighbours);
-    for (std::size_t k = 0; k < kFloatNeighbours; ++k) {
-        const double angle = 2.0 * std::numbers::pi * static_cast<double>(k) / kFloatNeighbours;
-        const double dt = step * std::cos(angle), db = step * std::sin(angle);
-        const double v[3] = {w[0] + dt * frame.t.x + db * frame.b.x, w[1] + dt * frame.t.y + db * frame.b.y,
-                             w[2] + dt * frame.t.z + db * frame.b.z};
-        const double len = std::hypot(v[0], v[1], v[2]);
-        out.push_back({static_cast<float>(v[0] / len), static_cast<float>(v[1] / len), static_cast<float>(v[2] / len)});
-    }
-    return out;
-}
-
 FamilyPoint family_point(const BsdfCase& bsdf, std::string title, std::string y_label) {
     FamilyPoint p;
     p.family = bsdf.info().family;

@@ -16,6 +16,7 @@
 #include "chi2/binning.h"
 #include "chi2/quadrature.h"
 #include "validate/api/bsdf_case.h"
+#include "validate/checks/float_probe.h"  // float_neighbours, kFloatStep
 #include "validate/checks/check.h"
 #include "validate/checks/input_chunks.h"
 
@@ -68,20 +69,6 @@ chi2::BatchPdf pdf_integrand(const BsdfCase& bsdf);
 /// f(wo, .) |cos theta_i| at quadrature nodes (p for a phase function), for
 /// the given wo (the case's own, or another for a sweep).
 chi2::BatchPdf albedo_integrand(const BsdfCase& bsdf, Vector3f wo);
-
-/// How far the neighbours of a direction lie that measure a BSDF's float
-/// resolution at it: 2^-20, 8 float ulps of a unit vector's components.
-inline constexpr double kFloatStep = 0x1p-20;
-/// How many neighbours float_neighbours gives.
-inline constexpr std::size_t kFloatNeighbours = 8;
-
-/// The kFloatNeighbours directions `step` from w in eight directions of
-/// its tangent plane, renormalised and rounded to float. What f or pdf does
-/// over them (a smooth change plus each evaluation's own rounding) is the
-/// float resolution of a value computed at w: a half vector recomputed from
-/// rounded directions, a Fresnel term near the critical angle, a microfacet
-/// seen edge-on.
-std::vector<WarpOutput> float_neighbours(const WarpOutput& w, double step = kFloatStep);
 
 /// This case's point on a plot across its family (FamilyPoint, reports/
 /// result.h), at its theta_o: the grid's "theta_o" parameter where it has

@@ -33,6 +33,7 @@
 #include "validate/checks/evidence.h"
 #include "validate/checks/input_chunks.h"
 #include "validate/checks/light/light_checks.h"
+#include "validate/checks/light/light_pilot.h"
 #include "validate/checks/power_level.h"
 
 namespace warpcheck::light {
@@ -93,22 +94,18 @@ struct Reference {
 
 Reference integrate(const LightCase& light, const CheckContext& ctx) {
     const chi2::Binning grid(light.domain(), kIrradianceCells);
-    const std::vector<WarpInput> in =
-        pilot_inputs(ctx, InputKind::Uniform2D, chi2::kPilotPointsPerCell * grid.cell_count());
-    std::vector<LightRecord> rec(in.size());
-    light.sample_light(in, rec);
+    const std::size_t pilot_count = chi2::kPilotPointsPerCell * grid.cell_count();
     std::vector<chi2::SamplePoint> pilot;
-    double pilot_sum = 0.0;
-    for (const LightRecord& r : rec)
-        if (r.sampled() && std::isfinite(r.wi[0] + r.wi[1] + r.wi[2])) {
-            pilot.push_back(r.wi);
-            pilot_sum += static_cast<double>(r.L) * light.cosine(r.wi) / r.pdf;
-        }
+    double pilot_sum = 0.0;  // over the pilot's inputs: a declined sample adds 0
+    for (const LightRecord& r : light_pilot(light, ctx, pilot_count)) {
+        pilot.push_back(r.wi);
+        pilot_sum += static_cast<double>(r.L) * light.cosine(r.wi) / r.pdf;
+    }
     // The quadrature's accuracy rule is absolute, sized for a density whose
     // integral is 1: the integrand is divided by the pilot's estimate of the
     // integral (a light 1e-3 rad across has an irradiance of 1e-5), so that
     // its error is held relative to the integral.
-    const double pilot_mean = pilot_sum / static_cast<double>(in.size());
+    const double pilot_mean = pilot_sum / static_cast<double>(pilot_count);
     const double scale = std::isfinite(pilot_mean) && pilot_mean > 0.0 ? pilot_mean : 1.0;
     chi2::EqualProbabilityCells cells;
     if (!pilot.empty() &&

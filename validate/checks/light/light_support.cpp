@@ -27,11 +27,12 @@
 #include <fmt/format.h>
 
 #include "validate/api/light_case.h"
-#include "validate/checks/bsdf/bsdf_common.h"
 #include "validate/checks/evidence.h"
+#include "validate/checks/float_probe.h"
 #include "validate/checks/formatting.h"
 #include "validate/checks/input_chunks.h"
 #include "validate/checks/light/light_checks.h"
+#include "validate/checks/light/light_pilot.h"
 
 namespace warpcheck::light {
 namespace {
@@ -52,16 +53,12 @@ struct Cap {
 
 /// The cap around the pilot's mass: its mean direction, out to twice its widest angle.
 Cap pilot_cap(const LightCase& light, const CheckContext& ctx) {
-    const std::vector<WarpInput> in = pilot_inputs(ctx, InputKind::Uniform2D, kPilotSamples);
-    std::vector<LightRecord> rec(in.size());
-    light.sample_light(in, rec);
     double m[3] = {0.0, 0.0, 0.0};
     std::vector<WarpOutput> w;
-    for (const LightRecord& r : rec)
-        if (r.sampled() && std::isfinite(r.wi[0] + r.wi[1] + r.wi[2])) {
-            w.push_back(r.wi);
-            for (int k = 0; k < 3; ++k) m[k] += r.wi[k];
-        }
+    for (const LightRecord& r : light_pilot(light, ctx, kPilotSamples)) {
+        w.push_back(r.wi);
+        for (int k = 0; k < 3; ++k) m[k] += r.wi[k];
+    }
     const double len = std::hypot(m[0], m[1], m[2]);
     if (w.empty() || !(len > 0.0)) return {};
     Cap cap;
@@ -111,7 +108,7 @@ struct SupportStats {
 
 /// Whether a neighbour `step` away lies on the other side of the boundary the probe disagrees across.
 bool at_boundary(const LightCase& light, const WarpOutput& w, bool lit, bool positive, double step) {
-    const std::vector<WarpOutput> n = bsdf::float_neighbours(w, step);
+    const std::vector<WarpOutput> n = float_neighbours(w, step);
     std::vector<double> L(n.size()), pdf(n.size());
     light.radiance(n, L);
     light.pdf(n, pdf);
@@ -177,7 +174,7 @@ public:
         // 2^-22 / sin(angle / 2) radians; directions themselves resolve to
         // 2^-20 (float_neighbours' step).
         const double radius = std::max(std::sin(0.5 * cap.angle), 0x1p-20);
-        const double step = bsdf::kFloatStep + 0x1p-22 / radius;
+        const double step = kFloatStep + 0x1p-22 / radius;
         const SupportStats s = probe(light, ctx, cap, step);
         // Twice the probes a band of half-width `step` along a boundary no
         // longer than the cap's inner circle (2 pi radius) holds: a convex
