@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -323,6 +324,31 @@ void register_lights(warpcheck::Registry& registry) {
     }
 }
 
+// Direct lighting as the renderer combines it: the diffuse BSDF and the
+// sphere light at the origin, power heuristic. The wrong twin's MIS code
+// evaluates the light's pdf per area of the sphere's silhouette disk, 1 /
+// (pi r^2), where its sampler returns a density per solid angle.
+void register_mis(warpcheck::Registry& registry) {
+    const SphereLight17 light{{2.0f, 0.0f, 3.4641016f}, 1.0f, 2.0f};
+    for (bool wrong : {false, true}) {
+        w17::MisInfo info;
+        info.family = wrong ? "direct_cxx17_area_pdf" : "direct_cxx17";
+        info.description = "a diffuse BSDF and a sphere light combined by MIS, registered from C++17";
+        w17::BsdfInfo bsdf;
+        bsdf.family = "diffuse_cxx17";
+        bsdf.wo = w17::bsdf_direction(40.0, 180.0);
+        w17::LightInfo at;
+        at.family = "sphere_light_cxx17";
+        at.normal = {0, 0, 1};
+        std::function<double(const w17::Point&, const w17::Point&)> area_pdf;
+        if (wrong)
+            area_pdf = [light](const w17::Point& ref, const w17::Point& wi) {
+                return light.hits(ref, wi) ? 1 / (kPi * light.r * light.r) : 0.0;
+            };
+        w17::add_mis(registry, info, bsdf, Diffuse17{0.6f, false}, at, light, area_pdf);
+    }
+}
+
 }  // namespace
 
 void warpcheck_register(warpcheck::Registry& registry) {
@@ -333,10 +359,12 @@ void warpcheck_register(warpcheck::Registry& registry) {
     register_float_samplers(registry);
     register_bsdfs(registry);
     register_lights(registry);
+    register_mis(registry);
     // The wrong twins: known flaws, run by name (or with --include-flawed).
     for (const char* twin :
          {"cosine_cxx17_no_inverse_half_pdf", "cosine_cxx17_returned_pdf_wrong", "table_cxx17_no_pdf_wrong",
           "choice_cxx17_pmf_swapped", "choice_cxx17_remap_not_rescaled", "phong_cxx17_wrong[n=20]",
-          "unit_float_cxx17_swapped", "one_to_two_cxx17_swapped", "sphere_light_cxx17_double_radiance"})
+          "unit_float_cxx17_swapped", "one_to_two_cxx17_swapped", "sphere_light_cxx17_double_radiance",
+          "direct_cxx17_area_pdf"})
         w17::mark_known_flaw(registry, twin, "", "a wrong twin: run_example.sh checks that it fails");
 }

@@ -116,6 +116,8 @@ expect_fail unit_float_cxx17_swapped exhaustive
 expect_fail one_to_two_cxx17_swapped exhaustive
 expect_fail "diffuse_cxx17_weight_no_cos[theta_o=70]" bsdf_weight
 expect_fail sphere_light_cxx17_double_radiance light_radiance "differs from L(ref, wi)"
+expect_row pass mis_estimator direct_cxx17
+expect_fail direct_cxx17_area_pdf mis_weights "do not sum to 1"
 # The Python package installs with the rest, where the build made it (cmake/Python.cmake),
 # and imports from the prefix with the interpreter it was built for.
 python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build_dir/CMakeCache.txt")

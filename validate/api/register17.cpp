@@ -231,6 +231,34 @@ void add_erased_light(Registry& registry, const LightInfo& info, LightSampleFn s
                                       ErasedLight{std::move(sample), std::move(pdf), std::move(radiance)}));
 }
 
+void add_erased_mis(Registry& registry, const MisInfo& info, const BsdfInfo& bsdf, const LightInfo& light,
+                    ErasedMis parts) {
+    WarpCaseInfo bsdf_case{.family = bsdf.family, .params = to_params(bsdf.params), .description = bsdf.description};
+    auto b = make_bsdf_case(
+        std::move(bsdf_case), to_claims(bsdf),
+        bsdf_of([sample = parts.bsdf_sample](Vector3f wo, float uc, Point2f u) {
+            return to_sample(sample(to_point(wo), uc, {u.x, u.y}));
+        })
+            .with_f([f = parts.bsdf_f](Vector3f wo, Vector3f wi) { return f(to_point(wo), to_point(wi)); })
+            .with_pdf([pdf = parts.bsdf_pdf](Vector3f wo, Vector3f wi) { return pdf(to_point(wo), to_point(wi)); }));
+    WarpCaseInfo light_case{.family = light.family, .params = to_params(light.params), .description = light.description};
+    const LightClaims claims{.ref = {light.ref[0], light.ref[1], light.ref[2]},
+                             .normal = {light.normal[0], light.normal[1], light.normal[2]}};
+    auto l = make_light_case(std::move(light_case), claims,
+                             ErasedLight{parts.light_sample, parts.light_pdf, parts.light_radiance});
+    MisClaims mis{.heuristic = info.power_heuristic ? MisHeuristic::Power : MisHeuristic::Balance};
+    if (parts.bsdf_mis_pdf)
+        mis.pdfs.bsdf = [pdf = parts.bsdf_mis_pdf](Vector3f wo, Vector3f wi) {
+            return static_cast<float>(pdf(to_point(wo), to_point(wi)));
+        };
+    if (parts.light_mis_pdf)
+        mis.pdfs.lights.push_back([pdf = parts.light_mis_pdf](Vector3f ref, Vector3f wi) {
+            return static_cast<float>(pdf(to_point(ref), to_point(wi)));
+        });
+    WarpCaseInfo converted{.family = info.family, .params = to_params(info.params), .description = info.description};
+    registry.add_case(make_mis_case(std::move(converted), std::move(mis), std::move(b), std::move(l)));
+}
+
 }  // namespace detail
 
 Point bsdf_direction(double theta_degrees, double phi_degrees) {

@@ -194,6 +194,15 @@ struct LightInfo {
     Point normal{};
 };
 
+/// An MIS case (MisCase in validate/api/light_case.h): its name, and the
+/// heuristic the renderer's MIS sum weighs with (power, exponent 2, or balance).
+struct MisInfo {
+    std::string family;
+    std::vector<std::pair<std::string, double>> params;
+    std::string description;
+    bool power_heuristic = true;
+};
+
 namespace detail {
 
 /// What a warp consumes and what its sample returns (warp_case.h: InputKind, SampleReturns).
@@ -242,6 +251,16 @@ using LightSampleFn = std::function<LightSample(const Point& ref, const Point2& 
 using LightEvalFn = std::function<double(const Point& ref, const Point& wi)>;
 void add_erased_light(Registry& registry, const LightInfo& info, LightSampleFn sample, LightEvalFn pdf,
                       LightEvalFn radiance);
+
+/// A BSDF's and a light's parts, and the pdfs the MIS sum evaluates (empty: their own).
+struct ErasedMis {
+    BsdfSampleFn bsdf_sample;
+    BsdfEvalFn bsdf_f, bsdf_pdf, bsdf_mis_pdf;
+    LightSampleFn light_sample;
+    LightEvalFn light_pdf, light_radiance, light_mis_pdf;
+};
+void add_erased_mis(Registry& registry, const MisInfo& info, const BsdfInfo& bsdf, const LightInfo& light,
+                    ErasedMis parts);
 
 /// What sample returns, when it is a point or an index: itself, and nothing with it.
 template <typename T, Returns R>
@@ -504,6 +523,38 @@ void add_light(Registry& registry, const LightInfo& info, Lt light) {
     detail::LightEvalFn pdf = [l](const Point& ref, const Point& wi) { return static_cast<double>(l->pdf(ref, wi)); };
     detail::LightEvalFn radiance = [l](const Point& ref, const Point& wi) { return static_cast<double>(l->L(ref, wi)); };
     detail::add_erased_light(registry, info, std::move(sample), std::move(pdf), std::move(radiance));
+}
+
+/// Adds an MIS case of a BSDF (as add_bsdf takes it, seen from bsdf_info.wo)
+/// and a light (as add_light takes it, seen from light_info.ref with the
+/// normal (0, 0, 1), the BSDF's): the MIS checks (mis_weights, mis_estimator)
+/// take it. light_mis_pdf(ref, wi) and bsdf_mis_pdf(wo, wi) are the pdfs your
+/// MIS code evaluates at the other strategy's samples, where they are not the
+/// objects' own pdf() (pass nullptr for "the same"). Validated as
+/// make_mis_case validates (delta lobes, another normal: std::invalid_argument).
+template <typename B, typename Lt>
+void add_mis(Registry& registry, const MisInfo& info, const BsdfInfo& bsdf_info, B bsdf, const LightInfo& light_info,
+             Lt light, std::function<double(const Point& ref, const Point& wi)> light_mis_pdf = nullptr,
+             std::function<double(const Point& wo, const Point& wi)> bsdf_mis_pdf = nullptr) {
+    const auto b = std::make_shared<const B>(std::move(bsdf));
+    const auto l = std::make_shared<const Lt>(std::move(light));
+    detail::ErasedMis parts;
+    parts.bsdf_sample = [b](const Point& wo, float uc, const Point2& u) {
+        if constexpr (detail::SamplesWithUc<B>::value) {
+            return BsdfSample(b->sample(wo, uc, u));
+        } else {
+            (void)uc;
+            return BsdfSample(b->sample(wo, u));
+        }
+    };
+    parts.bsdf_f = [b](const Point& wo, const Point& wi) { return static_cast<double>(b->f(wo, wi)); };
+    parts.bsdf_pdf = [b](const Point& wo, const Point& wi) { return static_cast<double>(b->pdf(wo, wi)); };
+    parts.bsdf_mis_pdf = std::move(bsdf_mis_pdf);
+    parts.light_sample = [l](const Point& ref, const Point2& u) { return LightSample(l->sample(ref, u)); };
+    parts.light_pdf = [l](const Point& ref, const Point& wi) { return static_cast<double>(l->pdf(ref, wi)); };
+    parts.light_radiance = [l](const Point& ref, const Point& wi) { return static_cast<double>(l->L(ref, wi)); };
+    parts.light_mis_pdf = std::move(light_mis_pdf);
+    detail::add_erased_mis(registry, info, bsdf_info, light_info, std::move(parts));
 }
 
 /// The outgoing direction at theta degrees from the normal and azimuth phi degrees.

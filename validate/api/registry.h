@@ -104,6 +104,8 @@ void register_flawed_bsdf_cases(Registry& registry);
 using FlawedLight = FlawedBsdf;
 /// The catalogue of known-bad lights, one per bug class renderers have shipped.
 std::vector<FlawedLight> light_flawed_catalogue();
+/// The known-bad MIS cases (validate/cases/mis.cpp), the end of light_flawed_catalogue.
+std::vector<FlawedLight> mis_flawed_catalogue();
 /// Registers the catalogue, each marked as a known flaw.
 void register_flawed_light_cases(Registry& registry);
 

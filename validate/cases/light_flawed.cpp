@@ -282,7 +282,7 @@ std::unique_ptr<WarpCase> set_last_unsampled() {
 
 std::vector<FlawedLight> light_flawed_catalogue() {
     using namespace flawed_lights;
-    return {
+    std::vector<FlawedLight> catalogue = {
         // Its pdf is the wrong cone's, consistently: chi2 passes; every sample
         // outside the sphere misses, and its Le over the too-small pdf doubles
         // the estimate.
@@ -304,6 +304,8 @@ std::vector<FlawedLight> light_flawed_catalogue() {
         {set_pdf_without_pmf, "sample_pdf", "light set: pdf() without the pmf", {"chi2"}},
         {set_last_unsampled, "chi2", "light set: the last light never chosen", {"light_irradiance"}},
     };
+    for (FlawedLight& m : mis_flawed_catalogue()) catalogue.push_back(std::move(m));
+    return catalogue;
 }
 
 void register_flawed_light_cases(Registry& registry) {

@@ -68,6 +68,8 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(light::make_light_radiance_check());
     registry.add_check(light::make_light_support_check());
     registry.add_check(light::make_light_irradiance_check());
+    registry.add_check(light::make_mis_weights_check());
+    registry.add_check(light::make_mis_estimator_check());
 }
 
 }  // namespace warpcheck

@@ -191,8 +191,8 @@ ConsistencyStats compute(const WarpCase& warp, const CheckContext& ctx) {
         std::vector<WarpOutput> x(inputs.size());
         std::vector<double> pdf(inputs.size());
         std::vector<unsigned char> declined;
-        if (as_light(warp) != nullptr) {
-            // A light may decline to sample (pbrt's SampleLi returns none:
+        if (declines_samples(warp)) {
+            // A light (or an MIS case's strategy) may decline to sample (pbrt's SampleLi returns none:
             // pdf 0): not a sample, so not judged here; light_irradiance
             // counts it as the zero it contributes.
             warp.sample_with_value(inputs, x, pdf);

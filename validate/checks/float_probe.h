@@ -16,6 +16,18 @@
 
 namespace warpcheck {
 
+/// How far a value a sampler returns (its pdf, its weight) may be from the
+/// same value recomputed by its function at the rounded sample, relative:
+/// 2^-12 (4096 float ulps). The two sides compute in float along different
+/// paths (from u, and again from the rounded x), and a density's logarithmic
+/// slope (hundreds for a sharp power-cosine lobe, ~4 / alpha per radian for
+/// Trowbridge-Reitz) multiplies x's few ulps of rounding to ~1e-5, while a
+/// wrong factor (a selection probability, a Jacobian, a missing cosine) is off
+/// by percent. Below FLT_MIN both sides are denormal floats with no relative
+/// precision, so absolute differences up to FLT_MIN are accepted. sample_pdf,
+/// weight, bsdf_weight and mis_weights hold values to it.
+inline constexpr double kReturnedValueTolerance = 0x1p-12;
+
 /// How far a zero-pdf sample's neighbours are probed: kProbeUlps float
 /// spacings at the domain's extent (Domain::slack's scale) in each coordinate.
 /// A float warp computes a coordinate from terms as large as the domain (a

@@ -28,14 +28,8 @@
 namespace warpcheck {
 namespace {
 
-/// Largest relative disagreement accepted, 2^-12 (4096 float ulps): the two
-/// sides compute in float along different paths (from u, and again from the
-/// rounded x), and a density's logarithmic slope (hundreds for a sharp
-/// power-cosine lobe) multiplies x's few ulps of rounding, while a wrong
-/// factor (a selection probability, a Jacobian, a missing cos theta) is off by
-/// percent. Below FLT_MIN both sides are denormal floats with no relative
-/// precision, so absolute differences up to FLT_MIN are accepted.
-constexpr double kRelativeTolerance = 0x1p-12;
+/// Largest relative disagreement accepted: float_probe.h says why.
+constexpr double kRelativeTolerance = kReturnedValueTolerance;
 
 /// |a - b| / max(|a|, |b|); 0 where they agree to within FLT_MIN; NaN if either is NaN.
 double relative_difference(double returned, double reference) {

@@ -508,10 +508,10 @@ Stats compute(const WarpCase& warp, const CheckContext& ctx, const Rule& rule) {
         std::vector<WarpOutput> x(inputs.size()), x2(rule.bits() ? inputs.size() : 0);
         std::vector<WarpInput> back(inputs.size());
         warp.sample(inputs, x);
-        // A light may decline to sample (its pdf 0, a NaN direction here):
+        // A light or an MIS case may decline to sample (pdf 0, a NaN direction here):
         // such an input has no trip; the direction inverted in its place is
         // never judged.
-        std::vector<unsigned char> declined(as_light(warp) != nullptr ? inputs.size() : 0);
+        std::vector<unsigned char> declined(declines_samples(warp) ? inputs.size() : 0);
         for (std::size_t i = 0; i < declined.size(); ++i)
             if (!std::isfinite(x[i][0])) declined[i] = 1, x[i] = {0.0f, 0.0f, 1.0f};
         warp.invert(x, back);

@@ -916,8 +916,9 @@ public:
         // cap 1e-3 rad wide, and see a triangle 0.5 rad wide with too little
         // power to state), while chi2's cells, placed by a pilot of the
         // light, test its distribution where it is.
-        if (as_light(warp) != nullptr)
-            return Applicability::lacks("a light's marginals in the sphere's chart do not resolve it; chi2's cells "
+        if (declines_samples(warp))
+            return Applicability::lacks(std::string(as_mis(warp) != nullptr ? "an MIS case's light" : "a light") +
+                                        "'s marginals in the sphere's chart do not resolve it; chi2's cells "
                                         "placed around it test its distribution");
         return Applicability::when(warp.has_pdf() && !warp.is_discrete());
     }

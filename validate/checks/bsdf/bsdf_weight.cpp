@@ -40,15 +40,9 @@
 namespace warpcheck::bsdf {
 namespace {
 
-/// Largest relative disagreement of the two weights, 2^-12 (4096 float ulps):
-/// the sampler and f() / pdf() compute in float along different paths (the
-/// sampled normal, and the half vector recomputed from the rounded wi), and a
-/// sharp lobe's logarithmic slope (~4 / alpha per radian for Trowbridge-Reitz,
-/// 80 at alpha = 0.05) multiplies the ~1e-7 radians of wi's rounding to ~1e-5,
-/// while a wrong factor (a lobe probability, a Jacobian, a missing cosine) is
-/// off by percent. Below FLT_MIN both are denormal: absolute differences up to
-/// FLT_MIN are accepted.
-constexpr double kRelativeTolerance = 0x1p-12;
+/// Largest relative disagreement of the two weights: float_probe.h says why
+/// (bsdf_common.h includes it).
+constexpr double kRelativeTolerance = kReturnedValueTolerance;
 /// How far |wi| may be from 1: 2^-18 (32 float roundings of 2^-23): a direction
 /// normalised and then carried through a reflection, a refraction or a frame
 /// change in float; one never normalised, or built with a wrong sine, is off by percent.

@@ -11,6 +11,14 @@
 // (bias), a dark one of pdf > 0 is mass the pdf claims where the light is not.
 // "light_irradiance": the estimator's mean L |cos theta_i| / pdf against the
 // integral of L |cos theta_i| over the sphere (t-test).
+//
+// MIS cases (MisCase: a BSDF and lights seen from one shading point) are
+// tested as the one-sample model by the warp checks (chi2, consistency,
+// sample_pdf: the pdfs the MIS sum uses against the densities the samplers
+// draw from), and here:
+// "mis_weights": at every sampled direction the strategies' weights sum to 1.
+// "mis_estimator": the multi-sample MIS estimator's mean against the integral
+// of f L |cos theta_i| (t-test).
 #pragma once
 
 #include <memory>
@@ -22,5 +30,7 @@ namespace warpcheck::light {
 std::unique_ptr<Check> make_light_radiance_check();
 std::unique_ptr<Check> make_light_support_check();
 std::unique_ptr<Check> make_light_irradiance_check();
+std::unique_ptr<Check> make_mis_weights_check();
+std::unique_ptr<Check> make_mis_estimator_check();
 
 }  // namespace warpcheck::light

@@ -38,7 +38,8 @@ namespace {
 /// (the "weight" check's tolerance): both are the light's radiance, computed
 /// along two float paths (a texture lookup from the sampled point, and again
 /// from the rounded direction), while a wrong factor is off by percent.
-constexpr double kRelativeTolerance = 0x1p-12;
+/// How far the returned L may be from L(ref, wi): float_probe.h says why.
+constexpr double kRelativeTolerance = kReturnedValueTolerance;
 
 struct Example {
     WarpInput input;
