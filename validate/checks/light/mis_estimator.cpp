@@ -26,6 +26,10 @@
 #include "validate/checks/light/light_integral.h"
 
 namespace warpcheck::light {
+// A named namespace around the file's own names: the unity build compiles
+// this file with the other light checks, whose anonymous namespaces hold
+// names of their own (Example, compute, Estimates, integrate).
+namespace mis_estimator_check {
 namespace {
 
 struct Estimates {
@@ -136,7 +140,8 @@ public:
 };
 
 }  // namespace
+}  // namespace mis_estimator_check
 
-std::unique_ptr<Check> make_mis_estimator_check() { return std::make_unique<MisEstimatorCheck>(); }
+std::unique_ptr<Check> make_mis_estimator_check() { return std::make_unique<mis_estimator_check::MisEstimatorCheck>(); }
 
 }  // namespace warpcheck::light

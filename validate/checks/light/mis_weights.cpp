@@ -25,6 +25,10 @@
 #include "validate/checks/light/light_checks.h"
 
 namespace warpcheck::light {
+// A named namespace around the file's own names: the unity build compiles
+// this file with the other light checks, whose anonymous namespaces hold
+// names of their own (Example, compute, Estimates, integrate).
+namespace mis_weights_check {
 namespace {
 
 /// How far the weights may sum from 1: each MIS pdf may differ from its
@@ -220,7 +224,8 @@ public:
 };
 
 }  // namespace
+}  // namespace mis_weights_check
 
-std::unique_ptr<Check> make_mis_weights_check() { return std::make_unique<MisWeightsCheck>(); }
+std::unique_ptr<Check> make_mis_weights_check() { return std::make_unique<mis_weights_check::MisWeightsCheck>(); }
 
 }  // namespace warpcheck::light
