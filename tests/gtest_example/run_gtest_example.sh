@@ -41,7 +41,8 @@ chi2_jobs=$(grep -c "^chi2	" "$work/jobs.txt")
 # the n/a round trips of the warp without an inverse are skipped, saying why.
 (cd "$b" && ctest -j2 -LE wrong --output-on-failure > "$work/ctest.log") || { cat "$work/ctest.log"; fail "ctest failed"; }
 gtests=$("$b/power_warps_test" --gtest_list_tests | grep -c '^  ')
-[ "$gtests" -eq $((jobs + 2)) ] || fail "power_warps_test has $gtests tests, not one per job plus two"
+# (plus the four assertions: a warp, a BSDF, a light and an MIS case)
+[ "$gtests" -eq $((jobs + 4)) ] || fail "power_warps_test has $gtests tests, not one per job plus four"
 # The BSDF cases are in the suite with the BSDF checks, and only those.
 "$b/power_warps_test" --gtest_list_tests > "$work/gtests.txt"
 grep -q '^  Passes/diffuse_theta_o_60__bsdf_unbinned$' "$work/gtests.txt" || fail "no BSDF check of a BSDF case in the suite"
@@ -181,6 +182,18 @@ grep -q "power_warps_test.cpp:$bsdf_line: Failure" "$work/wrong_bsdf_assert.txt"
   fail "EXPECT_BSDF_PASSES's failure is not at its line"
 grep -q "Across the family: albedo against theta_o" "$work/evidence/gtest/DiffuseBsdf/diffuse_uniform_grazing_theta_o_85.html" ||
   fail "no albedo against theta_o in EXPECT_BSDF_PASSES's evidence"
+
+# A light and the MIS of the BSDF and the light (EXPECT_LIGHT_PASSES,
+# EXPECT_MIS_PASSES) pass; the MIS whose sum takes the light's pdf per area
+# fails mis_weights, at the user's line.
+WARPCHECK_EVIDENCE_DIR="$work/evidence" "$b/power_warps_test_wrong" \
+  --gtest_filter='SphereLight.SeenFromASurface:DirectLighting.DiffuseUnderASphere' > "$work/light.txt" 2>&1 ||
+  { cat "$work/light.txt"; fail "EXPECT_LIGHT_PASSES or EXPECT_MIS_PASSES failed a correct light"; }
+WARPCHECK_EVIDENCE_DIR="$work/evidence" "$b/power_warps_test_wrong" --gtest_filter='DirectLighting.AreaPdfInTheSum' \
+  > "$work/wrong_mis.txt" 2>&1 && fail "EXPECT_MIS_PASSES passed an area pdf in the MIS sum"
+grep -q "FAIL mis_weights direct_area_pdf: " "$work/wrong_mis.txt" || { cat "$work/wrong_mis.txt"; fail "mis_weights did not fail the area pdf"; }
+mis_line=$(grep -n 'EXPECT_MIS_PASSES(direct_lighting("direct_area_pdf"' "$example_dir/power_warps_test.cpp" | cut -d: -f1)
+grep -q "power_warps_test.cpp:$mis_line: Failure" "$work/wrong_mis.txt" || fail "EXPECT_MIS_PASSES's failure is not at its line"
 
 # The same figures and level as the validate program of the same warps and seed,
 # whose rerun line names that program.

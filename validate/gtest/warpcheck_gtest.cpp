@@ -16,6 +16,7 @@
 #include "reports/outputs.h"
 #include "reports/terminal_table.h"
 #include "sampling/hash.h"
+#include "validate/api/light_case.h"
 #include "validate/cli/cli_input.h"
 #include "validate/gtest/job_tests.h"
 #include "validate/run/runner.h"
@@ -255,6 +256,30 @@ Settings settings_from_environment() {
 ::testing::AssertionResult BsdfCasePasses(const char* expression, const std::unique_ptr<WarpCase>& bsdf) {
     if (!bsdf) return ::testing::AssertionFailure() << "warpcheck: " << expression << " is a null BSDF case";
     return BsdfCasePasses(expression, *bsdf);
+}
+
+::testing::AssertionResult LightCasePasses(const char* expression, const WarpCase& light) {
+    if (as_light(light) == nullptr)
+        return ::testing::AssertionFailure() << "warpcheck: " << expression << " (" << light.name()
+                                             << ") is not a light case (make_light_case)";
+    return WarpCasePasses(expression, light);
+}
+
+::testing::AssertionResult LightCasePasses(const char* expression, const std::unique_ptr<WarpCase>& light) {
+    if (!light) return ::testing::AssertionFailure() << "warpcheck: " << expression << " is a null light case";
+    return LightCasePasses(expression, *light);
+}
+
+::testing::AssertionResult MisCasePasses(const char* expression, const WarpCase& mis) {
+    if (as_mis(mis) == nullptr)
+        return ::testing::AssertionFailure() << "warpcheck: " << expression << " (" << mis.name()
+                                             << ") is not an MIS case (make_mis_case)";
+    return WarpCasePasses(expression, mis);
+}
+
+::testing::AssertionResult MisCasePasses(const char* expression, const std::unique_ptr<WarpCase>& mis) {
+    if (!mis) return ::testing::AssertionFailure() << "warpcheck: " << expression << " is a null MIS case";
+    return MisCasePasses(expression, *mis);
 }
 
 std::filesystem::path evidence_path(const Settings& settings, const std::string& test_suite, const std::string& stem) {

@@ -10,6 +10,12 @@
 //
 //     EXPECT_BSDF_PASSES(warpcheck::make_bsdf_case(info, {.wo = warpcheck::bsdf_direction(60)}, MyDiffuse{0.7f}));
 //
+// and for a light seen from one reference point, or an MIS case (a BSDF and
+// lights at one shading point), with every check that applies:
+//
+//     EXPECT_LIGHT_PASSES(warpcheck::make_light_case(info, {.ref = p, .normal = n}, MyLight{}));
+//     EXPECT_MIS_PASSES(warpcheck::make_mis_case(info, claims, bsdf_case, light_case));
+//
 // and one test per (case, check) of everything a registration function adds:
 //
 //     WARPCHECK_TEST_SUITE(MyWarps, warpcheck_register);
@@ -65,6 +71,19 @@ namespace warpcheck::gtest {
 ::testing::AssertionResult BsdfCasePasses(const char* expression, const WarpCase& bsdf);
 ::testing::AssertionResult BsdfCasePasses(const char* expression, const std::unique_ptr<WarpCase>& bsdf);
 
+/// The same for a light seen from a reference point (make_light_case): every
+/// check that applies to it passes (the warp checks on its directions and
+/// light_radiance, light_support, light_irradiance); a case that is not a
+/// light's is a failure that says so. For EXPECT_PRED_FORMAT1; see EXPECT_LIGHT_PASSES.
+::testing::AssertionResult LightCasePasses(const char* expression, const WarpCase& light);
+::testing::AssertionResult LightCasePasses(const char* expression, const std::unique_ptr<WarpCase>& light);
+
+/// The same for an MIS case (make_mis_case): every check that applies to it
+/// passes (mis_weights, mis_estimator, consistency, sample_pdf); a case that
+/// is not an MIS case is a failure that says so. See EXPECT_MIS_PASSES.
+::testing::AssertionResult MisCasePasses(const char* expression, const WarpCase& mis);
+::testing::AssertionResult MisCasePasses(const char* expression, const std::unique_ptr<WarpCase>& mis);
+
 /// Registers one GoogleTest test per (case, check) job of `register_cases`
 /// (called with a registry that has the built-in checks), in suite
 /// "warpcheck/<suite_name>", located at `file`:`line`. Called by
@@ -93,6 +112,16 @@ class SuiteRegistrar : public ::testing::TestWithParam<int> {};
 /// one also fails when the case is not a BSDF's.
 #define EXPECT_BSDF_PASSES(bsdf_case) EXPECT_PRED_FORMAT1(::warpcheck::gtest::BsdfCasePasses, bsdf_case)
 #define ASSERT_BSDF_PASSES(bsdf_case) ASSERT_PRED_FORMAT1(::warpcheck::gtest::BsdfCasePasses, bsdf_case)
+
+/// EXPECT_LIGHT_PASSES(light_case): every check that applies to a light case
+/// (make_light_case: one reference point) passes.
+#define EXPECT_LIGHT_PASSES(light_case) EXPECT_PRED_FORMAT1(::warpcheck::gtest::LightCasePasses, light_case)
+#define ASSERT_LIGHT_PASSES(light_case) ASSERT_PRED_FORMAT1(::warpcheck::gtest::LightCasePasses, light_case)
+
+/// EXPECT_MIS_PASSES(mis_case): every check that applies to an MIS case
+/// (make_mis_case: a BSDF and lights at one shading point) passes.
+#define EXPECT_MIS_PASSES(mis_case) EXPECT_PRED_FORMAT1(::warpcheck::gtest::MisCasePasses, mis_case)
+#define ASSERT_MIS_PASSES(mis_case) ASSERT_PRED_FORMAT1(::warpcheck::gtest::MisCasePasses, mis_case)
 
 /// One gtest test per (case, check) of the cases `register_cases` adds, e.g.
 ///   WARPCHECK_TEST_SUITE(MyWarps, warpcheck_register);
