@@ -59,6 +59,22 @@ def test_light_passes_and_its_twin_fails_chi2():
     wc.assert_fails(wrong, "chi2", samples=N, checks=["chi2"])
 
 
+def test_light_with_radiance_takes_the_light_checks_and_its_twin_fails():
+    correct, wrong = light_and_bsdf.lights_with_radiance()
+    result = wc.assert_passes(correct, samples=N)
+    assert {"light_radiance", "light_support", "light_irradiance", "chi2"} <= {r.check for r in result.rows if r.passed}
+    wc.assert_fails(wrong, "chi2", samples=N, checks=["chi2"])
+    wc.assert_fails(wrong, "light_irradiance", samples=N, checks=["light_irradiance"])
+
+
+def test_a_light_with_radiance_needs_its_pdf_and_a_normal_needs_radiance():
+    with pytest.raises(ValueError, match="needs its pdf"):
+        wc.Light("no_pdf", light_and_bsdf.light_sample, L=light_and_bsdf.light_radiance, points=[(0, 0, 0)])
+    with pytest.raises(ValueError, match="a normal weighs L"):
+        wc.Light("no_l", light_and_bsdf.light_sample, pdf=light_and_bsdf.light_pdf, normal=(0, 0, 1),
+                 points=[(0, 0, 0)])
+
+
 def test_bsdf_passes_and_its_twin_fails_the_albedo_check():
     correct, wrong = light_and_bsdf.bsdfs()
     result = wc.assert_passes(correct, samples=N)

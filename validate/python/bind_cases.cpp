@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -111,12 +112,21 @@ std::shared_ptr<CaseSpec> make_warp(const std::string& family, const py::object&
 std::shared_ptr<CaseSpec> make_light(const std::string& family, const py::object& sample, const py::object& pdf,
                                      const std::vector<std::array<float, 3>>& points, const py::dict& params,
                                      const std::string& description, const chi2::Domain& domain,
-                                     double support_measure) {
+                                     double support_measure, const py::object& L,
+                                     const std::optional<std::array<float, 3>>& normal) {
     if (points.empty()) throw py::value_error("light " + family + ": give at least one reference point");
     WarpCaseInfo info;
     info.family = family;
     info.params = parameters(params);
     info.description = description;
+    if (!L.is_none()) {
+        // With its own intersection: a light case proper, on the sphere, with the light checks.
+        if (pdf.is_none()) throw py::value_error("light " + family + ": a light with L needs its pdf(ref, wi)");
+        if (support_measure != 0.0) throw py::value_error("light " + family + ": support_measure is for a light without L");
+        return std::make_shared<LightSpec>(info, LightParts{PyRef(sample), PyRef(pdf), PyRef(L)}, points,
+                                           normal.value_or(std::array<float, 3>{0.0f, 0.0f, 0.0f}));
+    }
+    if (normal) throw py::value_error("light " + family + ": a normal weighs L, which this light does not give");
     info.domain = domain;
     info.support_measure = support_measure;
     WarpSignature s;
@@ -217,7 +227,8 @@ void bind_cases(py::module_& m) {
           py::arg("roundtrip_tolerance") = 0.0, py::arg("support_measure") = 0.0, py::arg("inversion") = "measure");
     m.def("light", &make_light, py::arg("family"), py::arg("sample"), py::kw_only(), py::arg("pdf") = py::none(),
           py::arg("points"), py::arg("params") = py::dict(), py::arg("description") = "",
-          py::arg("domain") = chi2::Domain::sphere(), py::arg("support_measure") = 0.0);
+          py::arg("domain") = chi2::Domain::sphere(), py::arg("support_measure") = 0.0, py::arg("L") = py::none(),
+          py::arg("normal") = std::optional<std::array<float, 3>>{});
     m.def("bsdf", &make_bsdf, py::arg("family"), py::arg("sample"), py::kw_only(), py::arg("f"), py::arg("pdf"),
           py::arg("theta_o"), py::arg("params") = py::dict(), py::arg("description") = "",
           py::arg("lobes") = std::vector<std::string>{"reflection", "continuous"}, py::arg("eta") = 1.0f,

@@ -256,6 +256,87 @@ std::vector<std::unique_ptr<WarpCase>> BsdfSpec::make() const {
     return cases;
 }
 
+PythonLightCase::PythonLightCase(WarpCaseInfo info, LightClaims claims, LightParts parts)
+    : LightCase(std::move(info), claims, false), parts_(std::move(parts)) {}
+
+namespace {
+
+/// The parts of a light sample: a tuple or list (wi, pdf, L[, distance]), or a dict of those keys.
+std::vector<py::object> light_sample_parts(const py::object& r, const std::string& what) {
+    static const char* const kKeys[] = {"wi", "pdf", "L", "distance"};
+    std::vector<py::object> parts(4);
+    if (py::isinstance<py::dict>(r)) {
+        const auto d = r.cast<py::dict>();
+        for (std::size_t k = 0; k < 4; ++k)
+            if (d.contains(kKeys[k])) parts[k] = d[kKeys[k]];
+    } else if ((py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) && py::len(r) >= 3 && py::len(r) <= 4) {
+        for (std::size_t k = 0; k < py::len(r); ++k) parts[k] = r[py::int_(k)];
+    }
+    if (!parts[0] || !parts[1] || !parts[2])
+        throw PythonCallError(fmt::format("{} returned a {}; a light with L must return (wi, pdf, L[, distance]) or a "
+                                          "dict with keys wi, pdf, L (and distance)",
+                                          what, py::str(r.get_type()).cast<std::string>()));
+    return parts;
+}
+
+}  // namespace
+
+void PythonLightCase::sample_light(std::span<const WarpInput> in, std::span<LightRecord> out) const {
+    const CallGil gil;
+    const std::size_t n = in.size();
+    const std::string what = name() + ": sample";
+    const Vector3f p = ref();
+    const py::object r = call(parts_.sample, what, vector3({p.x, p.y, p.z}), inputs_array(in, InputKind::Uniform2D));
+    const std::vector<py::object> parts = light_sample_parts(r, what);
+    const std::vector<double> wi = read_array(parts[0], n, 3, what + " (wi)");
+    const std::vector<double> pdf = read_array(parts[1], n, 1, what + " (pdf)");
+    const std::vector<double> L = read_array(parts[2], n, 1, what + " (L)");
+    const std::vector<double> d = parts[3] ? read_array(parts[3], n, 1, what + " (distance)") : std::vector<double>{};
+    for (std::size_t k = 0; k < n; ++k)
+        out[k] = {{static_cast<float>(wi[3 * k]), static_cast<float>(wi[3 * k + 1]), static_cast<float>(wi[3 * k + 2])},
+                  static_cast<float>(pdf[k]), static_cast<float>(L[k]), d.empty() ? 0.0f : static_cast<float>(d[k])};
+}
+
+std::vector<double> PythonLightCase::call_directions(const PyRef& part, const char* part_name,
+                                                     std::span<const WarpOutput> wi) const {
+    const CallGil gil;
+    const std::string what = name() + ": " + part_name;
+    const Vector3f p = ref();
+    return read_array(call(part, what, vector3({p.x, p.y, p.z}), points_array(wi, 3)), wi.size(), 1, what);
+}
+
+void PythonLightCase::radiance(std::span<const WarpOutput> wi, std::span<double> out) const {
+    const std::vector<double> v = call_directions(parts_.L, "L", wi);
+    std::copy(v.begin(), v.end(), out.begin());
+}
+
+void PythonLightCase::pdf(std::span<const WarpOutput> x, std::span<double> out) const {
+    const std::vector<double> v = call_directions(parts_.pdf, "pdf", x);
+    std::copy(v.begin(), v.end(), out.begin());
+}
+
+LightSpec::LightSpec(WarpCaseInfo info, LightParts parts, std::vector<std::array<float, 3>> reference_points,
+                     std::array<float, 3> normal)
+    : info_(std::move(info)), parts_(std::move(parts)), reference_points_(std::move(reference_points)),
+      normal_(normal) {
+    if (reference_points_.empty()) throw std::invalid_argument("light " + info_.family + ": give at least one reference point");
+    (void)make();
+}
+
+std::vector<std::unique_ptr<WarpCase>> LightSpec::make() const {
+    std::vector<std::unique_ptr<WarpCase>> cases;
+    for (const auto& p : reference_points_) {
+        WarpCaseInfo info = info_;
+        info.params.push_back({"px", p[0]});
+        info.params.push_back({"py", p[1]});
+        info.params.push_back({"pz", p[2]});
+        const LightClaims claims{.ref = {p[0], p[1], p[2]}, .normal = {normal_[0], normal_[1], normal_[2]}};
+        cases.push_back(std::make_unique<PythonLightCase>(std::move(info), claims, parts_));
+        validate_case(*cases.back());
+    }
+    return cases;
+}
+
 std::vector<std::unique_ptr<WarpCase>> RegisteredSpec::make() const {
     std::vector<std::unique_ptr<WarpCase>> cases;
     cases.push_back(std::make_unique<ForwardingCase>(warp_));

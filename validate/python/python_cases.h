@@ -14,7 +14,9 @@
 //           u: float32 (n,) in 1D, (n, 2) in 2D; raw bits uint32/uint64 (n,).
 //           x: (n,) on a line, (n, 2) in the plane, (n, 3) on the sphere.
 //   light:  the same with the reference point first: sample(ref, u) ->
-//           (wi, pdf), pdf(ref, wi) -> (n,), ref a float32 array (3,).
+//           (wi, pdf), pdf(ref, wi) -> (n,), ref a float32 array (3,); with
+//           its own intersection L(ref, wi) -> (n,), a light case proper
+//           (light_case.h): sample(ref, u) -> (wi, pdf, L[, distance]).
 //   BSDF:   sample(wo, uc, u) -> (wi, f, pdf[, flags[, eta]]) (a phase
 //           function: sample(wo, u)), f(wo, wi) -> (n,), pdf(wo, wi) -> (n,):
 //           wo (3,) in sample, wo and wi (n, 3) in f and pdf (f is also called
@@ -29,6 +31,7 @@
 #include <vector>
 
 #include "validate/api/bsdf_case.h"
+#include "validate/api/light_case.h"
 #include "validate/api/warp_case.h"
 #include "validate/python/python_calls.h"
 
@@ -76,6 +79,29 @@ private:
     BsdfParts parts_;
 };
 
+struct LightParts {
+    PyRef sample, pdf, L;
+};
+
+/// A light of Python callables seen from one reference point, with its own
+/// intersection L(ref, wi): the light checks take it.
+class PythonLightCase final : public LightCase {
+public:
+    PythonLightCase(WarpCaseInfo info, LightClaims claims, LightParts parts);
+
+    void sample_light(std::span<const WarpInput> in, std::span<LightRecord> out) const override;
+    void radiance(std::span<const WarpOutput> wi, std::span<double> out) const override;
+    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override;
+    void invert(std::span<const WarpOutput>, std::span<WarpInput>) const override {
+        throw std::logic_error("light case " + name() + " has no inverse");
+    }
+
+private:
+    std::vector<double> call_directions(const PyRef& part, const char* part_name, std::span<const WarpOutput> wi) const;
+
+    LightParts parts_;
+};
+
 /// What a Python object that describes cases makes: one case, or one per
 /// point of its grid (a BSDF's outgoing directions, a light's reference points).
 class CaseSpec {
@@ -98,6 +124,20 @@ private:
     WarpSignature signature_;
     WarpParts parts_;
     std::vector<std::array<float, 3>> reference_points_;
+};
+
+/// A light of Python callables with L, at each of its reference points.
+class LightSpec final : public CaseSpec {
+public:
+    LightSpec(WarpCaseInfo info, LightParts parts, std::vector<std::array<float, 3>> reference_points,
+              std::array<float, 3> normal);
+    std::vector<std::unique_ptr<WarpCase>> make() const override;
+
+private:
+    WarpCaseInfo info_;
+    LightParts parts_;
+    std::vector<std::array<float, 3>> reference_points_;
+    std::array<float, 3> normal_;
 };
 
 /// A BSDF of Python callables over a list of outgoing directions (theta_o in

@@ -74,6 +74,21 @@ def light_sample_uniform_angle(ref, u):
     return _light_sample(ref, u, True)
 
 
+RADIANCE = 2.0
+
+
+def light_radiance(ref, wi):
+    """The light's own intersection: its radiance along wi, 0 where the ray misses it."""
+    return np.where(light_pdf(ref, wi) > 0, RADIANCE, 0.0)
+
+
+def _with_radiance(sample):
+    def sample_with_l(ref, u):
+        wi, pdf = sample(ref, u)
+        return wi, pdf, np.full(len(wi), RADIANCE)
+    return sample_with_l
+
+
 REFLECTANCE = 0.8
 
 
@@ -117,6 +132,18 @@ def lights():
                        description="sphere light sampled uniformly in the cone it subtends")
     wrong = wc.Light("numpy_sphere_light_uniform_angle", light_sample_uniform_angle, pdf=light_pdf,
                      points=POINTS[:1], description="the cone's angle drawn uniformly instead of its cosine")
+    return correct, wrong
+
+
+def lights_with_radiance():
+    """The same light with its radiance and its own intersection L(ref, wi), seen from a
+    surface whose normal is +z: a light case, which the light checks take. Its twin
+    draws the cone's angle uniformly, which chi2 and the irradiance estimate see."""
+    correct = wc.Light("numpy_sphere_light_l", _with_radiance(light_sample), pdf=light_pdf, L=light_radiance,
+                       normal=(0, 0, 1), points=POINTS[:1], description="sphere light with its radiance")
+    wrong = wc.Light("numpy_sphere_light_l_uniform_angle", _with_radiance(light_sample_uniform_angle), pdf=light_pdf,
+                     L=light_radiance, normal=(0, 0, 1), points=POINTS[:1],
+                     description="the cone's angle drawn uniformly instead of its cosine")
     return correct, wrong
 
 

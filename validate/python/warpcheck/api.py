@@ -35,17 +35,26 @@ def Warp(family, sample, *, pdf=None, invert=None, eval=None, domain=None, param
                       inversion=inversion)
 
 
-def Light(family, sample, *, pdf=None, points, params=None, description="", domain=None, support_measure=0.0):
+def Light(family, sample, *, pdf=None, points, params=None, description="", domain=None, support_measure=0.0,
+          L=None, normal=None):
     """A light sampler at each of `points` (reference points, (x, y, z)): one case per point,
-    named family[...,px=..,py=..,pz=..], checked as a warp on the sphere that returns its pdf.
+    named family[...,px=..,py=..,pz=..].
 
-    sample(ref, u) -> (wi, pdf): ref float32 (3,), u float32 (n, 2), wi (n, 3) unit
-    directions, pdf (n,) per solid angle; pdf(ref, wi) -> (n,).
+    Without L: sample(ref, u) -> (wi, pdf), checked as a warp on the sphere that returns its
+    pdf: ref float32 (3,), u float32 (n, 2), wi (n, 3) unit directions, pdf (n,) per solid
+    angle; pdf(ref, wi) -> (n,).
+
+    With L(ref, wi) -> (n,), the light's own intersection (the radiance arriving along wi, 0
+    on a miss): a light case as C++'s make_light_case makes, which the light checks take
+    (light_radiance, light_support, light_irradiance). Then sample(ref, u) returns
+    (wi, pdf, L[, distance]) or a dict of those keys, pdf is required, and `normal`
+    (x, y, z) is the reference surface's unit normal (None: a point in a medium).
     """
     return _core.light(family, sample, pdf=pdf, points=[tuple(map(float, p)) for p in points],
                        params=dict(params or {}), description=description,
                        domain=domain if domain is not None else _core.Domain.sphere(),
-                       support_measure=support_measure)
+                       support_measure=support_measure, L=L,
+                       normal=None if normal is None else tuple(map(float, normal)))
 
 
 def Bsdf(family, sample, *, f, pdf, theta_o, params=None, description="", lobes=("reflection", "continuous"),
