@@ -25,8 +25,7 @@ SphereIntegral integrate_sphere(const std::vector<chi2::SamplePoint>& pilot, dou
                                                       std::span<double> out) {
         std::vector<WarpOutput> x(points.size());
         for (std::size_t i = 0; i < points.size(); ++i) x[i] = to_warp_output(points[i]);
-        integrand(x, out);
-        for (double& v : out) v /= scale;
+        integrand(x, out, scale);
     };
     chi2::QuadratureOptions q;
     q.sample_count = ctx.options().samples;

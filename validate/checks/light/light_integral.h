@@ -36,8 +36,11 @@ struct SphereIntegral {
     chi2::PilotRefinement refinement;
 };
 
-/// The integrand in batches: out[i] = g(wi[i]).
-using DirectionIntegrand = std::function<void(std::span<const WarpOutput>, std::span<double>)>;
+/// The integrand in batches, divided by `scale`: out[i] = g(wi[i]) / scale.
+/// Each integrand divides where its own rounding is least (the irradiance's
+/// L (|cos| / scale), as it always has: a reordering moves the adaptive
+/// quadrature's refinement, and with it the figures, by a few evaluations).
+using DirectionIntegrand = std::function<void(std::span<const WarpOutput>, std::span<double>, double scale)>;
 
 /// The integral of `integrand` over the sphere (verified, with its float
 /// noise): on kIntegralCells uniform cells, or, where `pilot` (the sampler's

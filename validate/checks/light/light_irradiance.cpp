@@ -74,9 +74,9 @@ SphereIntegral integrate(const LightCase& light, const CheckContext& ctx) {
         pilot.push_back(r.wi);
         pilot_sum += static_cast<double>(r.L) * light.cosine(r.wi) / r.pdf;
     }
-    const DirectionIntegrand integrand = [&light](std::span<const WarpOutput> x, std::span<double> out) {
+    const DirectionIntegrand integrand = [&light](std::span<const WarpOutput> x, std::span<double> out, double scale) {
         light.radiance(x, out);
-        for (std::size_t i = 0; i < x.size(); ++i) out[i] *= light.cosine(x[i]);
+        for (std::size_t i = 0; i < x.size(); ++i) out[i] *= light.cosine(x[i]) / scale;
     };
     return integrate_sphere(pilot, pilot_sum / static_cast<double>(pilot_count), integrand, ctx);
 }

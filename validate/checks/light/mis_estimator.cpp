@@ -103,8 +103,9 @@ SphereIntegral integrate(const MisCase& mis, const CheckContext& ctx) {
     double sum = 0.0;
     for (double v : values)
         if (std::isfinite(v)) sum += v;
-    const DirectionIntegrand integrand = [&mis](std::span<const WarpOutput> x, std::span<double> out) {
+    const DirectionIntegrand integrand = [&mis](std::span<const WarpOutput> x, std::span<double> out, double scale) {
         mis.integrand(x, out);
+        for (double& v : out) v /= scale;
     };
     return integrate_sphere(pilot, values.empty() ? 1.0 : sum / static_cast<double>(values.size()), integrand, ctx);
 }
