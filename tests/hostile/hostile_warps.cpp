@@ -17,7 +17,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -25,6 +27,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <utility>
@@ -218,6 +221,69 @@ void add_impolite(warpcheck::Registry& registry) {
                                                     .with_invert([](float x) { return 0.5f * x; })));
 }
 
+/// A sphere light 4 away at theta 30, seen from the origin (normal +z): the
+/// misbehaving lights are made of it.
+struct Sphere {
+    warpcheck::Vector3f c{2.0f, 0.0f, 3.4641016f};
+    float omc_max() const { return 1.0f / 16.0f / (1.0f + std::sqrt(1.0f - 1.0f / 16.0f)); }
+    bool hits(warpcheck::Vector3f wi) const {
+        const float b = c.x * wi.x + c.y * wi.y + c.z * wi.z;
+        return b > 0 && 16.0f - b * b <= 1.0f;
+    }
+    warpcheck::LightSample sample(warpcheck::Vector3f, warpcheck::Point2f u) const {
+        // Around the axis a = c / 4 = (1/2, 0, sqrt(3)/2), with t = (sqrt(3)/2, 0, -1/2) and b = (0, 1, 0).
+        const float omc = u.x * omc_max(), st = std::sqrt(omc * (2 - omc)), phi = 6.2831853f * u.y;
+        const float x = st * std::cos(phi), y = st * std::sin(phi), z = 1 - omc;
+        return {{0.8660254f * x + 0.5f * z, y, -0.5f * x + 0.8660254f * z}, 1 / (6.2831853f * omc_max()), 2.0f, 3.0f};
+    }
+    float pdf(warpcheck::Vector3f, warpcheck::Vector3f wi) const { return hits(wi) ? 1 / (6.2831853f * omc_max()) : 0.0f; }
+    float L(warpcheck::Vector3f, warpcheck::Vector3f wi) const { return hits(wi) ? 2.0f : 0.0f; }
+};
+
+/// Its own intersection throws.
+struct ThrowingLight : Sphere {
+    float L(warpcheck::Vector3f, warpcheck::Vector3f) const { throw std::runtime_error("hostile: no light here"); }
+};
+
+/// Its samples return a NaN pdf for a tenth of the inputs.
+struct NanPdfLight : Sphere {
+    warpcheck::LightSample sample(warpcheck::Vector3f ref, warpcheck::Point2f u) const {
+        warpcheck::LightSample s = Sphere::sample(ref, u);
+        if (u.x < 0.1f) s.pdf = std::nanf("");
+        return s;
+    }
+};
+
+struct Diffuse {
+    warpcheck::BsdfFlags flags() const { return warpcheck::BsdfFlags::Reflection | warpcheck::BsdfFlags::Continuous; }
+    float f(warpcheck::Vector3f wo, warpcheck::Vector3f wi) const { return wo.z * wi.z > 0 ? 0.5f / 3.1415927f : 0.0f; }
+    float pdf(warpcheck::Vector3f wo, warpcheck::Vector3f wi) const {
+        return wo.z * wi.z > 0 ? std::abs(wi.z) / 3.1415927f : 0.0f;
+    }
+    warpcheck::BsdfSample sample(warpcheck::Vector3f wo, float, warpcheck::Point2f u) const {
+        const float r = std::sqrt(u.x), phi = 6.2831853f * u.y;
+        const warpcheck::Vector3f wi{r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1 - u.x))};
+        const float p = pdf(wo, wi);
+        if (!(p > 0)) return {};
+        return {wi, f(wo, wi), p, flags()};
+    }
+};
+
+void add_lights(warpcheck::Registry& registry) {
+    constexpr warpcheck::LightClaims at{.ref = {0, 0, 0}, .normal = {0, 0, 1}};
+    registry.add_case(warpcheck::make_light_case({.family = "hostile_light_throws"}, at, ThrowingLight{}));
+    registry.add_case(warpcheck::make_light_case({.family = "hostile_light_nan_pdf"}, at, NanPdfLight{}));
+    // An MIS sum whose light pdf is NaN on half the sphere.
+    warpcheck::MisClaims claims;
+    claims.pdfs.lights.push_back([](warpcheck::Vector3f ref, warpcheck::Vector3f wi) {
+        return wi.y > 0 ? std::nanf("") : Sphere{}.pdf(ref, wi);
+    });
+    registry.add_case(warpcheck::make_mis_case(
+        {.family = "hostile_mis_nan_pdf"}, std::move(claims),
+        warpcheck::make_bsdf_case({.family = "diffuse"}, {.wo = warpcheck::bsdf_direction(40, 180)}, Diffuse{}),
+        warpcheck::make_light_case({.family = "sphere"}, at, Sphere{})));
+}
+
 }  // namespace
 
 void warpcheck_register(warpcheck::Registry& registry) {
@@ -228,4 +294,5 @@ void warpcheck_register(warpcheck::Registry& registry) {
     add_healthy(registry, "healthy_params", {{"a", 1}});
     add_healthy(registry, "healthy_params", {{"a", 1}, {"b", 3}});
     add_healthy(registry, "healthy_b");
+    add_lights(registry);
 }

@@ -16,6 +16,8 @@
 #   memory        the memory budget is the run's: two workers share it
 #   no_isolation  --no-isolation: a warp's chdir() does not move the reports,
 #                 its exit(0) is reported (status 1), its prints stay off stdout
+#   lights        a light that throws: ERROR rows naming it; NaN pdfs of a
+#                 light and of an MIS sum fail the checks that meet them
 #   cli           control bytes in a case name never reach the terminal raw;
 #                 --list-jobs > /dev/full fails; --filter '[a=1,b=3]' is one
 #                 pattern; SIGHUP/SIGQUIT during a report's write leave no
@@ -248,6 +250,28 @@ scenario_cli() {
     [ "$(cat "$work/out/report.json")" = old ] || fail "signal $sig during a write changed the old report"
   done
   passed "cli: names escaped; /dev/full is an error; '[a=1,b=3]' is one pattern; HUP, INT, QUIT, TERM during a write leave no temporary file"
+}
+
+scenario_lights() {
+  # A light whose own intersection throws, a light that returns a NaN pdf, and
+  # an MIS sum whose light pdf is NaN on half the sphere: each check that
+  # calls the throwing part is an ERROR row naming the exception; every check
+  # that meets a NaN fails, none passes over it.
+  "$exe" --filter hostile_light_throws --filter hostile_light_nan_pdf --filter hostile_mis_nan_pdf --samples 20000 \
+    --threads 2 --time-budget 10 --color never --wide > "$work/table.txt" 2> "$work/stderr.txt"
+  local status=$?
+  [ "$status" -eq 1 ] || fail "exit status $status, expected 1"
+  for check in light_radiance light_support light_irradiance; do
+    grep -E "^  ERROR $check hostile_light_throws: .*hostile: no light here" "$work/table.txt" > /dev/null ||
+      fail "$check of the throwing light is not an ERROR naming its exception"
+  done
+  for check in sample_pdf light_irradiance; do
+    grep -E "^FAIL +$check +hostile_light_nan_pdf" "$work/table.txt" > /dev/null || fail "$check passed a NaN pdf"
+  done
+  for check in consistency sample_pdf mis_weights mis_estimator; do
+    grep -E "^FAIL +$check +hostile_mis_nan_pdf" "$work/table.txt" > /dev/null || fail "$check passed a NaN MIS pdf"
+  done
+  passed "lights: a throwing light's checks are ERROR rows naming the exception; NaN pdfs fail sample_pdf, light_irradiance and the MIS checks"
 }
 
 "scenario_$scenario"
