@@ -69,8 +69,12 @@ double bias_for_power(const CheckContext& ctx, const chi2::MeanTest& t);
 /// explained by `invalid_why`). `extra` figures stand before the pilot's.
 /// what: the integral's name, estimator: the estimator's, for the summary
 /// and the message.
-CheckResult judge_estimate(const chi2::Moments& moments, uint64_t invalid, const SphereIntegral& reference,
-                           const CheckContext& ctx, const char* what, const char* estimator, const char* invalid_why,
-                           std::vector<Figure> extra = {});
+/// The row also carries its point on the family's plot (reports/family_plots.h):
+/// the estimate over the integral, minus 1, with its 99% interval, against
+/// the case's `theta` (the light's direction from the normal) where it has
+/// one, its other parameters naming the curve.
+CheckResult judge_estimate(const WarpCase& warp, const chi2::Moments& moments, uint64_t invalid,
+                           const SphereIntegral& reference, const CheckContext& ctx, const char* what,
+                           const char* estimator, const char* invalid_why, std::vector<Figure> extra = {});
 
 }  // namespace warpcheck::light

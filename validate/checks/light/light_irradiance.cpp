@@ -96,7 +96,7 @@ public:
         const LightCase& light = *as_light(warp);
         const Estimates e = estimate(light, ctx);
         const SphereIntegral ref = integrate(light, ctx);
-        return judge_estimate(e.moments, e.invalid, ref, ctx, light.on_surface() ? "irradiance" : "integral of L",
+        return judge_estimate(light, e.moments, e.invalid, ref, ctx, light.on_surface() ? "irradiance" : "integral of L",
                               "L |cos| / pdf", "L cos / pdf: a pdf of 0 or NaN with light, or a non-finite L");
     }
 };

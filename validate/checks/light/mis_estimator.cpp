@@ -132,7 +132,7 @@ public:
             parts.push_back({s == 0 ? std::string("bsdf_part") : fmt::format("light_part_{}", s), e.part_sums[s] / n});
             named += fmt::format("{}{} {:.6g}", s == 0 ? "" : ", ", mis.strategy_name(s), e.part_sums[s] / n);
         }
-        CheckResult r = judge_estimate(e.moments, e.invalid, ref, ctx, "integral of f L |cos|", "MIS estimate",
+        CheckResult r = judge_estimate(mis, e.moments, e.invalid, ref, ctx, "integral of f L |cos|", "MIS estimate",
                                        "weight f L cos / pdf: a pdf of 0 or NaN with light, or a non-finite value",
                                        std::move(parts));
         r.message += "; each strategy's weighted part: " + named;
