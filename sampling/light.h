@@ -15,7 +15,9 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <cstddef>
 #include <limits>
 #include <numbers>
@@ -144,6 +146,27 @@ private:
     Vector3f p0_, e1_, e2_, n_;
     float twice_area_ = 0.0f, area_ = 0.0f;
 };
+
+/// The last view of a light that a thread computed, by the light's geometry
+/// and the reference point (N floats, compared bit for bit, never by the
+/// light's address alone): a check calls pdf() millions of times from one
+/// reference point, and each view costs a few dozen nanoseconds of
+/// trigonometry in double. The view is a pure function of the key, so the
+/// memo changes no result; each thread has its own, so it needs no lock.
+template <typename View, std::size_t N, typename Compute>
+const View& memo_view(const std::array<float, N>& key, Compute compute) {
+    thread_local struct {
+        bool valid = false;
+        std::array<float, N> key{};
+        View view{};
+    } memo;
+    if (!memo.valid || std::memcmp(memo.key.data(), key.data(), sizeof(float) * N) != 0) {
+        memo.view = compute();
+        memo.key = key;
+        memo.valid = true;
+    }
+    return memo.view;
+}
 
 /// A 3-vector of doubles for the spherical triangle's trigonometry (see there).
 struct Vec3d {
@@ -360,7 +383,13 @@ private:
         bool by_solid_angle = false;
     };
 
-    View view_from(Vector3f ref) const {
+    const View& view_from(Vector3f ref) const {
+        const Vector3f a = tri_.p0(), b = tri_.p1(), c = tri_.p2();
+        return detail::memo_view<View>(std::array<float, 12>{a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, ref.x, ref.y, ref.z},
+                                       [&] { return compute_view(ref); });
+    }
+
+    View compute_view(Vector3f ref) const {
         using namespace detail;
         const Vec3d o = to_double(ref);
         const Vec3d pa = to_double(tri_.p0()) - o, pb = to_double(tri_.p1()) - o, pc = to_double(tri_.p2()) - o;
@@ -420,6 +449,192 @@ private:
 
     detail::Triangle tri_;
     float Le_;
+};
+
+/// A rectangle of radiance Le (both sides emit) with a corner and two
+/// perpendicular edges, sampled uniformly by SOLID ANGLE at ref (Ureña,
+/// Fajardo and King 2013, "An area-preserving parametrization for spherical
+/// rectangles"): density 1 / Omega. As the spherical triangle, it is sampled
+/// by area outside [kMinSolidAngle, kMaxSolidAngle] (the density then the
+/// area density converted to solid angle), and pdf() applies the same rule,
+/// decided by Omega at ref alone. The map runs in double, for the reasons the
+/// triangle's does.
+class SphericalRectangleLight {
+public:
+    static constexpr double kMinSolidAngle = SphericalTriangleLight::kMinSolidAngle;
+    static constexpr double kMaxSolidAngle = SphericalTriangleLight::kMaxSolidAngle;
+
+    /// The rectangle corner + a ex + b ey, a and b in [0, 1]; ex and ey
+    /// perpendicular to within 1e-6 of the product of their lengths.
+    SphericalRectangleLight(Vector3f corner, Vector3f ex, Vector3f ey, float Le)
+        : p_(corner), ex_(ex), ey_(ey), Le_(Le) {
+        detail::require_finite(corner, "spherical_rectangle_light: corner");
+        detail::require_finite(ex, "spherical_rectangle_light: ex");
+        detail::require_finite(ey, "spherical_rectangle_light: ey");
+        detail::require_radiance(Le, "spherical_rectangle_light");
+        const float lx = length(ex), ly = length(ey);
+        if (!(lx > 0.0f && ly > 0.0f) || !std::isfinite(lx * ly))
+            throw std::invalid_argument("spherical_rectangle_light: the edges must have finite nonzero lengths");
+        if (!(std::abs(dot(ex, ey)) <= 1e-6f * lx * ly))
+            throw std::invalid_argument("spherical_rectangle_light: the edges must be perpendicular");
+        n_ = normalize(cross(ex, ey));
+        area_ = lx * ly;
+        inv_lx2_ = 1.0f / (lx * lx);
+        inv_ly2_ = 1.0f / (ly * ly);
+    }
+
+    LightSample sample(Vector3f ref, Point2f u) const {
+        if (dot(n_, p_ - ref) == 0.0f) return {};
+        const View view = view_from(ref);
+        if (!view.by_solid_angle) return sample_by_area(ref, u);
+        const detail::Vec3d w = urena(view, u);
+        const Vector3f wi{static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z)};
+        const float cos_n = dot(wi, n_);
+        return {wi, static_cast<float>(1.0 / view.omega), Le_, cos_n != 0.0f ? dot(n_, p_ - ref) / cos_n : 0.0f};
+    }
+
+    float pdf(Vector3f ref, Vector3f wi) const {
+        const detail::RayHit h = intersect(ref, wi);
+        if (!h.hit()) return 0.0f;
+        const View view = view_from(ref);
+        return view.by_solid_angle ? static_cast<float>(1.0 / view.omega) : h.t * h.t / (h.abs_cos * area_);
+    }
+
+    float L(Vector3f ref, Vector3f wi) const { return intersect(ref, wi).hit() ? Le_ : 0.0f; }
+
+    /// The u that sample maps to wi: the map run backwards, defined for any
+    /// direction towards the rectangle's plane (its point there clamped into
+    /// the rectangle), so a sample rounded a hair off an edge comes back to
+    /// its u; in the area regime, the edge fractions of the hit; (0, 0) for a
+    /// direction away from the plane.
+    Point2f invert(Vector3f ref, Vector3f wi) const {
+        if (dot(n_, p_ - ref) == 0.0f || !(std::isfinite(wi.x) && std::isfinite(wi.y) && std::isfinite(wi.z)))
+            return {};
+        const View view = view_from(ref);
+        const float top = kOneMinusEpsilon;
+        if (!view.by_solid_angle) {
+            const detail::RayHit h = intersect(ref, wi);
+            return h.hit() ? Point2f{std::clamp(h.b1, 0.0f, top), std::clamp(h.b2, 0.0f, top)} : Point2f{};
+        }
+        return urena_inverse(view, detail::normalize(detail::to_double(wi)));
+    }
+
+private:
+    /// The rectangle in a frame at ref: x and y along the edges, z towards
+    /// the side ref is on (so that the rectangle lies at z0 < 0), the corners
+    /// at (x0 or x1, y0 or y1, z0); the inner normals of the four planes
+    /// through ref and an edge, the solid angle and the constants of the map.
+    struct View {
+        detail::Vec3d x, y, z;
+        double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0, z0 = 0.0;
+        detail::Vec3d n0, n2;
+        double b0 = 0.0, b1 = 0.0, k = 0.0, omega = 0.0;
+        bool by_solid_angle = false;
+    };
+
+    const View& view_from(Vector3f ref) const {
+        return detail::memo_view<View>(std::array<float, 12>{p_.x, p_.y, p_.z, ex_.x, ex_.y, ex_.z, ey_.x, ey_.y, ey_.z,
+                                                             ref.x, ref.y, ref.z},
+                                       [&] { return compute_view(ref); });
+    }
+
+    View compute_view(Vector3f ref) const {
+        using namespace detail;
+        View v;
+        const Vec3d ex = to_double(ex_), ey = to_double(ey_);
+        v.x = normalize(ex);
+        v.y = normalize(ey);
+        v.z = cross(v.x, v.y);
+        const Vec3d d = to_double(p_) - to_double(ref);
+        v.x0 = dot(d, v.x);
+        v.y0 = dot(d, v.y);
+        v.z0 = dot(d, v.z);
+        if (v.z0 > 0.0) {
+            v.z0 = -v.z0;
+            v.z = -1.0 * v.z;
+        }
+        v.x1 = v.x0 + length(ex);
+        v.y1 = v.y0 + length(ey);
+        // The planes through ref and the edges y = y0, x = x1, y = y1, x = x0.
+        v.n0 = normalize(Vec3d{0.0, v.z0, -v.y0});
+        const Vec3d n1 = normalize(Vec3d{-v.z0, 0.0, v.x1});
+        v.n2 = normalize(Vec3d{0.0, -v.z0, v.y1});
+        const Vec3d n3 = normalize(Vec3d{v.z0, 0.0, -v.x0});
+        // The rectangle's angles, each between two of the planes (atan2: accurate at every angle).
+        const double g2 = angle_between(-1.0 * v.n2, n3), g3 = angle_between(-1.0 * n3, v.n0);
+        v.b0 = v.n0.z;
+        v.b1 = v.n2.z;
+        v.k = 2.0 * std::numbers::pi - g2 - g3;
+        v.omega = sub_angle(v, n1);
+        v.by_solid_angle = v.omega >= kMinSolidAngle && v.omega <= kMaxSolidAngle;
+        return v;
+    }
+
+    /// The solid angle of the part x0 <= x <= (the edge whose plane's normal is n1).
+    static double sub_angle(const View& v, const detail::Vec3d& n1) {
+        return detail::angle_between(-1.0 * v.n0, n1) + detail::angle_between(-1.0 * n1, v.n2) - v.k;
+    }
+
+    /// Ureña et al.'s map: u.x picks xu so that the part x0 <= x <= xu has
+    /// solid angle u.x Omega; u.y picks yv uniformly in the cosine-like h of
+    /// the column at xu, which is uniform in solid angle along it.
+    static detail::Vec3d urena(const View& v, Point2f u) {
+        using namespace detail;
+        const double au = static_cast<double>(u.x) * v.omega + v.k;
+        const double fu = (std::cos(au) * v.b0 - v.b1) / std::sin(au);
+        const double cu = std::clamp(std::copysign(1.0, fu) / std::sqrt(fu * fu + v.b0 * v.b0), -1.0, 1.0);
+        const double xu = std::clamp(-(cu * v.z0) / std::sqrt(std::max(0.0, (1.0 - cu) * (1.0 + cu))), v.x0, v.x1);
+        const double dd = std::sqrt(xu * xu + v.z0 * v.z0);
+        const double h0 = v.y0 / std::sqrt(dd * dd + v.y0 * v.y0), h1 = v.y1 / std::sqrt(dd * dd + v.y1 * v.y1);
+        const double hv = h0 + static_cast<double>(u.y) * (h1 - h0);
+        const double yv = hv * hv < 1.0 - 1e-12 ? hv * dd / std::sqrt((1.0 - hv) * (1.0 + hv)) : v.y1;
+        return normalize(xu * v.x + yv * v.y + v.z0 * v.z);
+    }
+
+    /// The map backwards: wi's point (xu, yv) on the rectangle's plane, u.x
+    /// the solid angle of the part x0 <= x <= xu over Omega, u.y where yv's h
+    /// lies between the column's ends.
+    static Point2f urena_inverse(const View& v, detail::Vec3d w) {
+        using namespace detail;
+        const double wz = dot(w, v.z);
+        if (!(wz < 0.0)) return {};
+        const double t = v.z0 / wz;
+        const double xu = std::clamp(t * dot(w, v.x), v.x0, v.x1), yv = std::clamp(t * dot(w, v.y), v.y0, v.y1);
+        const double ux = sub_angle(v, normalize(Vec3d{-v.z0, 0.0, xu})) / v.omega;
+        const double dd = std::sqrt(xu * xu + v.z0 * v.z0);
+        const double h0 = v.y0 / std::sqrt(dd * dd + v.y0 * v.y0), h1 = v.y1 / std::sqrt(dd * dd + v.y1 * v.y1);
+        const double uy = (yv / std::sqrt(dd * dd + yv * yv) - h0) / (h1 - h0);
+        const double top = static_cast<double>(kOneMinusEpsilon);
+        return {static_cast<float>(std::clamp(ux, 0.0, top)), static_cast<float>(std::clamp(uy, 0.0, top))};
+    }
+
+    /// Uniform by area, converted to solid angle at the point drawn.
+    LightSample sample_by_area(Vector3f ref, Point2f u) const {
+        const Vector3f d = (p_ + u.x * ex_ + u.y * ey_) - ref;
+        const float dist2 = dot(d, d);
+        const float dist = std::sqrt(dist2);
+        const Vector3f wi = (1.0f / dist) * d;
+        const float abs_cos = std::abs(dot(n_, wi));
+        if (!(dist > 0.0f && abs_cos > 0.0f)) return {};
+        return {wi, dist2 / (abs_cos * area_), Le_, dist};
+    }
+
+    /// The ray against the rectangle's plane, then the hit's edge fractions
+    /// (in b1 and b2), both in [0, 1] on a hit.
+    detail::RayHit intersect(Vector3f ref, Vector3f wi) const {
+        const float h = dot(n_, p_ - ref);
+        const float cos_n = dot(wi, n_);
+        if (h == 0.0f || cos_n == 0.0f) return {};
+        const float t = h / cos_n;
+        if (!(t > 0.0f)) return {};
+        const Vector3f q = (ref + t * wi) - p_;
+        const float a = dot(q, ex_) * inv_lx2_, b = dot(q, ey_) * inv_ly2_;
+        if (!(a >= 0.0f && a <= 1.0f && b >= 0.0f && b <= 1.0f)) return {};
+        return {t, std::abs(cos_n), a, b};
+    }
+
+    Vector3f p_, ex_, ey_, n_{};
+    float Le_, area_ = 0.0f, inv_lx2_ = 0.0f, inv_ly2_ = 0.0f;
 };
 
 /// A disk of radius r around center, facing along normal (both sides emit),

@@ -109,6 +109,13 @@ void register_planar_lights(Registry& registry) {
                   "two-sided triangle light sampled uniformly by solid angle (Arvo)", p.params(),
                   SphericalTriangleLight(a, b, c, kLe));
     }
+    for (const Placement& p : placements) {
+        const Vector3f corner = p.point(-0.5, -0.4);
+        const Vector3f ex = p.point(0.6, -0.4) - corner, ey = p.point(-0.5, 0.5) - corner;
+        add_light(registry, "spherical_rectangle_light",
+                  "two-sided rectangle light sampled uniformly by solid angle (Urena et al. 2013)", p.params(),
+                  SphericalRectangleLight(corner, ex, ey, kLe));
+    }
     for (const Placement& p : {Placement{2, 0, 0}, placements[0], placements[2]})
         add_light(registry, "disk_light", "two-sided disk light of radius 0.5 sampled by area, converted to solid angle",
                   p.params(), DiskLight(p.point(0.0, 0.0), p.normal(), 0.5f, kLe));

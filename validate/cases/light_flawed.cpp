@@ -140,6 +140,30 @@ std::unique_ptr<WarpCase> spherical_triangle_by_area() {
                                 SphericalTriangleLight(kTriangle[0], kTriangle[1], kTriangle[2], kLe)});
 }
 
+/// A rectangle drawn by area while it claims the solid-angle density 1 /
+/// Omega: the same reversion, on the spherical rectangle.
+struct SphericalRectangleByArea {
+    Vector3f corner, ex, ey;
+    SphericalRectangleLight by_solid_angle;
+    LightSample sample(Vector3f ref, Point2f u) const {
+        const Vector3f d = (corner + u.x * ex + u.y * ey) - ref;
+        const float dist = length(d);
+        const Vector3f wi = (1.0f / dist) * d;
+        return {wi, by_solid_angle.pdf(ref, wi), kLe, dist};
+    }
+    float pdf(Vector3f ref, Vector3f wi) const { return by_solid_angle.pdf(ref, wi); }
+    float L(Vector3f ref, Vector3f wi) const { return by_solid_angle.L(ref, wi); }
+};
+
+std::unique_ptr<WarpCase> spherical_rectangle_by_area() {
+    // 2 from the origin at theta 45, facing it: 1.1 along (cos 45, 0, -sin 45), 0.9 along y.
+    const Vector3f corner{1.0606602f, -0.4f, 1.767767f}, ex{0.7778175f, 0.0f, -0.7778175f}, ey{0.0f, 0.9f, 0.0f};
+    return make_light_case(
+        flawed_info("spherical_rectangle_light_by_area", {{"distance", 2}, {"theta", 45}},
+                    "draws the rectangle by area but claims the solid-angle density 1 / Omega"),
+        kAtOrigin, SphericalRectangleByArea{corner, ex, ey, SphericalRectangleLight(corner, ex, ey, kLe)});
+}
+
 /// From inside a sphere light, the area density converted without the
 /// cosine at the light: dist^2 / (4 pi r^2), returned and from pdf().
 struct SphereInsideWithoutCosine {
@@ -293,6 +317,7 @@ std::vector<FlawedLight> light_flawed_catalogue() {
         {triangle_pdf_high_on_half, "chi2", "pdf 3% high on half of the triangle", {"light_irradiance"}},
         {triangle_pdf_tilted, "chi2", "pdf 3% high on half of the triangle, 3% low on the rest", {"light_irradiance"}},
         {spherical_triangle_by_area, "chi2", "drawn by area, claims 1 / Omega", {"light_irradiance"}},
+        {spherical_rectangle_by_area, "chi2", "rectangle drawn by area, claims 1 / Omega", {"light_irradiance"}},
         {sphere_inside_without_cosine, "chi2", "inside: area pdf converted without |cos|", {"light_irradiance"}},
         {environment_without_jacobian, "chi2", "environment map without the 1 / sin theta Jacobian",
          {"light_irradiance"}},
