@@ -59,6 +59,20 @@ struct RayHit {
     bool hit() const { return t > 0.0f; }
 };
 
+/// The sample towards a point drawn by area on a planar light (unit normal n,
+/// area A): the direction, the area density converted to solid angle at ref,
+/// dist^2 / (|cos at the light| A), and the distance; no sample where the
+/// point is ref or seen edge-on.
+inline LightSample toward_area_point(Vector3f ref, Vector3f point, Vector3f n, float area, float Le) {
+    const Vector3f d = point - ref;
+    const float dist2 = dot(d, d);
+    const float dist = std::sqrt(dist2);
+    const Vector3f wi = (1.0f / dist) * d;
+    const float abs_cos = std::abs(dot(n, wi));
+    if (!(dist > 0.0f && abs_cos > 0.0f)) return {};
+    return {wi, dist2 / (abs_cos * area), Le, dist};
+}
+
 /// A triangle's geometry: the area warp, the ray intersection and the change
 /// of measure from area to solid angle, shared by the two triangle lights.
 class Triangle {
@@ -127,13 +141,7 @@ public:
     /// intersection finds the triangle.
     LightSample sample_by_area(Vector3f ref, Point2f u, float Le) const {
         if (in_plane(ref)) return {};
-        const Vector3f d = sample_area(u) - ref;
-        const float dist2 = dot(d, d);
-        const float dist = std::sqrt(dist2);
-        const Vector3f wi = (1.0f / dist) * d;
-        const float abs_cos = std::abs(dot(n_, wi));
-        if (!(dist > 0.0f && abs_cos > 0.0f)) return {};
-        return {wi, dist2 / (abs_cos * area_), Le, dist};
+        return toward_area_point(ref, sample_area(u), n_, area_, Le);
     }
 
     /// The distance along wi from ref to the triangle's plane (0 where wi is parallel to it).
@@ -610,13 +618,7 @@ private:
 
     /// Uniform by area, converted to solid angle at the point drawn.
     LightSample sample_by_area(Vector3f ref, Point2f u) const {
-        const Vector3f d = (p_ + u.x * ex_ + u.y * ey_) - ref;
-        const float dist2 = dot(d, d);
-        const float dist = std::sqrt(dist2);
-        const Vector3f wi = (1.0f / dist) * d;
-        const float abs_cos = std::abs(dot(n_, wi));
-        if (!(dist > 0.0f && abs_cos > 0.0f)) return {};
-        return {wi, dist2 / (abs_cos * area_), Le_, dist};
+        return detail::toward_area_point(ref, p_ + u.x * ex_ + u.y * ey_, n_, area_, Le_);
     }
 
     /// The ray against the rectangle's plane, then the hit's edge fractions
@@ -660,13 +662,7 @@ public:
     LightSample sample(Vector3f ref, Point2f u) const {
         if (dot(frame_.n, c_ - ref) == 0.0f) return {};
         const Point2f p = UniformDiskConcentric{}.sample(u);
-        const Vector3f d = (c_ + frame_.to_world(r_ * p.x, r_ * p.y, 0.0f)) - ref;
-        const float dist2 = dot(d, d);
-        const float dist = std::sqrt(dist2);
-        const Vector3f wi = (1.0f / dist) * d;
-        const float abs_cos = std::abs(dot(frame_.n, wi));
-        if (!(dist > 0.0f && abs_cos > 0.0f)) return {};
-        return {wi, dist2 / (abs_cos * area_), Le_, dist};
+        return detail::toward_area_point(ref, c_ + frame_.to_world(r_ * p.x, r_ * p.y, 0.0f), frame_.n, area_, Le_);
     }
 
     float pdf(Vector3f ref, Vector3f wi) const {
