@@ -65,6 +65,25 @@ constexpr WarpSignature kMisSignature{.input = InputKind::Uniform3D,
 
 Vector3f vector_of(const WarpOutput& w) { return {w[0], w[1], w[2]}; }
 
+/// lit[i] += L(ref, wi[i]) of every light but the one at index `skip`.
+void add_radiance(const std::vector<const LightCase*>& lights, std::size_t skip, std::span<const WarpOutput> wi,
+                  std::span<double> lit) {
+    std::vector<double> part(wi.size());
+    for (std::size_t k = 0; k < lights.size(); ++k) {
+        if (k == skip) continue;
+        lights[k]->radiance(wi, part);
+        for (std::size_t i = 0; i < wi.size(); ++i) lit[i] += part[i];
+    }
+}
+
+/// f(wo, wi[i]) for each i.
+std::vector<double> f_at(const BsdfCase& bsdf, std::span<const WarpOutput> wi) {
+    const std::vector<WarpOutput> wo(wi.size(), WarpOutput{bsdf.wo().x, bsdf.wo().y, bsdf.wo().z});
+    std::vector<double> f(wi.size());
+    bsdf.f(wo, wi, f);
+    return f;
+}
+
 const BsdfCase& bsdf_part(const std::unique_ptr<WarpCase>& c, const std::string& name) {
     const BsdfCase* b = c ? as_bsdf(*c) : nullptr;
     if (b == nullptr) throw std::invalid_argument("MIS case " + name + ": its first strategy must be a BSDF case");
@@ -107,15 +126,12 @@ std::string MisCase::strategy_name(std::size_t s) const {
 void MisCase::sample_strategy(std::size_t s, std::span<const WarpInput> in, std::span<MisRecord> out) const {
     const std::size_t n = in.size();
     std::vector<WarpOutput> wi(n);
-    std::vector<double> lit(n, 0.0), part(n);
+    std::vector<double> lit(n, 0.0);
     if (s == 0) {
         std::vector<BsdfRecord> rec(n);
         bsdf_->sample_bsdf(in, rec);
         for (std::size_t i = 0; i < n; ++i) wi[i] = rec[i].wi;
-        for (const LightCase* l : lights_) {
-            l->radiance(wi, part);
-            for (std::size_t i = 0; i < n; ++i) lit[i] += part[i];
-        }
+        add_radiance(lights_, lights_.size(), wi, lit);
         for (std::size_t i = 0; i < n; ++i)
             out[i] = {rec[i].wi, rec[i].pdf, static_cast<double>(rec[i].f) * lit[i] * bsdf_->cosine(rec[i].wi)};
         return;
@@ -123,14 +139,9 @@ void MisCase::sample_strategy(std::size_t s, std::span<const WarpInput> in, std:
     std::vector<LightRecord> rec(n);
     lights_[s - 1]->sample_light(in, rec);
     for (std::size_t i = 0; i < n; ++i) wi[i] = rec[i].wi, lit[i] = static_cast<double>(rec[i].L);
-    for (std::size_t k = 0; k < lights_.size(); ++k) {
-        if (k + 1 == s) continue;
-        lights_[k]->radiance(wi, part);
-        for (std::size_t i = 0; i < n; ++i) lit[i] += part[i];
-    }
-    std::vector<WarpOutput> wo(n, WarpOutput{bsdf_->wo().x, bsdf_->wo().y, bsdf_->wo().z});
-    bsdf_->f(wo, wi, part);
-    for (std::size_t i = 0; i < n; ++i) out[i] = {rec[i].wi, rec[i].pdf, part[i] * lit[i] * bsdf_->cosine(rec[i].wi)};
+    add_radiance(lights_, s - 1, wi, lit);
+    const std::vector<double> f = f_at(*bsdf_, wi);
+    for (std::size_t i = 0; i < n; ++i) out[i] = {rec[i].wi, rec[i].pdf, f[i] * lit[i] * bsdf_->cosine(rec[i].wi)};
 }
 
 void MisCase::strategy_pdf(std::size_t s, std::span<const WarpOutput> wi, std::span<double> out) const {
@@ -156,15 +167,10 @@ void MisCase::mis_pdf(std::size_t s, std::span<const WarpOutput> wi, std::span<d
 }
 
 void MisCase::integrand(std::span<const WarpOutput> wi, std::span<double> out) const {
-    const std::size_t n = wi.size();
-    std::vector<double> lit(n, 0.0), part(n);
-    for (const LightCase* l : lights_) {
-        l->radiance(wi, part);
-        for (std::size_t i = 0; i < n; ++i) lit[i] += part[i];
-    }
-    std::vector<WarpOutput> wo(n, WarpOutput{bsdf_->wo().x, bsdf_->wo().y, bsdf_->wo().z});
-    bsdf_->f(wo, wi, part);
-    for (std::size_t i = 0; i < n; ++i) out[i] = lit[i] == 0.0 ? 0.0 : part[i] * lit[i] * bsdf_->cosine(wi[i]);
+    std::vector<double> lit(wi.size(), 0.0);
+    add_radiance(lights_, lights_.size(), wi, lit);
+    const std::vector<double> f = f_at(*bsdf_, wi);
+    for (std::size_t i = 0; i < wi.size(); ++i) out[i] = lit[i] == 0.0 ? 0.0 : f[i] * lit[i] * bsdf_->cosine(wi[i]);
 }
 
 double MisCase::weight(double own, std::span<const double> others) const {

@@ -245,41 +245,47 @@ Settings settings_from_environment() {
     return WarpCasePasses(expression, *warp);
 }
 
+namespace {
+
+/// Every check that applies passes, for a case of one kind; otherwise a
+/// failure saying that it is not `a_kind_case` (its article, kind and maker).
+::testing::AssertionResult KindPasses(const char* expression, const WarpCase& warp, bool of_kind,
+                                      const char* a_kind_case) {
+    if (!of_kind)
+        return ::testing::AssertionFailure() << "warpcheck: " << expression << " (" << warp.name() << ") is not "
+                                             << a_kind_case;
+    return WarpCasePasses(expression, warp);
+}
+
+::testing::AssertionResult NullCase(const char* expression, const char* kind) {
+    return ::testing::AssertionFailure() << "warpcheck: " << expression << " is a null " << kind << " case";
+}
+
+}  // namespace
+
 ::testing::AssertionResult BsdfCasePasses(const char* expression, const WarpCase& bsdf) {
-    if (bsdf.sample_returns() != SampleReturns::Bsdf)
-        return ::testing::AssertionFailure() << "warpcheck: " << expression << " (" << bsdf.name()
-                                             << ") is not a BSDF case (make_bsdf_case, make_phase_case): "
-                                                "EXPECT_WARP_PASSES checks a warp";
-    return WarpCasePasses(expression, bsdf);
+    return KindPasses(expression, bsdf, bsdf.sample_returns() == SampleReturns::Bsdf,
+                      "a BSDF case (make_bsdf_case, make_phase_case): EXPECT_WARP_PASSES checks a warp");
 }
 
 ::testing::AssertionResult BsdfCasePasses(const char* expression, const std::unique_ptr<WarpCase>& bsdf) {
-    if (!bsdf) return ::testing::AssertionFailure() << "warpcheck: " << expression << " is a null BSDF case";
-    return BsdfCasePasses(expression, *bsdf);
+    return bsdf ? BsdfCasePasses(expression, *bsdf) : NullCase(expression, "BSDF");
 }
 
 ::testing::AssertionResult LightCasePasses(const char* expression, const WarpCase& light) {
-    if (as_light(light) == nullptr)
-        return ::testing::AssertionFailure() << "warpcheck: " << expression << " (" << light.name()
-                                             << ") is not a light case (make_light_case)";
-    return WarpCasePasses(expression, light);
+    return KindPasses(expression, light, as_light(light) != nullptr, "a light case (make_light_case)");
 }
 
 ::testing::AssertionResult LightCasePasses(const char* expression, const std::unique_ptr<WarpCase>& light) {
-    if (!light) return ::testing::AssertionFailure() << "warpcheck: " << expression << " is a null light case";
-    return LightCasePasses(expression, *light);
+    return light ? LightCasePasses(expression, *light) : NullCase(expression, "light");
 }
 
 ::testing::AssertionResult MisCasePasses(const char* expression, const WarpCase& mis) {
-    if (as_mis(mis) == nullptr)
-        return ::testing::AssertionFailure() << "warpcheck: " << expression << " (" << mis.name()
-                                             << ") is not an MIS case (make_mis_case)";
-    return WarpCasePasses(expression, mis);
+    return KindPasses(expression, mis, as_mis(mis) != nullptr, "an MIS case (make_mis_case)");
 }
 
 ::testing::AssertionResult MisCasePasses(const char* expression, const std::unique_ptr<WarpCase>& mis) {
-    if (!mis) return ::testing::AssertionFailure() << "warpcheck: " << expression << " is a null MIS case";
-    return MisCasePasses(expression, *mis);
+    return mis ? MisCasePasses(expression, *mis) : NullCase(expression, "MIS");
 }
 
 std::filesystem::path evidence_path(const Settings& settings, const std::string& test_suite, const std::string& stem) {

@@ -1,5 +1,7 @@
 #include "validate/python/python_cases.h"
 
+#include <span>
+
 #include <fmt/format.h>
 
 namespace warpcheck::python {
@@ -147,22 +149,31 @@ PythonBsdfCase::PythonBsdfCase(WarpCaseInfo info, BsdfClaims claims, BsdfParts p
 
 namespace {
 
-/// The parts of a BSDF sample: a tuple or list (wi, f, pdf[, flags[, eta]]), or a dict of those keys.
-std::vector<py::object> bsdf_sample_parts(const py::object& r, const std::string& what) {
-    static const char* const kKeys[] = {"wi", "f", "pdf", "flags", "eta"};
-    std::vector<py::object> parts(5);
+/// The parts of a sample that returns several arrays: a tuple or list of the
+/// `keys` in order, the first three required, or a dict of those keys; else
+/// the error that `must_return` completes.
+std::vector<py::object> sample_parts(const py::object& r, const std::string& what, std::span<const char* const> keys,
+                                     const char* must_return) {
+    std::vector<py::object> parts(keys.size());
     if (py::isinstance<py::dict>(r)) {
         const auto d = r.cast<py::dict>();
-        for (std::size_t k = 0; k < 5; ++k)
-            if (d.contains(kKeys[k])) parts[k] = d[kKeys[k]];
-    } else if ((py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) && py::len(r) >= 3 && py::len(r) <= 5) {
+        for (std::size_t k = 0; k < keys.size(); ++k)
+            if (d.contains(keys[k])) parts[k] = d[keys[k]];
+    } else if ((py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) && py::len(r) >= 3 &&
+               py::len(r) <= keys.size()) {
         for (std::size_t k = 0; k < py::len(r); ++k) parts[k] = r[py::int_(k)];
     }
     if (!parts[0] || !parts[1] || !parts[2])
-        throw PythonCallError(fmt::format("{} returned a {}; it must return (wi, f, pdf[, flags[, eta]]) or a dict with "
-                                          "keys wi, f, pdf (and flags, eta)",
-                                          what, py::str(r.get_type()).cast<std::string>()));
+        throw PythonCallError(
+            fmt::format("{} returned a {}; {}", what, py::str(r.get_type()).cast<std::string>(), must_return));
     return parts;
+}
+
+/// The parts of a BSDF sample: a tuple or list (wi, f, pdf[, flags[, eta]]), or a dict of those keys.
+std::vector<py::object> bsdf_sample_parts(const py::object& r, const std::string& what) {
+    static const char* const kKeys[] = {"wi", "f", "pdf", "flags", "eta"};
+    return sample_parts(r, what, kKeys,
+                        "it must return (wi, f, pdf[, flags[, eta]]) or a dict with keys wi, f, pdf (and flags, eta)");
 }
 
 }  // namespace
@@ -264,19 +275,9 @@ namespace {
 /// The parts of a light sample: a tuple or list (wi, pdf, L[, distance]), or a dict of those keys.
 std::vector<py::object> light_sample_parts(const py::object& r, const std::string& what) {
     static const char* const kKeys[] = {"wi", "pdf", "L", "distance"};
-    std::vector<py::object> parts(4);
-    if (py::isinstance<py::dict>(r)) {
-        const auto d = r.cast<py::dict>();
-        for (std::size_t k = 0; k < 4; ++k)
-            if (d.contains(kKeys[k])) parts[k] = d[kKeys[k]];
-    } else if ((py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) && py::len(r) >= 3 && py::len(r) <= 4) {
-        for (std::size_t k = 0; k < py::len(r); ++k) parts[k] = r[py::int_(k)];
-    }
-    if (!parts[0] || !parts[1] || !parts[2])
-        throw PythonCallError(fmt::format("{} returned a {}; a light with L must return (wi, pdf, L[, distance]) or a "
-                                          "dict with keys wi, pdf, L (and distance)",
-                                          what, py::str(r.get_type()).cast<std::string>()));
-    return parts;
+    return sample_parts(r, what, kKeys,
+                        "a light with L must return (wi, pdf, L[, distance]) or a dict with keys wi, pdf, L (and "
+                        "distance)");
 }
 
 }  // namespace
