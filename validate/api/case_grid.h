@@ -12,32 +12,11 @@
 #include <string_view>
 #include <vector>
 
+#include "validate/api/case_family.h"
 #include "validate/api/registry.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
-
-/// One parameter of a grid and the values it takes, in order.
-struct GridAxis {
-    std::string name;
-    std::vector<double> values;
-};
-
-/// One point of a grid: its parameters in axis order, looked up by name.
-class GridPoint {
-public:
-    explicit GridPoint(std::vector<Parameter> params) : params_(std::move(params)) {}
-    /// The value of the named axis; an unknown name is a std::invalid_argument.
-    double operator[](std::string_view name) const {
-        for (const Parameter& p : params_)
-            if (p.name == name) return p.value;
-        throw std::invalid_argument("grid point has no parameter " + std::string(name));
-    }
-    const std::vector<Parameter>& params() const { return params_; }
-
-private:
-    std::vector<Parameter> params_;
-};
 
 /// The points of the Cartesian product of the axes, the first axis varying
 /// slowest, each with the axes' parameters only. Refused (declaration_error,
@@ -70,12 +49,9 @@ inline std::vector<GridPoint> grid_points(const WarpCaseInfo& base, const std::v
     return points;
 }
 
-/// Makes the case of one grid point from `info` (the base info with the
-/// point's parameters appended to its params, so the name is stable) and the
-/// point: make_warp_case, make_bsdf_case or any other maker of a case.
-using GridCaseMaker = std::function<std::unique_ptr<WarpCase>(WarpCaseInfo info, const GridPoint& point)>;
 
-/// Registers make(info, point) for every point of grid_points(base, axes).
+/// Registers make(info, point) for every point of grid_points(base, axes), and
+/// the family itself (Registry::families, for --fuzz).
 /// Refused, besides what grid_points refuses: a case whose name is not the one
 /// the grid gives it (the maker must keep info.params).
 inline void add_case_grid(Registry& registry, const WarpCaseInfo& base, const std::vector<GridAxis>& axes,
@@ -91,6 +67,7 @@ inline void add_case_grid(Registry& registry, const WarpCaseInfo& base, const st
                                      " (make it from the info given)"});
         registry.add_case(std::move(warp));
     }
+    registry.add_family({base, axes, make});
 }
 
 }  // namespace warpcheck

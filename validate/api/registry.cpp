@@ -13,9 +13,28 @@ void Registry::add_case(std::unique_ptr<WarpCase> warp) {
 }
 
 void Registry::add_named_check(std::string name, std::shared_ptr<const Check> check) {
+    if (!check) throw std::invalid_argument("registry: null check");
     if (find_check(name)) throw std::invalid_argument("registry: duplicate check name " + name);
     checks_.push_back(std::move(check));
     check_names_.push_back(std::move(name));
+}
+
+void Registry::add_family(CaseFamily family) {
+    if (!family.make) throw std::invalid_argument("registry: family " + family.base.family + " has no maker");
+    if (find_family(family.base.family))
+        throw std::invalid_argument("registry: duplicate family " + family.base.family);
+    for (const GridAxis& a : family.axes)
+        for (const ParamRange& r : a.ranges)
+            if (!r.declared() || (r.lo == r.hi && (r.lo_open || r.hi_open)))
+                throw std::invalid_argument("registry: family " + family.base.family + ": a range of " + a.name +
+                                            " needs finite ends with lo <= hi, and a point range closed");
+    families_.push_back(std::move(family));
+}
+
+const CaseFamily* Registry::find_family(std::string_view family) const {
+    for (const CaseFamily& f : families_)
+        if (f.base.family == family) return &f;
+    return nullptr;
 }
 
 const WarpCase* Registry::find_case(std::string_view name) const {

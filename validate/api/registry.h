@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "validate/api/case_family.h"
 #include "validate/api/warp_case.h"
 
 namespace warpcheck {
@@ -31,6 +32,18 @@ public:
         add_named_check(std::move(name), std::shared_ptr<const Check>(std::move(check)));
     }
 
+    /// Keeps a family (add_case_grid does, after its cases): --fuzz makes its
+    /// cases at other points of the ranges its axes declare. A second family
+    /// of one name is an error.
+    void add_family(CaseFamily family);
+    const std::vector<CaseFamily>& families() const { return families_; }
+    const CaseFamily* find_family(std::string_view family) const;
+
+    /// Adds a check another registry holds, by its name there (a registry of
+    /// cases made for one run, such as --fuzz-case's, with the checks of the
+    /// one it came from); a second check of one name is an error.
+    void add_named_check(std::string name, std::shared_ptr<const Check> check);
+
     const std::vector<std::unique_ptr<WarpCase>>& cases() const { return cases_; }
     const std::vector<std::shared_ptr<const Check>>& checks() const { return checks_; }
     const WarpCase* find_case(std::string_view name) const;
@@ -51,7 +64,6 @@ public:
     std::string known_flaw(const WarpCase& warp, std::string_view check_name) const;
 
 private:
-    void add_named_check(std::string name, std::shared_ptr<const Check> check);
 
     struct Flaw {
         std::string case_name;
@@ -59,6 +71,7 @@ private:
         std::string text;
     };
     std::vector<Flaw> flaws_;
+    std::vector<CaseFamily> families_;
     std::vector<std::unique_ptr<WarpCase>> cases_;
     std::vector<std::shared_ptr<const Check>> checks_;
     std::vector<std::string> check_names_;  ///< checks_[i]'s name

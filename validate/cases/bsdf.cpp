@@ -40,13 +40,26 @@ std::vector<double> axis(std::vector<double> small, std::vector<double> full) {
     return full_grid() ? std::move(full) : std::move(small);
 }
 
+// The ranges --fuzz draws from (validate/run/fuzz.h): each the family's claim
+// of where it works, ends included unless open. wo from normal incidence to
+// grazing on either side of the surface (the horizon itself is refused by
+// every BSDF case, by design); roughness down to the smallest the
+// Trowbridge-Reitz constructor takes; eta toward 1 (refused at 1) and to 4;
+// g toward +-1 (refused there).
+const std::vector<ParamRange> kThetaBothSides = {{0, 90, false, true}, {90, 180, true, false}};
+const std::vector<ParamRange> kRoughness = {{1e-4, 1}};
+const std::vector<ParamRange> kEta = {{1, 4, true, false}};
+/// A rough interface's eta: from 1 + 2^-10 (RoughDielectric's constructor says why).
+const std::vector<ParamRange> kRoughEta = {{1.0 + 0x1p-10, 4}};
+const std::vector<ParamRange> kUnit = {{0, 1}};
+
 /// theta_o from above the surface, normal to grazing.
 std::vector<double> theta_above() { return axis({0, 60, 85}, {0, 30, 60, 80, 85, 89}); }
 
 void register_lambertian(Registry& registry) {
     add_case_grid(registry,
                   {.family = "lambertian", .description = "Lambertian reflection, f = R / pi, cosine-weighted sampling"},
-                  {{"R", {0.5}}, {"theta_o", theta_above()}}, [](WarpCaseInfo info, const GridPoint& p) {
+                  {{"R", {0.5}, kUnit}, {"theta_o", theta_above(), kThetaBothSides}}, [](WarpCaseInfo info, const GridPoint& p) {
                       return make_bsdf_case(std::move(info), {.wo = grid_wo(p)}, Lambertian(as_float(p["R"])));
                   });
 }
@@ -55,7 +68,7 @@ void register_rough_conductor(Registry& registry) {
     add_case_grid(registry,
                   {.family = "rough_conductor",
                    .description = "Trowbridge-Reitz conductor (gold), sampled by visible normals"},
-                  {{"alpha", axis({0.05, 0.3}, {0.05, 0.3, 1})}, {"theta_o", theta_above()}},
+                  {{"alpha", axis({0.05, 0.3}, {0.05, 0.3, 1}), kRoughness}, {"theta_o", theta_above(), kThetaBothSides}},
                   [](WarpCaseInfo info, const GridPoint& p) {
                       const TrowbridgeReitz tr(as_float(p["alpha"]));
                       return make_bsdf_case(std::move(info), {.wo = grid_wo(p)}, RoughConductor(tr, kGoldEta, kGoldK));
@@ -63,7 +76,10 @@ void register_rough_conductor(Registry& registry) {
     add_case_grid(registry,
                   {.family = "rough_conductor_aniso",
                    .description = "anisotropic Trowbridge-Reitz conductor (gold), sampled by visible normals"},
-                  {{"ax", {0.3}}, {"ay", {0.05}}, {"theta_o", axis({60, 85}, {30, 60, 80, 89})}, {"phi_o", axis({0, 45}, {0, 45, 90})}},
+                  {{"ax", {0.3}, kRoughness},
+                   {"ay", {0.05}, kRoughness},
+                   {"theta_o", axis({60, 85}, {30, 60, 80, 89}), kThetaBothSides},
+                   {"phi_o", axis({0, 45}, {0, 45, 90}), {{0, 360, false, true}}}},
                   [](WarpCaseInfo info, const GridPoint& p) {
                       const TrowbridgeReitz tr(as_float(p["ax"]), as_float(p["ay"]));
                       return make_bsdf_case(std::move(info), {.wo = grid_wo(p)}, RoughConductor(tr, kGoldEta, kGoldK));
@@ -74,9 +90,9 @@ void register_dielectrics(Registry& registry) {
     add_case_grid(registry,
                   {.family = "rough_dielectric",
                    .description = "Trowbridge-Reitz dielectric interface (glass below), reflection and transmission"},
-                  {{"alpha", axis({0.1, 0.5}, {0.05, 0.1, 0.5})},
-                   {"eta", {kGlass}},
-                   {"theta_o", axis({30, 85, 150}, {0, 30, 60, 80, 85, 89, 120, 150})}},
+                  {{"alpha", axis({0.1, 0.5}, {0.05, 0.1, 0.5}), kRoughness},
+                   {"eta", {kGlass}, kRoughEta},
+                   {"theta_o", axis({30, 85, 150}, {0, 30, 60, 80, 85, 89, 120, 150}), kThetaBothSides}},
                   [](WarpCaseInfo info, const GridPoint& p) {
                       const TrowbridgeReitz tr(as_float(p["alpha"]));
                       return make_bsdf_case(std::move(info), {.wo = grid_wo(p)}, RoughDielectric(tr, as_float(p["eta"])));
@@ -84,7 +100,7 @@ void register_dielectrics(Registry& registry) {
     add_case_grid(registry,
                   {.family = "smooth_dielectric",
                    .description = "smooth dielectric interface (glass below): delta reflection and refraction"},
-                  {{"eta", {kGlass}}, {"theta_o", axis({0, 60, 85, 150}, {0, 30, 60, 80, 85, 89, 120, 150})}},
+                  {{"eta", {kGlass}, kEta}, {"theta_o", axis({0, 60, 85, 150}, {0, 30, 60, 80, 85, 89, 120, 150}), kThetaBothSides}},
                   [](WarpCaseInfo info, const GridPoint& p) {
                       return make_bsdf_case(std::move(info), {.wo = grid_wo(p)}, SmoothDielectric(as_float(p["eta"])));
                   });
@@ -95,7 +111,10 @@ void register_plastic(Registry& registry) {
                   {.family = "plastic",
                    .description = "diffuse base under a dielectric coat, lobes chosen by the Fresnel weight (alpha 0: "
                                   "a delta coat)"},
-                  {{"kd", {0.8}}, {"eta", {kGlass}}, {"alpha", {0, 0.2}}, {"theta_o", theta_above()}},
+                  {{"kd", {0.8}, kUnit},
+                   {"eta", {kGlass}, kRoughEta},
+                   {"alpha", {0, 0.2}, {{0, 0}, {1e-4, 1}}},
+                   {"theta_o", theta_above(), kThetaBothSides}},
                   [](WarpCaseInfo info, const GridPoint& p) {
                       return make_bsdf_case(std::move(info), {.wo = grid_wo(p)},
                                             Plastic(as_float(p["kd"]), as_float(p["eta"]), as_float(p["alpha"])));
@@ -105,7 +124,7 @@ void register_plastic(Registry& registry) {
 void register_henyey_greenstein(Registry& registry) {
     add_case_grid(registry,
                   {.family = "henyey_greenstein", .description = "Henyey-Greenstein phase function on the sphere"},
-                  {{"g", {-0.5, 0.3, 0.9}}, {"theta_o", axis({30}, {0, 30, 120})}}, [](WarpCaseInfo info, const GridPoint& p) {
+                  {{"g", {-0.5, 0.3, 0.9}, {{-1, 1, true, true}}}, {"theta_o", axis({30}, {0, 30, 120}), {{0, 180}}}}, [](WarpCaseInfo info, const GridPoint& p) {
                       return make_phase_case(std::move(info), grid_wo(p), HenyeyGreenstein(as_float(p["g"])));
                   });
 }

@@ -37,6 +37,7 @@
 #include "validate/run/merge.h"
 #include "validate/run/run_digest.h"
 #include "validate/run/runner.h"
+#include "validate/run/fuzz.h"
 #include "warpcheck/version.h"
 
 namespace warpcheck {
@@ -67,6 +68,9 @@ struct CliOptions {
     std::vector<std::string> merge_paths;
     bool missing_shards = false;
     SamplesOptions samples;  ///< samples from elsewhere (validate/cli/samples_options.h)
+    bool fuzz = false;               ///< --fuzz (validate/run/fuzz.h)
+    unsigned fuzz_points = 24;       ///< --fuzz-points: random points per family
+    std::vector<std::string> fuzz_cases;  ///< --fuzz-case: cases made by their family at named parameters
 };
 
 struct Output {
@@ -239,6 +243,20 @@ void add_selection_options(CLI::App& app, CliOptions& o) {
     app.add_flag("--missing-shards", o.missing_shards,
                  "With --merge: check the files given and list the shards of their run that are not among them "
                  "(I/N, one per line; none when all are there), instead of merging: the ones to run again");
+    app.add_flag("--fuzz", o.fuzz,
+                 "Draw each family's parameters from the ranges it declares, their ends first, run the cheap checks "
+                 "(finite samples with positive pdfs, weights, delta lobes, energy; --check to choose) at 20,000 "
+                 "samples unless --samples says otherwise, and shrink each failure to the simplest parameters that "
+                 "still fail, printed as a rerun line; --filter selects families");
+    app.add_option("--fuzz-points", o.fuzz_points,
+                   "With --fuzz: points drawn at random per family besides the ranges' ends, 0 to 10000")
+        ->type_name("N")
+        ->capture_default_str();
+    app.add_option("--fuzz-case", o.fuzz_cases,
+                   "Run the checks on a case its family makes at the parameters named, e.g. "
+                   "'rough_conductor[alpha=0.0001,theta_o=89.99]' (the rerun of a --fuzz finding). Repeatable.")
+        ->type_name("NAME")
+        ->allow_extra_args(false);
     app.add_flag("--exhaustive", o.run.exhaustive, "Also run the heavy sweeps (e.g. round trips over every float)");
     app.add_flag("--include-flawed", o.run.include_flawed,
                  "Also run the cases that demonstrate known flaws (e.g. u * 2^-32 reaching 1.0); they fail");
@@ -551,6 +569,79 @@ int run_selection(const CliOptions& o, const Registry& registry, const std::vect
     return present(run, o, outputs);
 }
 
+/// --fuzz-case: the cases their families make at the parameters named, run as a selection.
+int run_fuzz_cases(CliOptions o, const Registry& registry, const std::vector<Output>& outputs,
+                   const std::string& command) {
+    if (o.all || !o.filters.empty()) {
+        std::cerr << o.program_name << ": --fuzz-case names its cases: it takes no --all or --filter\n";
+        return kExitUsage;
+    }
+    Registry made;
+    for (const std::string& name : o.fuzz_cases) {
+        std::string problem;
+        std::unique_ptr<WarpCase> warp = make_case_from_name(registry, name, problem);
+        if (!warp) {
+            std::cerr << o.program_name << ": --fuzz-case: " << terminal_text(problem) << "\n";
+            return kExitUsage;
+        }
+        if (!made.find_case(warp->name())) made.add_case(std::move(warp));
+        o.filters.push_back(name);
+    }
+    for (const auto& check : registry.checks()) made.add_named_check(check->name(), check);
+    if (const std::string problem = selection_problem(o, made); !problem.empty()) {
+        std::cerr << o.program_name << ": " << problem << "\n";
+        return kExitUsage;
+    }
+    if (const std::string bad = output_problem(outputs, {}); !bad.empty()) {
+        std::cerr << o.program_name << ": " << bad << "\n";
+        return kExitUsage;
+    }
+    return run_selection(o, made, outputs, command);
+}
+
+/// --fuzz: the families' ranges run through the cheap checks (validate/run/fuzz.h).
+int run_fuzz_mode(const CliOptions& o, const Registry& registry, bool samples_given) {
+    if (o.all || o.list || o.list_jobs || o.shard_spec || !o.merge_paths.empty() || o.samples.any()) {
+        std::cerr << o.program_name << ": --fuzz runs on its own: --filter picks families, --check checks\n";
+        return kExitUsage;
+    }
+    if (o.fuzz_points > 10000) {
+        std::cerr << o.program_name << ": --fuzz-points: " << o.fuzz_points << " is more than 10000\n";
+        return kExitUsage;
+    }
+    FuzzOptions f;
+    f.families = o.filters;
+    f.checks = o.checks;
+    f.random_points = o.fuzz_points;
+    f.run = o.run;
+    if (!samples_given) f.run.samples = 20'000;
+    f.isolation.enabled = !o.no_isolation;
+    if (o.memory_limit_set) f.isolation.memory_budget = o.memory_limit_mib << 20;
+    for (const auto& name : o.checks)
+        if (!registry.find_check(name)) {
+            std::cerr << o.program_name << ": " << unknown_check(name, registry) << "\n";
+            return kExitUsage;
+        }
+    bool any = false;
+    for (const CaseFamily& family : registry.families()) {
+        bool wanted = o.filters.empty();
+        for (const std::string& pattern : o.filters)
+            wanted = wanted || (registry.find_family(pattern) ? family.base.family == pattern
+                                                              : name_matches(family.base.family, pattern));
+        any = any || (wanted && family.fuzzable());
+    }
+    if (!any) {
+        std::cerr << o.program_name << ": --fuzz: no family "
+                  << (o.filters.empty() ? "declares" : "selected by --filter declares")
+                  << " a parameter range (GridAxis::ranges) to draw from\n";
+        return kExitUsage;
+    }
+    const FuzzReport report = run_fuzz(registry, f);
+    std::cout << fuzz_report_text(report);
+    if (!stdout_written(o.program_name, "the fuzz report")) return kExitUsage;
+    return report.clean() ? kExitPass : kExitFail;
+}
+
 /// The widest line --help prints: its descriptions are wrapped to fit.
 constexpr std::size_t kHelpWidth = 100;
 
@@ -682,6 +773,8 @@ int run_cli(int argc, char** argv, const Registry& registry) {
                                           o.program_name, std::cerr);
         return run ? present(*run, o, outputs) : kExitUsage;
     }
+    if (o.fuzz) return run_fuzz_mode(o, registry, app.count("--samples") > 0);
+    if (!o.fuzz_cases.empty()) return run_fuzz_cases(o, registry, outputs, command_line(argc, argv));
     std::string problem = selection_problem(o, registry);
     if (problem.empty()) problem = output_problem(outputs, o.merge_paths);
     if (!problem.empty()) {

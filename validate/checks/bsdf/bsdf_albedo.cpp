@@ -324,8 +324,47 @@ protected:
     }
 };
 
+/// "bsdf_energy": energy from the samples alone, bsdf_albedo's fallback rule
+/// run on its own, no quadrature: cheap at any parameter (a lobe of roughness
+/// 1e-4 or g = 0.99999 costs what a diffuse one does), so --fuzz runs it at
+/// the ends of the families' ranges. Not a default check: bsdf_albedo already
+/// holds the energy to 1 and the weights to the albedo by quadrature.
+class BsdfEnergyCheck final : public BsdfCheck {
+public:
+    std::string name() const override { return "bsdf_energy"; }
+    bool statistical() const override { return true; }
+    bool runs_by_default(const RunOptions&) const override { return false; }
+    std::string description() const override {
+        return "BSDF: the mean energy weight of the samples at most 1 (one-sided t-test, Sidak-corrected); no "
+               "quadrature, for --fuzz";
+    }
+
+protected:
+    Applicability bsdf_applicability(const BsdfCase&) const override { return Applicability::runs(); }
+
+    CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
+        const Draws d = draw(bsdf, ctx);
+        const chi2::MeanTest t = energy_weight_test(d.energy);
+        CheckResult r;
+        r.samples = d.energy.n;
+        r.figures = {{"samples", static_cast<double>(d.energy.n)},
+                     {"energy_mean_weight", t.mean},
+                     {"standard_error", t.standard_error},
+                     {"t", t.t},
+                     {"p_value", t.p_value}};
+        r.p_value = t.p_value;  // judged by the runner at the run's corrected level
+        r.verdict = Verdict::Pass;
+        r.summary = fmt::format("mean energy weight {:.6g} vs 1 (one-sided t = {:.2f})", t.mean, t.t);
+        r.message = fmt::format("mean energy weight {:.9g} over {} draws (a draw without a sample weighs 0): {:.2f} "
+                                "standard errors above 1 (one-sided; 1 + 2^-20 is the bound's rounding)",
+                                t.mean, d.energy.n, t.t);
+        return r;
+    }
+};
+
 }  // namespace
 
 std::unique_ptr<Check> make_bsdf_albedo_check() { return std::make_unique<BsdfAlbedoCheck>(); }
+std::unique_ptr<Check> make_bsdf_energy_check() { return std::make_unique<BsdfEnergyCheck>(); }
 
 }  // namespace warpcheck::bsdf

@@ -24,6 +24,9 @@ std::unique_ptr<Check> make_bsdf_delta_check();
 /// "bsdf_albedo": the mean weight against the directional albedo (t-test) and
 /// the energy albedo at most 1.
 std::unique_ptr<Check> make_bsdf_albedo_check();
+/// "bsdf_energy" (not a default check; --fuzz runs it): the mean energy weight
+/// of the samples at most 1, bsdf_albedo's rule without its quadrature.
+std::unique_ptr<Check> make_bsdf_energy_check();
 /// "bsdf_reciprocity": f(wo, wi) = f(wi, wo) (the eta^2 rule across an
 /// interface), where the case claims it.
 std::unique_ptr<Check> make_bsdf_reciprocity_check();

@@ -8,7 +8,8 @@
 //  - wi is a unit vector (within kUnitTolerance) on the side its flags say
 //    (reflection: wo's side; transmission: the other; a phase function: any);
 //  - a continuous sample lands where pdf(wo, wi) > 0 and f(wo, wi) > 0, and
-//    its weight equals f(wo, wi) |cos theta_i| / pdf(wo, wi) within
+//    (or it returns f = 0 where f(wo, wi) = 0 too: a zero-weight sample, which
+//    claims nothing and is counted, zero_weight_samples) its weight equals f(wo, wi) |cos theta_i| / pdf(wo, wi) within
 //    kRelativeTolerance; or, where f() and pdf() recomputed from the rounded
 //    wi are at their float resolution (a refraction through a microfacet seen
 //    edge-on, whose half vector's side is a matter of rounding), within the
@@ -86,7 +87,7 @@ struct Stats {
     /// The continuous samples of the random inputs (the edge inputs' are the
     /// others); of the excused, those where f() or pdf() recomputed at wi is 0
     /// (the excused from random inputs are kinds[kExcusedMany]).
-    uint64_t continuous_random = 0, excused_outside = 0;
+    uint64_t continuous_random = 0, excused_outside = 0, zero_weight = 0;
     double max_relative = 0.0, max_unit_error = 0.0, excused_max_relative = 0.0;
     std::array<Tally<Example>, kKinds> kinds{};
     WorstK<Example> worst{10};
@@ -97,6 +98,7 @@ struct Stats {
         excused += o.excused;
         continuous_random += o.continuous_random;
         excused_outside += o.excused_outside;
+        zero_weight += o.zero_weight;
         excused_max_relative = max_nan_wins(excused_max_relative, o.excused_max_relative);
         max_relative = max_nan_wins(max_relative, o.max_relative);
         max_unit_error = max_nan_wins(max_unit_error, o.max_unit_error);
@@ -165,6 +167,14 @@ void judge_direction(const BsdfCase& bsdf, Stats& s, uint64_t index, const Examp
 void judge_weight(const BsdfCase& bsdf, Stats& s, uint64_t index, bool edge, Example& e) {
     e.weight_at = e.f_at * bsdf.cosine(e.record.wi) / e.pdf_at;
     const double rel = relative_difference(e.weight, e.weight_at);
+    // A sample of weight 0 where f() is 0 too (a black Lambertian, a lobe of
+    // weight 0) claims nothing and adds nothing: the identity 0 = 0 |cos| / pdf
+    // holds exactly, so it agrees (counted as zero_weight); a sample whose f
+    // is positive where f() is 0 is the failure the rule is for.
+    if (e.pdf_at > 0.0 && e.record.f == 0.0f && e.f_at == 0.0) {
+        ++s.zero_weight;
+        return;
+    }
     const bool agrees = e.pdf_at > 0.0 && e.f_at > 0.0 && rel <= kRelativeTolerance;
     if (!agrees && within_float_resolution(bsdf, e)) {
         ++s.excused;
@@ -320,6 +330,7 @@ protected:
                      {"continuous_random", static_cast<double>(s.continuous_random)},
                      {"excused_random_limit", excused_random_limit(s)},
                      {"excused_outside_support", static_cast<double>(s.excused_outside)},
+                     {"zero_weight_samples", static_cast<double>(s.zero_weight)},
                      {"unit_tolerance", kUnitTolerance},
                      {"eta_tolerance", kEtaTolerance}};
         for (int k = 0; k < kKinds; ++k)

@@ -1,0 +1,182 @@
+// --fuzz (validate/run/fuzz.h): planted bugs at extreme parameters are found
+// by the check their bug touches and shrunk to the simplest parameters that
+// still fail; a correct twin over the same ranges comes out clean; the
+// built-in families that the fuzz finds clean stay clean.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "sampling/bsdf_diffuse.h"
+#include "sampling/bsdf_phase.h"
+#include "validate/api/bsdf_grid.h"
+#include "validate/api/registry.h"
+#include "validate/run/fuzz.h"
+
+namespace warpcheck {
+namespace {
+
+/// A Lambertian whose bug shows only at an extreme parameter: f is NaN for
+/// R below 10^-3 (a division by the albedo, say), or its weight above 1 for
+/// R above 0.999 (an energy term renormalised wrongly at the end of the range).
+struct PlantedLambertian {
+    float R;
+    enum class Bug { None, NanWhenDark, EnergyWhenWhite } bug;
+    BsdfFlags flags() const { return BsdfFlags::Reflection | BsdfFlags::Continuous; }
+    float scale() const { return bug == Bug::EnergyWhenWhite && R > 0.999f ? 1.2f : 1.0f; }
+    float value() const {
+        if (bug == Bug::NanWhenDark && R < 1e-3f) return std::numeric_limits<float>::quiet_NaN();
+        return R * scale() / 3.14159265f;
+    }
+    BsdfSample sample(Vector3f wo, float uc, Point2f u) const {
+        BsdfSample s = Lambertian(R).sample(wo, uc, u);
+        if (s.pdf > 0.0f) s.f = value();
+        return s;
+    }
+    float f(Vector3f wo, Vector3f wi) const { return Lambertian(R).f(wo, wi) > 0.0f || R == 0.0f ? value() : 0.0f; }
+    float pdf(Vector3f wo, Vector3f wi) const { return Lambertian(R).pdf(wo, wi); }
+};
+
+void add_planted(Registry& registry, const std::string& family, PlantedLambertian::Bug bug) {
+    add_case_grid(registry, {.family = family, .description = "a Lambertian with a bug planted at an end of R"},
+                  {{"R", {0.5}, {{0, 1}}}, {"theta_o", {30}, {{0, 90, false, true}}}},
+                  [bug](WarpCaseInfo info, const GridPoint& p) {
+                      (void)Lambertian(static_cast<float>(p["R"]));  // refuses R outside [0, 1], as the built-in does
+                      return make_bsdf_case(std::move(info), {.wo = grid_wo(p)},
+                                            PlantedLambertian{static_cast<float>(p["R"]), bug});
+                  });
+}
+
+/// A Henyey-Greenstein family whose g range claims the closed end 1, which the constructor refuses.
+void add_overclaimed_hg(Registry& registry) {
+    add_case_grid(registry, {.family = "hg_claims_g_one", .description = "g's range claims [-0.5, 1]"},
+                  {{"g", {0.3}, {{-0.5, 1}}}, {"theta_o", {30}}}, [](WarpCaseInfo info, const GridPoint& p) {
+                      return make_phase_case(std::move(info), grid_wo(p), HenyeyGreenstein(static_cast<float>(p["g"])));
+                  });
+}
+
+FuzzReport fuzz(const std::vector<std::string>& families, uint64_t seed = 1) {
+    static const Registry registry = [] {
+        Registry r;
+        register_builtin_checks(r);
+        add_planted(r, "planted_none", PlantedLambertian::Bug::None);
+        add_planted(r, "planted_nan_when_dark", PlantedLambertian::Bug::NanWhenDark);
+        add_planted(r, "planted_energy_when_white", PlantedLambertian::Bug::EnergyWhenWhite);
+        add_overclaimed_hg(r);
+        return r;
+    }();
+    FuzzOptions o;
+    o.families = families;
+    o.run.seed = seed;
+    o.run.samples = 20'000;
+    o.random_points = 16;
+    return run_fuzz(registry, o);
+}
+
+const FuzzFinding* finding(const FuzzReport& r, const std::string& check) {
+    for (const FuzzFinding& f : r.findings)
+        if (f.check == check) return &f;
+    return nullptr;
+}
+
+TEST(Fuzz, TheCorrectTwinComesOutCleanOnSeveralSeeds) {
+    for (uint64_t seed : {1, 2, 3}) {
+        const FuzzReport r = fuzz({"planted_none"}, seed);
+        EXPECT_TRUE(r.clean()) << fuzz_report_text(r);
+        EXPECT_GT(r.points, 10u);
+        EXPECT_GT(r.jobs, r.points);  // bsdf_weight and bsdf_energy at least, on every point
+    }
+}
+
+TEST(Fuzz, NanAtTheDarkEndIsFoundAndShrunkToRZeroOnSeveralSeeds) {
+    for (uint64_t seed : {1, 2, 3}) {
+        const FuzzReport r = fuzz({"planted_nan_when_dark"}, seed);
+        const FuzzFinding* f = finding(r, "bsdf_weight");
+        ASSERT_NE(f, nullptr) << fuzz_report_text(r);
+        // R = 0 is the simplest failing value (one digit, the range's end), and
+        // so is theta_o = 0 (as simple as the grid's 30, and smaller).
+        EXPECT_EQ(f->shrunk_case, "planted_nan_when_dark[R=0,theta_o=0]") << fuzz_report_text(r);
+        EXPECT_NE(f->rerun.find("--fuzz-case 'planted_nan_when_dark[R=0,theta_o=0]' --check bsdf_weight"),
+                  std::string::npos)
+            << f->rerun;
+        for (const FuzzFinding& other : r.findings) EXPECT_EQ(other.family, "planted_nan_when_dark");
+    }
+}
+
+TEST(Fuzz, EnergyAtTheWhiteEndIsFoundByTheEnergyCheckAndShrunkToROne) {
+    const FuzzReport r = fuzz({"planted_energy_when_white"});
+    const FuzzFinding* f = finding(r, "bsdf_energy");
+    ASSERT_NE(f, nullptr) << fuzz_report_text(r);
+    EXPECT_EQ(f->shrunk_case, "planted_energy_when_white[R=1,theta_o=0]") << fuzz_report_text(r);
+    EXPECT_EQ(finding(r, "bsdf_weight"), nullptr) << "the weight is consistent: only the energy is wrong";
+}
+
+TEST(Fuzz, ARangeEndTheMakerRefusesIsAFinding) {
+    const FuzzReport r = fuzz({"hg_claims_g_one"});
+    ASSERT_FALSE(r.refusals.empty()) << fuzz_report_text(r);
+    EXPECT_NE(r.refusals.front().find("hg_claims_g_one[g=1,"), std::string::npos) << r.refusals.front();
+    EXPECT_NE(r.refusals.front().find("g must lie in (-1, 1)"), std::string::npos) << r.refusals.front();
+    EXPECT_FALSE(r.clean());
+}
+
+TEST(Fuzz, PointsAreAFunctionOfTheFamilyAndTheSeedAndStayInTheirRanges) {
+    Registry registry;
+    add_planted(registry, "planted_none", PlantedLambertian::Bug::None);
+    const CaseFamily& family = registry.families().front();
+    const auto a = fuzz_points(family, 16, 7), b = fuzz_points(family, 16, 7), c = fuzz_points(family, 16, 8);
+    ASSERT_EQ(a.size(), b.size());
+    bool differs = a.size() != c.size();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i][0].value, b[i][0].value);
+        EXPECT_EQ(a[i][1].value, b[i][1].value);
+        EXPECT_TRUE(a[i][0].value >= 0.0 && a[i][0].value <= 1.0) << a[i][0].value;
+        EXPECT_TRUE(a[i][1].value >= 0.0 && a[i][1].value < 90.0) << a[i][1].value;  // 90 is open
+        if (i < c.size()) differs = differs || a[i][0].value != c[i][0].value || a[i][1].value != c[i][1].value;
+    }
+    EXPECT_TRUE(differs);
+    bool dark = false, white = false, grazing = false;
+    for (const auto& p : a) {
+        dark = dark || p[0].value == 0.0;
+        white = white || p[0].value == 1.0;
+        grazing = grazing || p[1].value == static_cast<double>(std::nextafter(90.0f, 0.0f));
+    }
+    EXPECT_TRUE(dark && white && grazing) << "each end is among the points";
+}
+
+TEST(Fuzz, ACaseIsMadeFromItsNameAndBadNamesAreRefusedWithTheReason) {
+    Registry registry;
+    add_planted(registry, "planted_none", PlantedLambertian::Bug::None);
+    std::string problem;
+    const auto warp = make_case_from_name(registry, "planted_none[R=0.25,theta_o=89.5]", problem);
+    ASSERT_NE(warp, nullptr) << problem;
+    EXPECT_EQ(warp->name(), "planted_none[R=0.25,theta_o=89.5]");
+    for (const auto& [name, reason] : std::vector<std::pair<std::string, std::string>>{
+             {"nothing[R=1,theta_o=3]", "no family 'nothing'"},
+             {"planted_none[R=1]", "no value for theta_o"},
+             {"planted_none[R=1,theta_o=3,k=2]", "has no parameter k"},
+             {"planted_none[R=x,theta_o=3]", "'R=x' is not name=number"},
+             {"planted_none[R=nan,theta_o=3]", "is not name=number"},
+             {"planted_none", "is not family[name=value,...]"},
+             {"planted_none[R=2,theta_o=3]", "refuses these parameters"}}) {
+        problem.clear();
+        EXPECT_EQ(make_case_from_name(registry, name, problem), nullptr) << name;
+        EXPECT_NE(problem.find(reason), std::string::npos) << name << ": " << problem;
+    }
+}
+
+TEST(Fuzz, BuiltinFamiliesFoundCleanStayClean) {
+    Registry registry;
+    register_builtin_cases(registry);
+    register_builtin_checks(registry);
+    FuzzOptions o;
+    o.families = {"lambertian", "rough_conductor", "smooth_dielectric", "plastic", "henyey_greenstein"};
+    o.run.samples = 20'000;
+    o.random_points = 16;
+    const FuzzReport r = run_fuzz(registry, o);
+    EXPECT_EQ(r.families, 5u);
+    EXPECT_TRUE(r.clean()) << fuzz_report_text(r);
+}
+
+}  // namespace
+}  // namespace warpcheck
