@@ -374,6 +374,8 @@ const std::vector<std::pair<std::string_view, CheckLegend>> kLegends = {
                      "known), the one-sided p-value of the mean energy weight against 1."}},
     {"bsdf_reciprocity", {"f(wo, wi) against f(wi, wo) (the eta\u00b2 rule across an interface) at every sampled wi "
                           "and a Fibonacci grid, within 2^-12 relative or f's float resolution.", ""}},
+    {"bsdf_energy", {"The mean energy weight of the samples against 1, without quadrature (run by --fuzz).",
+                     "The one-sided t-test's p-value of the mean energy weight above 1."}},
 };
 
 }  // namespace
