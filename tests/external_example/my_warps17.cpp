@@ -59,6 +59,21 @@ void register_bsdfs(warpcheck::Registry& registry) {
                 w17::mark_known_flaw(registry, "diffuse_cxx17_weight_no_cos[theta_o=" + std::to_string(int(theta)) + "]",
                                      "", "the sampled weight misses |cos theta_i|");
         }
+    // The same BSDF over a grid whose axes declare the ranges validate --fuzz
+    // draws from: R in [0, 1], wo from normal incidence to grazing on both
+    // sides. Its twin turns NaN for R below 10^-3 (a division by the albedo):
+    // its grid point R = 0.6 passes --all, and --fuzz finds it at R = 0.
+    for (bool planted : {false, true}) {
+        w17::BsdfInfo base;
+        base.family = planted ? "diffuse_grid_cxx17_dark_nan" : "diffuse_grid_cxx17";
+        base.description = "a renderer's diffuse BSDF over a grid with ranges, registered from C++17";
+        w17::add_bsdf_grid(registry, base,
+                           {{"R", {0.6}, {{0, 1}}}, {"theta_o", {0, 70}, {{0, 90, false, true}, {90, 180, true, false}}}},
+                           [planted](const w17::GridPoint& p) {
+                               const float r = static_cast<float>(p["R"]);
+                               return Diffuse17{planted && r < 1e-3f ? std::nanf("") : r, false};
+                           });
+    }
 }
 
 // The logistic distribution on the whole real line, mean mu, scale s.

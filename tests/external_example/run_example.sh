@@ -117,6 +117,15 @@ expect_fail one_to_two_cxx17_swapped exhaustive
 expect_fail "diffuse_cxx17_weight_no_cos[theta_o=70]" bsdf_weight
 expect_fail sphere_light_cxx17_double_radiance light_radiance "differs from L(ref, wi)"
 expect_row pass mis_estimator direct_cxx17
+# Parameters at their extremes, from C++17 (w17::add_bsdf_grid with ranges):
+# the correct family comes out clean; the planted NaN is found and shrunk to R = 0.
+"$program" --fuzz --filter diffuse_grid_cxx17 | tee "$work/fuzz.txt"
+grep -q ": 0 findings, 0 refusals" "$work/fuzz.txt" || { echo "expected diffuse_grid_cxx17 to fuzz clean"; exit 1; }
+if "$program" --fuzz --filter diffuse_grid_cxx17_dark_nan > "$work/fuzz_nan.txt"; then
+  echo "expected --fuzz to find the planted NaN of diffuse_grid_cxx17_dark_nan"; exit 1
+fi
+grep -q "shrunk to  diffuse_grid_cxx17_dark_nan\[R=0,theta_o=0\]" "$work/fuzz_nan.txt" \
+  || { cat "$work/fuzz_nan.txt"; echo "expected the planted NaN shrunk to R=0, theta_o=0"; exit 1; }
 expect_fail direct_cxx17_area_pdf mis_weights "do not sum to 1"
 # The Python package installs with the rest, where the build made it (cmake/Python.cmake),
 # and imports from the prefix with the interpreter it was built for.

@@ -12,7 +12,6 @@
 #include <string_view>
 #include <vector>
 
-#include "validate/api/case_family.h"
 #include "validate/api/registry.h"
 #include "validate/api/warp_case.h"
 

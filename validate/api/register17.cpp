@@ -188,7 +188,7 @@ std::vector<GridPoint> grid_points(const CaseInfo& base, const std::vector<GridA
     info.family = base.family;
     info.params = to_params(base.params);
     std::vector<warpcheck::GridAxis> converted;
-    for (const GridAxis& axis : axes) converted.push_back({axis.name, axis.values});
+    for (const GridAxis& axis : axes) converted.push_back({axis.name, axis.values, {}});
     std::vector<GridPoint> points;
     for (const warpcheck::GridPoint& point : warpcheck::grid_points(info, converted)) {
         std::vector<std::pair<std::string, double>> params;
@@ -196,6 +196,40 @@ std::vector<GridPoint> grid_points(const CaseInfo& base, const std::vector<GridA
         points.emplace_back(std::move(params));
     }
     return points;
+}
+
+void add_family(Registry& registry, const std::string& family,
+                const std::vector<std::pair<std::string, double>>& base_params, const std::string& description,
+                const std::vector<GridAxis>& axes, PointAdder add_point) {
+    CaseFamily made;
+    made.base.family = family;
+    made.base.params = to_params(base_params);
+    made.base.description = description;
+    for (const GridAxis& axis : axes) {
+        warpcheck::GridAxis converted{axis.name, axis.values, {}};
+        for (const ParamRange& r : axis.ranges) converted.ranges.push_back({r.lo, r.hi, r.lo_open, r.hi_open});
+        made.axes.push_back(std::move(converted));
+    }
+    // A point's case is made by the C++17 side's own registration, into a
+    // registry of its own, and handed over.
+    made.make = [adder = std::make_shared<PointAdder>(std::move(add_point))](
+                    WarpCaseInfo, const warpcheck::GridPoint& p) -> std::unique_ptr<WarpCase> {
+        std::vector<std::pair<std::string, double>> point;
+        for (const Parameter& q : p.params()) point.emplace_back(q.name, q.value);
+        Registry own;
+        (*adder)(own, point);
+        std::vector<std::unique_ptr<WarpCase>> cases = own.take_cases();
+        if (cases.size() != 1) throw std::logic_error("a C++17 grid point made " + std::to_string(cases.size()) + " cases");
+        return std::move(cases.front());
+    };
+    registry.add_family(std::move(made));
+}
+
+Point grid_wo(const GridPoint& point) {
+    double phi = 0.0;
+    for (const auto& [name, value] : point.params())
+        if (name == "phi_o") phi = value;
+    return bsdf_direction(point["theta_o"], phi);
 }
 
 void add_erased_bsdf(Registry& registry, const BsdfInfo& info, BsdfSampleFn sample, BsdfEvalFn f, BsdfEvalFn pdf) {

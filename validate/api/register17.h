@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -125,10 +126,22 @@ struct U64Subrange {
     std::uint64_t low_bits = 0;
 };
 
-/// One parameter of a grid and the values it takes, in order.
+/// The values a parameter may take beyond its grid, for validate --fuzz
+/// (validate/api/registry.h, ParamRange): [lo, hi], each end included
+/// unless open.
+struct ParamRange {
+    double lo = std::numeric_limits<double>::quiet_NaN();
+    double hi = std::numeric_limits<double>::quiet_NaN();
+    bool lo_open = false;
+    bool hi_open = false;
+};
+
+/// One parameter of a grid, the values it takes, in order, and the ranges
+/// --fuzz may draw it from (none: its grid values only).
 struct GridAxis {
     std::string name;
     std::vector<double> values;
+    std::vector<ParamRange> ranges{};
 };
 
 /// One point of a grid: its parameters in axis order, looked up by name.
@@ -242,6 +255,15 @@ struct Sweep {
 void add_erased(Registry& registry, const CaseInfo& info, ErasedWarp warp, Sweep sweep = {});
 /// grid_points of validate/api/case_grid.h: the product of the axes.
 std::vector<GridPoint> grid_points(const CaseInfo& base, const std::vector<GridAxis>& axes);
+/// Adds the case of one grid point (its axes' parameters, in order) to a registry.
+using PointAdder = std::function<void(Registry& registry, const std::vector<std::pair<std::string, double>>& point)>;
+/// Keeps a grid's family (Registry::add_family): --fuzz makes its cases at
+/// other points of the axes' ranges through add_point.
+void add_family(Registry& registry, const std::string& family,
+                const std::vector<std::pair<std::string, double>>& base_params, const std::string& description,
+                const std::vector<GridAxis>& axes, PointAdder add_point);
+/// A BSDF grid point's wo: bsdf_direction(theta_o, phi_o) of validate/api/bsdf_case.h, in degrees.
+Point grid_wo(const GridPoint& point);
 
 using BsdfSampleFn = std::function<BsdfSample(const Point& wo, float uc, const Point2& u)>;
 using BsdfEvalFn = std::function<double(const Point& wo, const Point& wi)>;
@@ -475,13 +497,17 @@ void add_u64_float_case(Registry& registry, const CaseInfo& info, U64Subrange su
 /// named family[...base params...,axis=value,...]. Refused as add_case_grid
 /// (validate/api/case_grid.h) refuses: an axis without values or with a
 /// non-finite one, two parameters of one name.
+/// The family is kept too, for --fuzz (the axes' ranges).
 template <typename Maker>
 void add_case_grid(Registry& registry, const CaseInfo& base, const std::vector<GridAxis>& axes, Maker make) {
-    for (const GridPoint& point : detail::grid_points(base, axes)) {
+    const auto shared = std::make_shared<Maker>(std::move(make));
+    const auto add_point = [base, shared](Registry& r, const std::vector<std::pair<std::string, double>>& point) {
         CaseInfo info = base;
-        info.params.insert(info.params.end(), point.params().begin(), point.params().end());
-        add_case(registry, info, make(point));
-    }
+        info.params.insert(info.params.end(), point.begin(), point.end());
+        add_case(r, info, (*shared)(GridPoint(point)));
+    };
+    for (const GridPoint& point : detail::grid_points(base, axes)) add_point(registry, point.params());
+    detail::add_family(registry, base.family, base.params, base.description, axes, add_point);
 }
 
 /// Adds a BSDF case that the BSDF checks take (bsdf_chi2, bsdf_weight,
@@ -507,6 +533,28 @@ void add_bsdf(Registry& registry, const BsdfInfo& info, B bsdf) {
     };
     detail::BsdfEvalFn pdf = [b](const Point& wo, const Point& wi) { return static_cast<double>(b->pdf(wo, wi)); };
     detail::add_erased_bsdf(registry, info, std::move(sample), std::move(f), std::move(pdf));
+}
+
+/// add_bsdf for every point of the product of the axes (bsdf_grid.h): wo from
+/// the point's theta_o (and phi_o, where there is one) in degrees, make(point)
+/// the BSDF object; cases named family[...base params...,axis=value,...]. The
+/// family is kept too, for --fuzz (the axes' ranges: theta_o's may reach
+/// grazing and below the surface, with the horizon itself left out).
+template <typename Maker>
+void add_bsdf_grid(Registry& registry, const BsdfInfo& base, const std::vector<GridAxis>& axes, Maker make) {
+    const auto shared = std::make_shared<Maker>(std::move(make));
+    const auto add_point = [base, shared](Registry& r, const std::vector<std::pair<std::string, double>>& point) {
+        BsdfInfo info = base;
+        info.params.insert(info.params.end(), point.begin(), point.end());
+        const GridPoint p(point);
+        info.wo = detail::grid_wo(p);
+        add_bsdf(r, info, (*shared)(p));
+    };
+    CaseInfo names;
+    names.family = base.family;
+    names.params = base.params;
+    for (const GridPoint& point : detail::grid_points(names, axes)) add_point(registry, point.params());
+    detail::add_family(registry, base.family, base.params, base.description, axes, add_point);
 }
 
 /// Adds a light case (validate/api/light_case.h) that the warp checks (chi2,

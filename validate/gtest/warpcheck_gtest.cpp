@@ -19,6 +19,7 @@
 #include "validate/api/light_case.h"
 #include "validate/cli/cli_input.h"
 #include "validate/gtest/job_tests.h"
+#include "validate/run/fuzz.h"
 #include "validate/run/runner.h"
 #include "warpcheck/version.h"
 
@@ -286,6 +287,35 @@ namespace {
 
 ::testing::AssertionResult MisCasePasses(const char* expression, const std::unique_ptr<WarpCase>& mis) {
     return mis ? MisCasePasses(expression, *mis) : NullCase(expression, "MIS");
+}
+
+::testing::AssertionResult FamilyFuzzesClean(const char* expression, const CaseFamily& family) {
+    Settings settings;
+    try {
+        settings = settings_from_environment();
+    } catch (const std::exception& e) {
+        return ::testing::AssertionFailure() << "warpcheck: " << e.what() << "; no check ran";
+    }
+    Registry registry;
+    FuzzOptions options;
+    try {
+        register_builtin_checks(registry);
+        registry.add_family(family);
+    } catch (const std::exception& e) {
+        return ::testing::AssertionFailure() << "warpcheck: " << expression << ": " << e.what();
+    }
+    if (!family.fuzzable())
+        return ::testing::AssertionFailure() << "warpcheck: " << expression << " (" << family.base.family
+                                             << ") declares no parameter range (GridAxis::ranges): nothing to fuzz";
+    options.run = settings.run;
+    if (std::getenv("WARPCHECK_SAMPLES") == nullptr) options.run.samples = 20'000;
+    options.isolation.enabled = true;
+    if (settings.memory_limit_mib) options.isolation.memory_budget = *settings.memory_limit_mib << 20;
+    const FuzzReport report = run_fuzz(registry, options);
+    if (report.clean()) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << "warpcheck --fuzz of " << expression << " (" << family.base.family
+                                         << "):\n"
+                                         << fuzz_report_text(report);
 }
 
 std::filesystem::path evidence_path(const Settings& settings, const std::string& test_suite, const std::string& stem) {

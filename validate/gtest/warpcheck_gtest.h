@@ -16,6 +16,12 @@
 //     EXPECT_LIGHT_PASSES(warpcheck::make_light_case(info, {.ref = p, .normal = n}, MyLight{}));
 //     EXPECT_MIS_PASSES(warpcheck::make_mis_case(info, claims, bsdf_case, light_case));
 //
+// and a family's parameters at their extremes (validate --fuzz: the ranges its
+// axes declare, their ends first, through the cheap checks; each failure
+// shrunk to the simplest parameters that still fail):
+//
+//     EXPECT_FUZZ_CLEAN((warpcheck::CaseFamily{info, {{"alpha", {0.3}, {{1e-4, 1}}}}, make_my_case}));
+//
 // and one test per (case, check) of everything a registration function adds:
 //
 //     WARPCHECK_TEST_SUITE(MyWarps, warpcheck_register);
@@ -84,6 +90,13 @@ namespace warpcheck::gtest {
 ::testing::AssertionResult MisCasePasses(const char* expression, const WarpCase& mis);
 ::testing::AssertionResult MisCasePasses(const char* expression, const std::unique_ptr<WarpCase>& mis);
 
+/// Success when `validate --fuzz` finds nothing in `family` (a CaseFamily:
+/// the base info, axes with the ranges to draw from, the maker): every point
+/// passes the cheap checks, and the maker makes every point inside the ranges.
+/// Otherwise each finding, shrunk, with its rerun line. WARPCHECK_SAMPLES
+/// sets the samples per check where set (else --fuzz's 20,000).
+::testing::AssertionResult FamilyFuzzesClean(const char* expression, const CaseFamily& family);
+
 /// Registers one GoogleTest test per (case, check) job of `register_cases`
 /// (called with a registry that has the built-in checks), in suite
 /// "warpcheck/<suite_name>", located at `file`:`line`. Called by
@@ -117,6 +130,12 @@ class SuiteRegistrar : public ::testing::TestWithParam<int> {};
 /// (make_light_case: one reference point) passes.
 #define EXPECT_LIGHT_PASSES(light_case) EXPECT_PRED_FORMAT1(::warpcheck::gtest::LightCasePasses, light_case)
 #define ASSERT_LIGHT_PASSES(light_case) ASSERT_PRED_FORMAT1(::warpcheck::gtest::LightCasePasses, light_case)
+
+/// EXPECT_FUZZ_CLEAN(family): `validate --fuzz` over the ranges the family's
+/// axes declare finds nothing (FamilyFuzzesClean). Put a braced CaseFamily in
+/// parentheses: the macro's argument must not contain a bare comma.
+#define EXPECT_FUZZ_CLEAN(family) EXPECT_PRED_FORMAT1(::warpcheck::gtest::FamilyFuzzesClean, family)
+#define ASSERT_FUZZ_CLEAN(family) ASSERT_PRED_FORMAT1(::warpcheck::gtest::FamilyFuzzesClean, family)
 
 /// EXPECT_MIS_PASSES(mis_case): every check that applies to an MIS case
 /// (make_mis_case: a BSDF and lights at one shading point) passes.

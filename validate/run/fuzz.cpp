@@ -23,9 +23,16 @@ std::vector<std::string> default_fuzz_checks() {
 
 namespace fuzz_detail {
 
-/// A value as the family's float parameters see it: rounded to float (a
-/// drawn double would name a case by 17 digits that its maker rounds away).
-double as_float_value(double v) { return static_cast<double>(static_cast<float>(v)); }
+/// A value as a case name writes it and a rerun reads it back: rounded to
+/// float (a drawn double would name a case by 17 digits that its maker rounds
+/// away), then to the decimal its name shows (parameter_value), so that the
+/// point --fuzz-case makes from the name is the point that failed: a maker
+/// that reads a parameter in double (theta_o for wo) sees the same value, and
+/// one that reads it as a float the same float.
+double as_float_value(double v) {
+    if (!std::isfinite(v)) return v;
+    return std::stod(parameter_value(static_cast<double>(static_cast<float>(v))));
+}
 
 /// The value of an end as a maker sees it: the end itself where it is closed,
 /// else the nearest float inside the range.
@@ -34,7 +41,7 @@ double end_value(const ParamRange& r, bool low) {
     const bool open = low ? r.lo_open : r.hi_open;
     double v = as_float_value(end);
     const float toward = static_cast<float>(low ? r.hi : r.lo);
-    if (open || !r.contains(v)) v = static_cast<double>(std::nextafter(static_cast<float>(v), toward));
+    if (open || !r.contains(v)) v = as_float_value(std::nextafter(static_cast<float>(v), toward));
     if (!r.contains(v)) v = as_float_value(0.5 * (r.lo + r.hi));  // a range narrower than two floats
     return v;
 }

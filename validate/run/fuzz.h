@@ -1,5 +1,5 @@
 // --fuzz: each family's parameters drawn from the ranges its axes declare
-// (validate/api/case_family.h), their ends first (roughness to its smallest,
+// (validate/api/registry.h), their ends first (roughness to its smallest,
 // g toward +-1, eta toward 1, wo toward grazing from both sides), the cheap
 // checks run on every point, and each failure shrunk to the simplest point of
 // the family that still fails the same check, printed as a rerun line.

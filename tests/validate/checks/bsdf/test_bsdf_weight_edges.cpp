@@ -133,3 +133,54 @@ TEST(BsdfWeightEdges, DiffuseWithHolesInItsPdfFailsByTheExcuseBound) {
 
 }  // namespace
 }  // namespace warpcheck
+
+namespace warpcheck {
+namespace {
+
+/// A Lambertian of reflectance R whose samples or f() are wrong on wi.x > 0:
+/// None is a black surface when R = 0 (every sample's f is 0, as is f()).
+enum class ZeroFlaw { None, SampleClaimsWhereFIsZero, SampleZeroWhereFIsNot };
+struct DiffuseZeroWeights {
+    Lambertian lambert;
+    ZeroFlaw flaw = ZeroFlaw::None;
+    BsdfFlags flags() const { return lambert.flags(); }
+    BsdfSample sample(Vector3f wo, float uc, Point2f u) const {
+        BsdfSample s = lambert.sample(wo, uc, u);
+        if (flaw == ZeroFlaw::SampleClaimsWhereFIsZero && s.pdf > 0.0f) s.f = 0.5f / 3.14159265f;
+        if (flaw == ZeroFlaw::SampleZeroWhereFIsNot && s.wi.x > 0.0f) s.f = 0.0f;
+        return s;
+    }
+    float f(Vector3f wo, Vector3f wi) const { return lambert.f(wo, wi); }
+    float pdf(Vector3f wo, Vector3f wi) const { return lambert.pdf(wo, wi); }
+};
+
+std::unique_ptr<WarpCase> zero_weight_diffuse(float R, ZeroFlaw flaw) {
+    return make_bsdf_case({.family = "zero_weight_diffuse", .params = {{"R", R}, {"flaw", static_cast<double>(flaw)}}},
+                          {.wo = bsdf_direction(30)}, DiffuseZeroWeights{Lambertian(R), flaw});
+}
+
+TEST(BsdfWeightZero, ABlackSurfacesSamplesOfWeightZeroPassAndAreCountedOnSeveralSeeds) {
+    for (uint64_t seed : {1, 2, 3}) {
+        const CheckResult r = edges_weight_of(*zero_weight_diffuse(0.0f, ZeroFlaw::None), seed);
+        EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
+        EXPECT_EQ(edges_figure(r, "zero_weight_samples"), edges_figure(r, "sampled")) << r.message;
+        EXPECT_GT(edges_figure(r, "sampled"), 100000.0);
+    }
+}
+
+TEST(BsdfWeightZero, ASampleClaimingFWhereFIsZeroStillFails) {
+    // The same black surface, its sampler claiming R / pi with R = 0.5: f() is 0 at every sample.
+    const CheckResult r = edges_weight_of(*zero_weight_diffuse(0.0f, ZeroFlaw::SampleClaimsWhereFIsZero), 1);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_NE(r.message.find("lands where f(wo, wi) is 0"), std::string::npos) << r.message;
+}
+
+TEST(BsdfWeightZero, ASampleOfWeightZeroWhereFIsPositiveFails) {
+    const CheckResult r = edges_weight_of(*zero_weight_diffuse(0.5f, ZeroFlaw::SampleZeroWhereFIsNot), 1);
+    EXPECT_EQ(r.verdict, Verdict::Fail);
+    EXPECT_NE(r.message.find("the weight differs"), std::string::npos) << r.message;
+    EXPECT_EQ(edges_figure(r, "zero_weight_samples"), 0.0);
+}
+
+}  // namespace
+}  // namespace warpcheck
