@@ -600,7 +600,8 @@ int run_fuzz_cases(CliOptions o, const Registry& registry, const std::vector<Out
 }
 
 /// --fuzz: the families' ranges run through the cheap checks (validate/run/fuzz.h).
-int run_fuzz_mode(const CliOptions& o, const Registry& registry, bool samples_given) {
+int run_fuzz_mode(const CliOptions& o, const Registry& registry, bool samples_given,
+                  const std::vector<Output>& outputs, const std::string& command) {
     if (o.all || o.list || o.list_jobs || o.shard_spec || !o.merge_paths.empty() || o.samples.any()) {
         std::cerr << o.program_name << ": --fuzz runs on its own: --filter picks families, --check checks\n";
         return kExitUsage;
@@ -636,9 +637,21 @@ int run_fuzz_mode(const CliOptions& o, const Registry& registry, bool samples_gi
                   << " a parameter range (GridAxis::ranges) to draw from\n";
         return kExitUsage;
     }
-    const FuzzReport report = run_fuzz(registry, f);
+    if (const std::string bad = output_problem(outputs, {}); !bad.empty()) {
+        std::cerr << o.program_name << ": " << bad << "\n";
+        return kExitUsage;
+    }
+    FuzzReport report = run_fuzz(registry, f);
     std::cout << fuzz_report_text(report);
-    if (!stdout_written(o.program_name, "the fuzz report")) return kExitUsage;
+    // Every point's rows, for --json, --report and --junit: one result model.
+    report.run.info.command_line = command;
+    report.run.info.tool_version = WARPCHECK_VERSION;
+    std::vector<JobName> whole_run;
+    for (const CheckResult& r : report.run.results) whole_run.push_back({r.case_name, r.check_name});
+    seal_run(report.run, whole_run);
+    if (!write_outputs(outputs, report.run, o.program_name, std::cout) ||
+        !stdout_written(o.program_name, "the fuzz report"))
+        return kExitUsage;
     return report.clean() ? kExitPass : kExitFail;
 }
 
@@ -773,7 +786,7 @@ int run_cli(int argc, char** argv, const Registry& registry) {
                                           o.program_name, std::cerr);
         return run ? present(*run, o, outputs) : kExitUsage;
     }
-    if (o.fuzz) return run_fuzz_mode(o, registry, app.count("--samples") > 0);
+    if (o.fuzz) return run_fuzz_mode(o, registry, app.count("--samples") > 0, outputs, command_line(argc, argv));
     if (!o.fuzz_cases.empty()) return run_fuzz_cases(o, registry, outputs, command_line(argc, argv));
     std::string problem = selection_problem(o, registry);
     if (problem.empty()) problem = output_problem(outputs, o.merge_paths);

@@ -63,6 +63,9 @@ struct FuzzReport {
     std::vector<FuzzFinding> findings;
     /// Points inside a declared range that the family's maker refused, with its reason: each is a finding.
     std::vector<std::string> refusals;
+    /// Every row of the fuzz run (each point's checks, at the run's level),
+    /// each rerun line a --fuzz-case line: what --json, --report and --junit write.
+    RunResult run;
     double seconds = 0.0;
     bool clean() const { return findings.empty() && refusals.empty(); }
 };
