@@ -6,10 +6,13 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
 
 #include "sampling/bsdf_diffuse.h"
 #include "sampling/bsdf_phase.h"
+#include "sampling/light.h"
+#include "validate/api/light_case.h"
 #include "validate/api/bsdf_grid.h"
 #include "validate/api/registry.h"
 #include "validate/run/fuzz.h"
@@ -131,6 +134,53 @@ TEST(Fuzz, ANegativeValueWithinAMilliradianOfTheHorizonIsFoundThere) {
     EXPECT_GT(theta, 89.94) << f->shrunk_case;
     EXPECT_LT(theta, 90.0) << f->shrunk_case;
     EXPECT_GT(shrunk->info().params[0].value, 0.0) << "R = 0 hides the sign: " << f->shrunk_case;
+}
+
+/// A sphere light of radius 1 seen from the origin, its centre `distance`
+/// along +z; the planted twin returns twice its radiance from its samples
+/// beyond distance 50 (a falloff applied twice, say).
+struct FarDoubledSphere {
+    SphereLight sphere;
+    bool doubled;
+    LightSample sample(Vector3f ref, Point2f u) const {
+        LightSample s = sphere.sample(ref, u);
+        if (doubled) s.L *= 2.0f;
+        return s;
+    }
+    float pdf(Vector3f ref, Vector3f wi) const { return sphere.pdf(ref, wi); }
+    float L(Vector3f ref, Vector3f wi) const { return sphere.L(ref, wi); }
+};
+
+CaseFamily sphere_family(const char* name, bool planted) {
+    return {{.family = name, .description = "a sphere light over its distance"},
+            {{"distance", {4}, {{2, 100}}}},
+            [planted](WarpCaseInfo info, const GridPoint& p) {
+                const float d = static_cast<float>(p["distance"]);
+                return make_light_case(std::move(info), {.ref = {0, 0, 0}, .normal = {0, 0, 1}},
+                                       FarDoubledSphere{SphereLight({0, 0, d}, 1.0f, 2.0f), planted && d > 50.0f});
+            }};
+}
+
+TEST(Fuzz, ALightFamilyIsFuzzedByTheLightChecksAndItsFarBugIsFoundFar) {
+    Registry registry;
+    register_builtin_checks(registry);
+    registry.add_family(sphere_family("fuzz_sphere", false));
+    registry.add_family(sphere_family("fuzz_sphere_far_doubled", true));
+    FuzzOptions o;
+    o.run.samples = 20'000;
+    o.random_points = 16;
+    o.families = {"fuzz_sphere"};
+    const FuzzReport clean = run_fuzz(registry, o);
+    EXPECT_TRUE(clean.clean()) << fuzz_report_text(clean);
+    std::set<std::string> checks;
+    for (const CheckResult& r : clean.run.results) checks.insert(r.check_name);
+    EXPECT_EQ(checks, (std::set<std::string>{"consistency", "sample_pdf", "light_radiance", "light_support"}));
+    o.families = {"fuzz_sphere_far_doubled"};
+    const FuzzReport r = run_fuzz(registry, o);
+    const FuzzFinding* f = finding(r, "light_radiance");
+    ASSERT_NE(f, nullptr) << fuzz_report_text(r);
+    // The simplest failing distance: 100 (the range's end, one digit), not one of 50 or less.
+    EXPECT_EQ(f->shrunk_case, "fuzz_sphere_far_doubled[distance=100]") << fuzz_report_text(r);
 }
 
 TEST(Fuzz, ARangeEndTheMakerRefusesIsAFinding) {
