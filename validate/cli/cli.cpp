@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <new>
@@ -530,7 +531,7 @@ int run_merge(const CliOptions& o, const std::vector<Output>& outputs, const std
 
 /// Runs the selection (or its shard) and presents it.
 int run_selection(const CliOptions& o, const Registry& registry, const std::vector<Output>& outputs,
-                  const std::string& command) {
+                  const std::string& command, const std::function<void(RunResult&)>& adjust = {}) {
     const std::vector<Job> all_jobs = select_jobs(registry, o.filters, o.checks, o.run);
     const std::vector<Job> jobs = shard_jobs(all_jobs, o.shard);
     if (o.list_jobs) {
@@ -565,6 +566,7 @@ int run_selection(const CliOptions& o, const Registry& registry, const std::vect
     }
     std::vector<JobName> whole_run;
     for (const Job& job : all_jobs) whole_run.push_back({job.warp->name(), job.check->name()});
+    if (adjust) adjust(run);
     seal_run(run, whole_run);
     return present(run, o, outputs);
 }
@@ -596,7 +598,10 @@ int run_fuzz_cases(CliOptions o, const Registry& registry, const std::vector<Out
         std::cerr << o.program_name << ": " << bad << "\n";
         return kExitUsage;
     }
-    return run_selection(o, made, outputs, command);
+    // Each row's rerun line makes its case from its name again, as the run did.
+    return run_selection(o, made, outputs, command, [](RunResult& run) {
+        for (CheckResult& r : run.results) r.rerun_command = fuzz_case_rerun(r.rerun_command);
+    });
 }
 
 /// --fuzz: the families' ranges run through the cheap checks (validate/run/fuzz.h).

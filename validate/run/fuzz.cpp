@@ -286,13 +286,6 @@ std::optional<CheckResult> still_fails(const CaseFamily& family,
     return std::nullopt;
 }
 
-/// A row's rerun line for a case that no grid registered: the family makes it from its name.
-std::string as_fuzz_case_rerun(std::string rerun) {
-    const auto filter = rerun.find("--filter");
-    if (filter != std::string::npos) rerun.replace(filter, 8, "--fuzz-case");
-    return rerun;
-}
-
 /// Greedy shrinking: each parameter in turn to its simplest value that still
 /// fails, until a whole pass changes nothing or the reruns run out; returns
 /// the reruns used, `best` and `best_row` left at the simplest failing point.
@@ -392,12 +385,18 @@ FuzzReport run_fuzz(const Registry& registry, const FuzzOptions& options) {
         f.failing_points = failures[key].size();
         f.rerun = rerun_command(options.run.program, f.shrunk_case, f.check, options.run.seed, options.run.samples,
                                 options.run.max_float_bias);
-        f.rerun = fuzz_detail::as_fuzz_case_rerun(f.rerun);
+        f.rerun = fuzz_case_rerun(f.rerun);
         report.findings.push_back(std::move(f));
     }
-    for (CheckResult& r : report.run.results) r.rerun_command = fuzz_detail::as_fuzz_case_rerun(r.rerun_command);
+    for (CheckResult& r : report.run.results) r.rerun_command = fuzz_case_rerun(r.rerun_command);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return report;
+}
+
+std::string fuzz_case_rerun(std::string rerun) {
+    const auto filter = rerun.find("--filter");
+    if (filter != std::string::npos) rerun.replace(filter, 8, "--fuzz-case");
+    return rerun;
 }
 
 std::string fuzz_report_text(const FuzzReport& report) {

@@ -88,6 +88,10 @@ std::unique_ptr<WarpCase> make_family_case(const CaseFamily& family, const std::
 /// family, a parameter is missing, unknown or not a number, or the maker refuses.
 std::unique_ptr<WarpCase> make_case_from_name(const Registry& registry, const std::string& name, std::string& problem);
 
+/// A row's rerun line (rerun_command's --filter 'case') as the --fuzz-case
+/// line that makes its case from the family again: for a case no grid registered.
+std::string fuzz_case_rerun(std::string rerun);
+
 /// The report as text: the findings with their rerun lines, then a summary line.
 std::string fuzz_report_text(const FuzzReport& report);
 

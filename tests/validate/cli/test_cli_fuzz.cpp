@@ -34,6 +34,15 @@ TEST(CliFuzz, AFuzzCaseRunsTheChecksAtTheNamedParameters) {
     EXPECT_NE(r.output.find("rough_conductor[alpha=0.0001,theta_o=89.5]"), std::string::npos) << r.output;
 }
 
+TEST(CliFuzz, AFailingFuzzCasesRerunLineIsAFuzzCaseLine) {
+    // Beyond the family's declared range (10^-5 degrees off the horizon): a float limit it fails.
+    const std::string name = "rough_conductor_aniso[ax=0.0001,ay=0.0001,theta_o=89.99999,phi_o=0.05]";
+    const auto r = run_validate("--fuzz-case '" + name + "' --check bsdf_weight --samples 20000");
+    ASSERT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("--fuzz-case '" + name + "' --check bsdf_weight"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("--filter '"), std::string::npos) << r.output;
+}
+
 TEST(CliFuzz, BadUsageExitsTwoWithTheReason) {
     for (const auto& [args, reason] : std::vector<std::pair<std::string, std::string>>{
              {"--fuzz --all", "--fuzz runs on its own"},
