@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <numeric>
 #include <string>
@@ -46,7 +47,64 @@ struct Diffuse17 {
     }
 };
 
+// A stochastic BSDF in C++17, as a layered one is: f(wo, wi) an unbiased
+// estimate (R / pi times 2U, U uniform from a hash of wo's and wi's bits, so a
+// pair always gets the same value), a sample's weight an unbiased estimate of
+// R (R times 2U from its input) with pdf() only for MIS. Its wrong twin's
+// weights are 5% high on average; no pointwise comparison could tell.
+struct NoisyDiffuse17 {
+    float r;
+    float bias = 1.0f;
+    static float unit(std::uint32_t h) {
+        h ^= h >> 16;
+        h *= 0x7feb352dU;
+        h ^= h >> 15;
+        h *= 0x846ca68bU;
+        h ^= h >> 16;
+        return static_cast<float>(h >> 8) * 0x1p-24f;
+    }
+    static std::uint32_t bits(float x) {
+        std::uint32_t b;
+        std::memcpy(&b, &x, sizeof b);
+        return b;
+    }
+    double f(const w17::Point& wo, const w17::Point& wi) const {
+        if (!(wo[2] * wi[2] > 0)) return 0.0;
+        std::uint32_t h = 0x9e3779b9U;
+        for (float c : {wo[0], wo[1], wo[2], wi[0], wi[1], wi[2]}) h = (h ^ bits(c)) * 0x01000193U;
+        return r * kInvPi * 2.0f * unit(h);
+    }
+    double pdf(const w17::Point& wo, const w17::Point& wi) const {
+        return wo[2] * wi[2] > 0 ? std::abs(wi[2]) * kInvPi : 0.0;
+    }
+    w17::BsdfSample sample(const w17::Point& wo, const w17::Point2& u) const {
+        const float rad = std::sqrt(u[0]), phi = 2 * kPi * u[1];
+        w17::Point wi{rad * std::cos(phi), rad * std::sin(phi), std::sqrt(std::max(0.0f, 1 - u[0]))};
+        if (wo[2] < 0) wi[2] = -wi[2];
+        const float p = std::abs(wi[2]) * kInvPi;
+        if (!(p > 0)) return {};
+        const float weight = r * bias * 2.0f * unit(bits(u[0]) * 0x01000193U ^ bits(u[1]));
+        w17::BsdfSample s;
+        s.wi = wi;
+        s.f = weight * p / std::abs(wi[2]);
+        s.pdf = p;
+        return s;
+    }
+};
+
 void register_bsdfs(warpcheck::Registry& registry) {
+    for (bool wrong : {false, true}) {
+        w17::BsdfInfo info;
+        info.family = wrong ? "noisy_diffuse_cxx17_biased" : "noisy_diffuse_cxx17";
+        info.params = {{"theta_o", 30}};
+        info.description = "a stochastic BSDF (f an estimate, the sample's pdf proportional), registered from C++17";
+        info.wo = w17::bsdf_direction(30);
+        info.stochastic = true;
+        w17::add_bsdf(registry, info, NoisyDiffuse17{0.6f, wrong ? 1.05f : 1.0f});
+        if (wrong)
+            w17::mark_known_flaw(registry, "noisy_diffuse_cxx17_biased[theta_o=30]", "",
+                                 "its sampled weights are 5% high on average");
+    }
     for (bool wrong : {false, true})
         for (double theta : {0.0, 70.0}) {
             w17::BsdfInfo info;

@@ -103,6 +103,9 @@ done
 expect_row pass exhaustive unit_float_cxx17    # all 2^32 inputs, the block loop compiled as C++17
 expect_row pass exhaustive one_to_two_cxx17    # the top 23 of 64 bits
 for theta in 0 70; do expect_row pass bsdf_weight "diffuse_cxx17[theta_o=$theta]"; done
+# A stochastic BSDF from C++17: judged in expectation, the pointwise checks n/a.
+expect_row pass bsdf_expectation "noisy_diffuse_cxx17[theta_o=30]"
+for check in bsdf_weight bsdf_chi2 bsdf_albedo; do expect_row n/a "$check" "noisy_diffuse_cxx17[theta_o=30]"; done
 for check in chi2 consistency sample_pdf light_radiance light_support light_irradiance; do
   expect_row pass "$check" sphere_light_cxx17
 done
@@ -115,6 +118,7 @@ expect_fail "phong_cxx17_wrong[n=20]" weight_mean
 expect_fail unit_float_cxx17_swapped exhaustive
 expect_fail one_to_two_cxx17_swapped exhaustive
 expect_fail "diffuse_cxx17_weight_no_cos[theta_o=70]" bsdf_weight
+expect_fail "noisy_diffuse_cxx17_biased[theta_o=30]" bsdf_expectation
 expect_fail sphere_light_cxx17_double_radiance light_radiance "differs from L(ref, wi)"
 expect_row pass mis_estimator direct_cxx17
 # Parameters at their extremes, from C++17 (w17::add_bsdf_grid with ranges):

@@ -40,6 +40,16 @@ struct BsdfClaims {
     float eta = 1.0f;
     /// A phase function: wi on the whole sphere, weight p / pdf (no cosine).
     bool phase_function = false;
+    /// A stochastic BSDF (a layered one, pbrt-v4's LayeredBxDF): f(wo, wi) is
+    /// an unbiased estimate of the BSDF (a one-sample random walk), a sample's
+    /// f |cos theta_i| / pdf an unbiased estimate of its throughput whose pdf
+    /// is only proportional to the density it was drawn from
+    /// (pdfIsProportional), and pdf(wo, wi) an approximation kept for multiple
+    /// importance sampling. The checks that compare values pointwise (the
+    /// weight identity, the chi-square and unbinned tests against pdf(),
+    /// reciprocity, the albedo by quadrature) do not apply;
+    /// bsdf_expectation tests it in expectation, per cell of the sphere.
+    bool stochastic = false;
 };
 
 /// One sample as the checks see it: the BsdfSample, with wi as a WarpOutput.

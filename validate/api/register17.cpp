@@ -149,7 +149,8 @@ BsdfClaims to_claims(const BsdfInfo& in) {
             .reciprocal = in.reciprocal,
             .transport = in.importance ? Transport::Importance : Transport::Radiance,
             .eta = in.eta,
-            .phase_function = in.phase_function};
+            .phase_function = in.phase_function,
+            .stochastic = in.stochastic};
 }
 
 /// The plain sample as the checks see it: its lobe's flags from the two bools.

@@ -183,6 +183,7 @@ struct BsdfInfo {
     bool importance = false;     ///< transmitted f without the 1 / eta^2 of radiance
     float eta = 1.0f;            ///< index below the surface over above
     bool phase_function = false; ///< wi on the whole sphere, weight p / pdf (no cosine)
+    bool stochastic = false;     ///< f an estimate, the sample's pdf proportional, pdf() for MIS (a layered BSDF)
 };
 
 /// A light's sample seen from a reference point, as a renderer returns it

@@ -14,6 +14,7 @@
 #include "sampling/bsdf_conductor.h"
 #include "sampling/bsdf_dielectric.h"
 #include "sampling/bsdf_diffuse.h"
+#include "sampling/bsdf_layered.h"
 #include "sampling/bsdf_phase.h"
 #include "sampling/bsdf_plastic.h"
 #include "validate/api/bsdf_grid.h"
@@ -63,6 +64,10 @@ const std::vector<ParamRange> kEta = {{1, 4, true, false}};
 /// pdf(): an open finding, which the family does not claim.
 const std::vector<ParamRange> kRoughEta = {{1.01, 4}};
 const std::vector<ParamRange> kUnit = {{0, 1}};
+/// A coated conductor's base roughness: from 0.1. Below, the base's lobe, seen
+/// through the coat, narrows to a few of bsdf_expectation's cells, whose
+/// reference (f at uniform directions in a cell) then rarely hits the peak.
+const std::vector<ParamRange> kCoatedRoughness = {{0.1, 1}};
 
 /// theta_o from above the surface, normal to grazing.
 std::vector<double> theta_above() { return axis({0, 60, 85}, {0, 30, 60, 80, 85, 89}); }
@@ -132,6 +137,31 @@ void register_plastic(Registry& registry) {
                   });
 }
 
+/// The claims of a coated BSDF: stochastic (its f a random-walk estimate, its
+/// sample's pdf proportional, its pdf for MIS; sampling/bsdf_layered.h).
+BsdfClaims coated_claims(const GridPoint& p) { return {.wo = grid_wo(p), .stochastic = true}; }
+
+void register_coated(Registry& registry) {
+    add_case_grid(registry,
+                  {.family = "coated_diffuse",
+                   .description = "layered: a smooth dielectric coat over a Lambertian base, f a random-walk "
+                                  "estimate (stochastic)"},
+                  {{"R", {0.8}, kUnit}, {"eta", {kGlass}, kEta}, {"theta_o", theta_above(), kThetaBothSides}},
+                  [](WarpCaseInfo info, const GridPoint& p) {
+                      return make_bsdf_case(std::move(info), coated_claims(p),
+                                            CoatedBsdf(Lambertian(as_float(p["R"])), as_float(p["eta"])));
+                  });
+    add_case_grid(registry,
+                  {.family = "coated_conductor",
+                   .description = "layered: a smooth dielectric coat over a rough gold conductor, f a random-walk "
+                                  "estimate (stochastic)"},
+                  {{"alpha", {0.3}, kCoatedRoughness}, {"eta", {kGlass}, kEta}, {"theta_o", {30, 80}, kThetaBothSides}},
+                  [](WarpCaseInfo info, const GridPoint& p) {
+                      const RoughConductor base(TrowbridgeReitz(as_float(p["alpha"])), kGoldEta, kGoldK);
+                      return make_bsdf_case(std::move(info), coated_claims(p), CoatedBsdf(base, as_float(p["eta"])));
+                  });
+}
+
 void register_henyey_greenstein(Registry& registry) {
     add_case_grid(registry,
                   {.family = "henyey_greenstein", .description = "Henyey-Greenstein phase function on the sphere"},
@@ -145,6 +175,7 @@ void register_bsdf_cases(Registry& registry) {
     register_rough_conductor(registry);
     register_dielectrics(registry);
     register_plastic(registry);
+    register_coated(registry);
     register_henyey_greenstein(registry);
 }
 

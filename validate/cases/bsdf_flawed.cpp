@@ -10,6 +10,7 @@
 #include "sampling/bsdf_conductor.h"
 #include "sampling/bsdf_dielectric.h"
 #include "sampling/bsdf_diffuse.h"
+#include "sampling/bsdf_layered.h"
 #include "sampling/bsdf_plastic.h"
 #include "validate/api/bsdf_case.h"
 #include "validate/api/registry.h"
@@ -205,6 +206,33 @@ std::unique_ptr<WarpCase> roughness_one_percent_off() {
                       RoughConductor(TrowbridgeReitz(0.0505f), kFlawedGoldEta, kFlawedGoldK));
 }
 
+/// A coated BSDF (stochastic) with one term of its walk wrong.
+template <typename Base>
+std::unique_ptr<WarpCase> coated_flawed(std::string family, std::vector<Parameter> params, double theta_o, Base base,
+                                        CoatFlaw flaw, std::string description) {
+    return make_bsdf_case(flawed_info(std::move(family), std::move(params), std::move(description)),
+                          {.wo = bsdf_direction(theta_o), .stochastic = true},
+                          CoatedBsdf(std::move(base), kFlawedGlass, 0, flaw));
+}
+
+std::unique_ptr<WarpCase> coated_diffuse_schlick() {
+    return coated_flawed("coated_diffuse_schlick_in_f", {{"R", 0.8}, {"theta_o", 60}}, 60, Lambertian(0.8f),
+                         CoatFlaw::SchlickInF,
+                         "coated diffuse whose f takes the coat's transmittance from Schlick's approximation, its "
+                         "sampler from the exact Fresnel term");
+}
+
+std::unique_ptr<WarpCase> coated_diffuse_albedo() {
+    return coated_flawed("coated_diffuse_albedo_in_sample", {{"R", 0.8}, {"theta_o", 30}}, 30, Lambertian(0.8f),
+                         CoatFlaw::AlbedoInSample, "coated diffuse whose sampler scales the base's albedo by 1.02");
+}
+
+std::unique_ptr<WarpCase> coated_conductor_jacobian() {
+    return coated_flawed("coated_conductor_jacobian_in_f", {{"alpha", 0.3}, {"theta_o", 30}}, 30,
+                         RoughConductor(TrowbridgeReitz(0.3f), kFlawedGoldEta, kFlawedGoldK), CoatFlaw::JacobianInF,
+                         "coated conductor whose f drops the 1 / eta^2 of the paths that bounce inside the coat");
+}
+
 }  // namespace
 
 std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
@@ -230,6 +258,10 @@ std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
          {"bsdf_albedo", "bsdf_unbinned"}},
         // Every sample a little off: bsdf_chi2's cells average it away (p 0.09).
         {roughness_one_percent_off, "bsdf_unbinned", "visible normals sampled with alpha 1% too large"},
+        // Layered (stochastic): each wrong in expectation only.
+        {coated_diffuse_schlick, "bsdf_expectation", "f's coat transmittance by Schlick, the sampler's exact"},
+        {coated_diffuse_albedo, "bsdf_expectation", "the sampler scales the base's albedo by 1.02"},
+        {coated_conductor_jacobian, "bsdf_expectation", "f drops 1 / eta^2 on the paths inside the coat"},
     };
 }
 

@@ -286,7 +286,9 @@ public:
     }
 
 protected:
-    Applicability bsdf_applicability(const BsdfCase&) const override { return Applicability::runs(); }
+    Applicability bsdf_applicability(const BsdfCase& b) const override {
+        return unless_stochastic(b, "the values of f that a quadrature of the albedo would integrate");
+    }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
         const Draws d = draw(bsdf, ctx);

@@ -27,6 +27,11 @@ std::unique_ptr<Check> make_bsdf_albedo_check();
 /// "bsdf_energy" (not a default check; --fuzz runs it): the mean energy weight
 /// of the samples at most 1, bsdf_albedo's rule without its quadrature.
 std::unique_ptr<Check> make_bsdf_energy_check();
+/// "bsdf_expectation": a stochastic BSDF (BsdfClaims::stochastic) in
+/// expectation: its sampled weights per cell of the sphere against the
+/// integral of its estimated f |cos|, energy at most 1, and its MIS pdf
+/// positive wherever it samples.
+std::unique_ptr<Check> make_bsdf_expectation_check();
 /// "bsdf_reciprocity": f(wo, wi) = f(wi, wo) (the eta^2 rule across an
 /// interface), where the case claims it.
 std::unique_ptr<Check> make_bsdf_reciprocity_check();

@@ -288,7 +288,8 @@ public:
 
 protected:
     Applicability bsdf_applicability(const BsdfCase& b) const override {
-        return Applicability::when(has(b.claims().lobes, BsdfFlags::Continuous));
+        if (!has(b.claims().lobes, BsdfFlags::Continuous)) return Applicability::not_about_such_cases();
+        return unless_stochastic(b, "its sampler's density is not its pdf(), whose values");
     }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {

@@ -41,6 +41,16 @@ protected:
     virtual CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const = 0;
 };
 
+/// Where a check compares a BSDF's values pointwise (f and pdf at a sample's
+/// wi, f against a quadrature): it does not apply to a stochastic BSDF
+/// (BsdfClaims::stochastic), whose values are estimates; `what` names the
+/// comparison, in a few words.
+inline Applicability unless_stochastic(const BsdfCase& bsdf, const std::string& what) {
+    if (!bsdf.claims().stochastic) return Applicability::runs();
+    return Applicability::lacks("a stochastic BSDF: " + what + " are estimates; bsdf_expectation tests them in "
+                                "expectation");
+}
+
 /// Calls f(chunk, inputs, records) for every chunk of map_input_chunks (edge
 /// inputs first when with_edges, then `samples` random ones), with the
 /// records of sample_bsdf (valid during the call only); results in chunk order.

@@ -259,6 +259,7 @@ public:
 protected:
     Applicability bsdf_applicability(const BsdfCase& b) const override {
         if (!b.claims().reciprocal) return Applicability::lacks("the case does not claim reciprocity");
+        if (b.claims().stochastic) return unless_stochastic(b, "f(wo, wi) and f(wi, wo)");
         if (!has(b.claims().lobes, BsdfFlags::Continuous))
             return Applicability::lacks("only delta lobes: f is 0 everywhere");
         return Applicability::runs();

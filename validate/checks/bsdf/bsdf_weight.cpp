@@ -313,7 +313,9 @@ public:
     }
 
 protected:
-    Applicability bsdf_applicability(const BsdfCase&) const override { return Applicability::runs(); }
+    Applicability bsdf_applicability(const BsdfCase& b) const override {
+        return unless_stochastic(b, "a sample's weight and f() |cos| / pdf() at its wi");
+    }
 
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
         const Stats s = compute(bsdf, ctx);

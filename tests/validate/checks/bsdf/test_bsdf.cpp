@@ -17,8 +17,8 @@
 namespace warpcheck {
 namespace {
 
-constexpr const char* kBsdfChecks[] = {"bsdf_chi2",   "bsdf_unbinned",   "bsdf_weight",
-                                       "bsdf_delta", "bsdf_albedo", "bsdf_reciprocity"};
+constexpr const char* kBsdfChecks[] = {"bsdf_chi2",   "bsdf_unbinned",    "bsdf_weight",     "bsdf_delta",
+                                       "bsdf_albedo", "bsdf_reciprocity", "bsdf_expectation"};
 
 std::vector<std::string> bsdf_checks() { return {std::begin(kBsdfChecks), std::end(kBsdfChecks)}; }
 
@@ -44,6 +44,8 @@ TEST(BsdfBuiltins, HardestCasesPassOnTenSeeds) {
         "smooth_dielectric[eta=1.5,theta_o=85]",
         "plastic[kd=0.8,eta=1.5,alpha=0,theta_o=85]",
         "henyey_greenstein[g=0.9,theta_o=30]",
+        "coated_diffuse[R=0.8,eta=1.5,theta_o=85]",
+        "coated_conductor[alpha=0.3,eta=1.5,theta_o=80]",
     };
     for (uint64_t seed = 1; seed <= 10; ++seed) {
         const RunResult r = run(registry, cases, seed, 250'000);
