@@ -127,6 +127,14 @@ const std::vector<std::pair<std::string_view, std::vector<Spec>>> kSpecs = {
           {"excused", "samples at the float resolution of f and pdf (excused)", Rule::Counted},
           {"excused_random", "of them, from random inputs", Rule::AtMost, "excused_random_limit"},
           {"excused_outside_support", "of them, where f or pdf at wi is 0 (a neighbour's is not)", Rule::Counted}}},
+        {"bsdf_expectation",
+         {{"bad_weights", "draws whose weight is not finite or negative", Rule::Zero},
+          {"bad_directions", "draws whose wi is not a unit vector", Rule::Zero},
+          {"off_side_samples", "continuous draws on a side the lobes do not claim", Rule::Zero},
+          {"mis_pdf_zero_samples", "continuous draws where pdf(wo, wi) is not positive", Rule::Zero},
+          {"cells_pooled", "cells pooled into the remainder (pilots promised too few terms)", Rule::Counted},
+          {"cells_retested", "comparisons retested against a 16 times larger reference", Rule::Counted},
+          {"cells_excused", "cells excused (their remainder too sparse to judge)", Rule::Counted}}},
         {"bsdf_delta",
          {{"off_direction", "delta samples off their mirror or Snell direction", Rule::Zero},
           {"wrong_eta", "delta samples whose eta is not the case's", Rule::Zero}}},
@@ -271,6 +279,8 @@ std::string combined_name(std::string_view check) {
     if (check == "bsdf_chi2") return "p-value: min(Pearson / 0.7, residual / 0.2, landing / 0.1), at most 1";
     if (unbinned_like(check)) return "p-value: smallest judged p, \u0160id\u00e1k-corrected over the judged tests";
     if (check == "bsdf_delta") return "p-value: the smallest lobe's, \u0160id\u00e1k-corrected over the lobes tested";
+    if (check == "bsdf_expectation")
+        return "p-value: the smallest of the cells', remainder's, total's and energy's, \u0160id\u00e1k-corrected";
     if (check == "binade" || check == "remapped_u") return "p-value: the smallest test's, times the number of tests, at most 1";
     return "p-value";
 }
@@ -374,6 +384,13 @@ const std::vector<std::pair<std::string_view, CheckLegend>> kLegends = {
                      "known), the one-sided p-value of the mean energy weight against 1."}},
     {"bsdf_reciprocity", {"f(wo, wi) against f(wi, wo) (the eta\u00b2 rule across an interface) at every sampled wi "
                           "and a Fibonacci grid, within 2^-12 relative or f's float resolution.", ""}},
+    {"bsdf_expectation",
+     {"A stochastic BSDF in expectation: the sampled weights that land in each cell of the sphere against the "
+      "integral of its estimated f |cos| over the cell (z-tests with both sides' measured variances; cells judged "
+      "alone where pilots promise 50 effective terms, the others pooled), the total, energy at most 1, and the MIS "
+      "pdf positive at every sampled direction.",
+      "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k comparisons; a retested one's p is the larger of "
+      "its two."}},
     {"bsdf_energy", {"The mean energy weight of the samples against 1, without quadrature (run by --fuzz).",
                      "The one-sided t-test's p-value of the mean energy weight above 1."}},
 };

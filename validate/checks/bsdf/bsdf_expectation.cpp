@@ -121,13 +121,19 @@ int cell_of(const std::vector<int>& sides, const WarpOutput& wi) {
 
 /// Sums of a side's terms over a cell (or a pool of cells): the estimate is
 /// `sum`, its variance `variance`, and `squares` the sum of the terms'
-/// squares (for the effective count).
+/// squares (for the effective count). A sampled side also keeps the raw sums
+/// of its weights and their squares (the tested draws' and the pilot's) and
+/// the number of tested draws, for its variance under the null hypothesis.
 struct Side {
     double sum = 0.0, variance = 0.0, squares = 0.0;
+    double raw = 0.0, raw_squares = 0.0, draws = 0.0;
     void add(const Side& o) {
         sum += o.sum;
         variance += o.variance;
         squares += o.squares;
+        raw += o.raw;
+        raw_squares += o.raw_squares;
+        draws = std::max(draws, o.draws);
     }
     /// (sum x)^2 / sum x^2; 0 for a side that saw nothing (no draw landed, or
     /// f was 0 at every direction tried): that is no evidence of a zero.
@@ -201,13 +207,17 @@ DrawTally draw(const BsdfCase& bsdf, const CheckContext& ctx, const std::vector<
     return merge_in_order(parts);
 }
 
-/// The sampled side of each cell: the mean of w 1(wi in cell) over the draws.
-std::vector<Side> sampled_sides(const DrawTally& t) {
+/// The sampled side of each cell: the mean of w 1(wi in cell) over the draws,
+/// with the raw sums of `t` and of `pilot` (when given) for null_variance.
+std::vector<Side> sampled_sides(const DrawTally& t, const DrawTally* pilot = nullptr) {
     const double n = static_cast<double>(t.draws);
     std::vector<Side> out(t.weight.size());
     for (std::size_t c = 0; c < out.size(); ++c) {
         const double mean = t.weight[c] / n;
         out[c] = {mean, std::max(0.0, t.square[c] / n - mean * mean) / (n - 1.0), t.square[c] / (n * n)};
+        out[c].raw = t.weight[c] + (pilot ? pilot->weight[c] : 0.0);
+        out[c].raw_squares = t.square[c] + (pilot ? pilot->square[c] : 0.0);
+        out[c].draws = n;
     }
     return out;
 }
@@ -251,9 +261,8 @@ Reference integrate_cell(const BsdfCase& bsdf, const CheckContext& ctx, const st
     return out;
 }
 
-/// The sampled sides of `count` draws from the pilot streams.
-std::vector<Side> pilot_draws(const BsdfCase& bsdf, const CheckContext& ctx, const std::vector<int>& sides,
-                              std::size_t count) {
+/// The tally of `count` draws from the pilot streams.
+DrawTally pilot_draws(const BsdfCase& bsdf, const CheckContext& ctx, const std::vector<int>& sides, std::size_t count) {
     const std::vector<WarpInput> in = pilot_inputs(ctx, InputKind::Uniform3D, count);
     std::vector<BsdfRecord> records(in.size());
     bsdf.sample_bsdf(in, records);
@@ -261,7 +270,7 @@ std::vector<Side> pilot_draws(const BsdfCase& bsdf, const CheckContext& ctx, con
     t.weight.assign(sides.size() * kCellsPerSide, 0.0);
     t.square.assign(t.weight.size(), 0.0);
     for (std::size_t k = 0; k < in.size(); ++k) tally_draw(bsdf, sides, in[k], records[k], true, t);
-    return sampled_sides(t);
+    return t;
 }
 
 /// The reference of every cell, evaluations allotted half by the cells' share
@@ -320,8 +329,20 @@ struct Comparison {
     double z = 0.0, p = 1.0, sampled = 0.0, integral = 0.0, standard_error = 0.0;
 };
 
+/// The sampled side's variance under the null hypothesis that its mean is the
+/// reference's m: (rho m - m^2) / (n - 1), rho = E[w^2] / E[w] over the draws
+/// that landed (the tested ones and the pilot's). The variance the draws
+/// measure falls with their count, so a cell that drew few samples by chance
+/// would look surer of its deficit than it is (a Wald test of a count); the
+/// score test's variance does not move with it. The measured one where the
+/// side has no weights or the reference no mass.
+double null_variance(const Side& s, double m) {
+    if (!(s.raw > 0.0 && m > 0.0 && s.draws > 1.0)) return s.variance;
+    return std::max(0.0, s.raw_squares / s.raw * m - m * m) / (s.draws - 1.0);
+}
+
 Comparison compare(const Side& s, const Side& f) {
-    Comparison c{0.0, 1.0, s.sum, f.sum, std::sqrt(s.variance + f.variance)};
+    Comparison c{0.0, 1.0, s.sum, f.sum, std::sqrt(null_variance(s, f.sum) + f.variance)};
     const double d = s.sum - f.sum;
     if (d == 0.0) return c;
     c.z = d / c.standard_error;  // d != 0 with no variance: infinite, p 0; NaN stays NaN
@@ -504,9 +525,9 @@ protected:
     CheckResult run_bsdf(const BsdfCase& bsdf, const CheckContext& ctx) const override {
         const std::vector<int> sides = sides_of(bsdf);
         const DrawTally t = draw(bsdf, ctx, sides);
-        const std::vector<Side> sampled = sampled_sides(t);
         const uint64_t pilot_count = std::max<uint64_t>(1000, ctx.options().samples / 8);
-        const std::vector<Side> pilot = pilot_draws(bsdf, ctx, sides, static_cast<std::size_t>(pilot_count));
+        const DrawTally pilot_tally = pilot_draws(bsdf, ctx, sides, static_cast<std::size_t>(pilot_count));
+        const std::vector<Side> sampled = sampled_sides(t, &pilot_tally), pilot = sampled_sides(pilot_tally);
         std::vector<Reference> ref = reference(bsdf, ctx, sides, pilot, 1.0, kReferenceChunks);
         const Plan plan = plan_from_pilots(pilot, static_cast<double>(t.draws) / static_cast<double>(pilot_count),
                                            reference(bsdf, ctx, sides, pilot, kPilotShare, kPilotReferenceChunks), ref);
