@@ -74,20 +74,12 @@ struct NoisyDiffuse17 {
         for (float c : {wo[0], wo[1], wo[2], wi[0], wi[1], wi[2]}) h = (h ^ bits(c)) * 0x01000193U;
         return r * kInvPi * 2.0f * unit(h);
     }
-    double pdf(const w17::Point& wo, const w17::Point& wi) const {
-        return wo[2] * wi[2] > 0 ? std::abs(wi[2]) * kInvPi : 0.0;
-    }
+    double pdf(const w17::Point& wo, const w17::Point& wi) const { return Diffuse17{r, false}.pdf(wo, wi); }
     w17::BsdfSample sample(const w17::Point& wo, const w17::Point2& u) const {
-        const float rad = std::sqrt(u[0]), phi = 2 * kPi * u[1];
-        w17::Point wi{rad * std::cos(phi), rad * std::sin(phi), std::sqrt(std::max(0.0f, 1 - u[0]))};
-        if (wo[2] < 0) wi[2] = -wi[2];
-        const float p = std::abs(wi[2]) * kInvPi;
-        if (!(p > 0)) return {};
+        w17::BsdfSample s = Diffuse17{r, false}.sample(wo, u);  // cosine-weighted wi, pdf |cos| / pi
+        if (!(s.pdf > 0)) return s;
         const float weight = r * bias * 2.0f * unit(bits(u[0]) * 0x01000193U ^ bits(u[1]));
-        w17::BsdfSample s;
-        s.wi = wi;
-        s.f = weight * p / std::abs(wi[2]);
-        s.pdf = p;
+        s.f = weight * s.pdf / std::abs(s.wi[2]);
         return s;
     }
 };
