@@ -135,6 +135,15 @@ const std::vector<std::pair<std::string_view, std::vector<Spec>>> kSpecs = {
           {"cells_pooled", "cells pooled into the remainder (pilots promised too few terms)", Rule::Counted},
           {"cells_retested", "comparisons retested against a 16 times larger reference", Rule::Counted},
           {"cells_excused", "cells excused (their remainder too sparse to judge)", Rule::Counted}}},
+        {"bsdf_spectral",
+         {{"bad_values", "channel values not finite or negative", Rule::Zero},
+          {"f_mismatches", "secondary channels' f beyond the tolerance", Rule::Zero},
+          {"pdf_mismatches", "secondary channels' pdf beyond the tolerance", Rule::Zero},
+          {"hero_mismatches", "hero samples unlike the spectral sample's hero channel", Rule::Zero},
+          {"max_f_relative_difference", "largest relative difference of a secondary f", Rule::Counted},
+          {"terminated", "secondary channels terminated (pdf 0)", Rule::Counted},
+          {"compared_without_ratio", "secondary values compared without a ratio (a hero value of 0)",
+           Rule::Counted}}},
         {"bsdf_delta",
          {{"off_direction", "delta samples off their mirror or Snell direction", Rule::Zero},
           {"wrong_eta", "delta samples whose eta is not the case's", Rule::Zero}}},
@@ -391,6 +400,11 @@ const std::vector<std::pair<std::string_view, CheckLegend>> kLegends = {
       "pdf positive at every sampled direction.",
       "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k comparisons; a retested one's p is the larger of "
       "its two."}},
+    {"bsdf_spectral",
+     {"A spectral BSDF's channel case: at every sample, each secondary channel's f and pdf against f() and pdf() "
+      "at its wi (a pdf of 0: terminated), each in the hero's proportion that f() and pdf() give there, within "
+      "2^-12 relative.",
+      ""}},
     {"bsdf_energy", {"The mean energy weight of the samples against 1, without quadrature (run by --fuzz).",
                      "The one-sided t-test's p-value of the mean energy weight above 1."}},
 };

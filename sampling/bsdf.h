@@ -11,6 +11,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -56,6 +57,22 @@ struct BsdfSample {
     BsdfFlags flags = BsdfFlags::None;
     /// For transmission: the relative index of refraction eta(wi's side) / eta(wo's side).
     float eta = 1.0f;
+};
+
+/// One sample of a spectral BSDF with N channels (RGB: 3; hero-wavelength
+/// sampling: N wavelengths, the hero first or anywhere): wi drawn with the
+/// hero channel's density; per channel c, f[c] = f_c(wo, wi), and pdf[c] the
+/// density channel c's own sampler has at wi (what hero-wavelength MIS
+/// combines), or 0 where channel c is terminated (pbrt-v4's
+/// TerminateSecondary: a dispersive refraction's secondary wavelengths).
+/// For a delta lobe, f[c] and pdf[c] as BsdfSample's.
+template <std::size_t N>
+struct SpectralSample {
+    Vector3f wi{};
+    std::array<float, N> f{};
+    std::array<float, N> pdf{};
+    BsdfFlags flags = BsdfFlags::None;
+    float eta = 1.0f;  ///< the hero channel's, for transmission
 };
 
 /// Whether a and b lie on the same side of the surface (z = 0 counts as neither).

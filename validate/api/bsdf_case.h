@@ -10,12 +10,14 @@
 // uc in u[0]), drawn like any other input from the (case, check) stream.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <concepts>
 #include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 
@@ -228,5 +230,137 @@ std::unique_ptr<WarpCase> make_phase_case(WarpCaseInfo info, Vector3f wo, P phas
 
 /// The BSDF case inside a WarpCase, or nullptr.
 inline const BsdfCase* as_bsdf(const WarpCase& warp) { return dynamic_cast<const BsdfCase*>(&warp); }
+
+// ---------------------------------------------------------------------------
+// Spectral BSDFs: f per channel (RGB, or N wavelengths sampled with a hero),
+// their samples a SpectralSample<N> (sampling/bsdf.h).
+
+/// A spectral BSDF object: const members sample(Vector3f wo, float uc,
+/// Point2f u, int hero) -> SpectralSample<N>, f(Vector3f, Vector3f) and
+/// pdf(Vector3f, Vector3f) -> std::array<float, N> (every channel's), and
+/// flags(); eta(int channel) where it transmits; and, optionally, one
+/// channel's f(wo, wi, channel) and pdf(wo, wi, channel), and
+/// sample_hero(wo, uc, u, hero) -> BsdfSample (sample()'s hero channel alone),
+/// which the checks of a channel case then call instead (a third of the work
+/// with three channels; bsdf_spectral holds sample_hero to sample()).
+template <typename B>
+concept SpectralBsdfObject = requires(const B& b, Vector3f w, float uc, Point2f u, int hero) {
+    b.sample(w, uc, u, hero);
+    { b.f(w, w).size() } -> std::convertible_to<std::size_t>;
+    { b.pdf(w, w).size() } -> std::convertible_to<std::size_t>;
+    { b.flags() } -> std::convertible_to<BsdfFlags>;
+};
+
+/// What the check bsdf_spectral sees of a channel case of a spectral BSDF
+/// (make_spectral_bsdf_case): its channel count and hero, and every channel's
+/// sampled and recomputed values.
+class SpectralChannels {
+public:
+    virtual ~SpectralChannels() = default;
+    virtual int channels() const = 0;
+    virtual int hero() const = 0;
+    /// For each input, the sample's wi and its f and pdf in every channel
+    /// (f[i * channels() + c]).
+    virtual void sample_all(std::span<const WarpInput> in, std::span<WarpOutput> wi, std::span<float> f,
+                            std::span<float> pdf, std::span<BsdfFlags> flags) const = 0;
+    /// f(wo, wi) and pdf(wo, wi) in every channel at one wi.
+    virtual void values_all(const WarpOutput& wi, std::span<float> f, std::span<float> pdf) const = 0;
+};
+
+namespace detail {
+
+/// One channel of a spectral BSDF as a BSDF case: its sampler draws with this
+/// channel as the hero, its f and pdf are this channel's; every BSDF check
+/// runs on it as on any BSDF, and bsdf_spectral on the other channels' values.
+template <SpectralBsdfObject B>
+class SpectralChannelCase final : public BsdfCase, public SpectralChannels {
+public:
+    static constexpr std::size_t kN = std::tuple_size_v<std::remove_cvref_t<decltype(std::declval<const B&>().f(
+        Vector3f{}, Vector3f{}))>>;
+
+    SpectralChannelCase(WarpCaseInfo info, BsdfClaims claims, B bsdf, int hero)
+        : BsdfCase(std::move(info), claims), bsdf_(std::move(bsdf)), hero_(hero) {}
+
+    int channels() const override { return static_cast<int>(kN); }
+    int hero() const override { return hero_; }
+
+    void sample_bsdf(std::span<const WarpInput> in, std::span<BsdfRecord> out) const override {
+        const Vector3f wo = this->wo();
+        const auto h = static_cast<std::size_t>(hero_);
+        for (std::size_t k = 0; k < in.size(); ++k) {
+            const Point2f u{in[k].u[1], in[k].u[2]};
+            if constexpr (requires { { bsdf_.sample_hero(wo, in[k].u[0], u, hero_) } -> std::convertible_to<BsdfSample>; }) {
+                const BsdfSample s = bsdf_.sample_hero(wo, in[k].u[0], u, hero_);
+                out[k] = {to_output_of(s.wi), s.f, s.pdf, s.eta, s.flags};
+            } else {
+                const auto s = bsdf_.sample(wo, in[k].u[0], u, hero_);
+                out[k] = {to_output_of(s.wi), s.f[h], s.pdf[h], s.eta, s.flags};
+            }
+        }
+    }
+    void f(std::span<const WarpOutput> a, std::span<const WarpOutput> b, std::span<double> out) const override {
+        for (std::size_t k = 0; k < a.size(); ++k) out[k] = static_cast<double>(f_of(to_vector(a[k]), to_vector(b[k])));
+    }
+    void pdf(std::span<const WarpOutput> x, std::span<double> out) const override {
+        const Vector3f wo = this->wo();
+        for (std::size_t k = 0; k < x.size(); ++k) out[k] = static_cast<double>(pdf_of(wo, to_vector(x[k])));
+    }
+    void sample_all(std::span<const WarpInput> in, std::span<WarpOutput> wi, std::span<float> f, std::span<float> pdf,
+                    std::span<BsdfFlags> flags) const override {
+        const Vector3f wo = this->wo();
+        for (std::size_t k = 0; k < in.size(); ++k) {
+            const auto s = bsdf_.sample(wo, in[k].u[0], Point2f{in[k].u[1], in[k].u[2]}, hero_);
+            wi[k] = to_output_of(s.wi);
+            flags[k] = s.flags;
+            for (std::size_t c = 0; c < kN; ++c) f[k * kN + c] = s.f[c], pdf[k * kN + c] = s.pdf[c];
+        }
+    }
+    void values_all(const WarpOutput& wi, std::span<float> f, std::span<float> pdf) const override {
+        const auto fv = bsdf_.f(this->wo(), to_vector(wi));
+        const auto pv = bsdf_.pdf(this->wo(), to_vector(wi));
+        for (std::size_t c = 0; c < kN; ++c) f[c] = fv[c], pdf[c] = pv[c];
+    }
+
+private:
+    /// The hero channel's f and pdf: by the object's f(wo, wi, channel) and
+    /// pdf(wo, wi, channel) where it has them (one channel's work), else the
+    /// hero's entry of every channel's.
+    float f_of(Vector3f a, Vector3f b) const {
+        if constexpr (requires { bsdf_.f(a, b, hero_); }) return bsdf_.f(a, b, hero_);
+        else return bsdf_.f(a, b)[static_cast<std::size_t>(hero_)];
+    }
+    float pdf_of(Vector3f wo, Vector3f wi) const {
+        if constexpr (requires { bsdf_.pdf(wo, wi, hero_); }) return bsdf_.pdf(wo, wi, hero_);
+        else return bsdf_.pdf(wo, wi)[static_cast<std::size_t>(hero_)];
+    }
+
+    B bsdf_;
+    int hero_;
+};
+
+}  // namespace detail
+
+/// The case of one channel of a spectral BSDF, `hero` in [0, N): named with
+/// the parameter hero = that channel (add it to info.params, or make it a
+/// grid axis), its lobes from flags(), its eta from eta(hero) where the
+/// object has one. Every BSDF check runs on it with this channel's f and
+/// pdf, and bsdf_spectral checks the other channels' values at its samples.
+template <SpectralBsdfObject B>
+std::unique_ptr<WarpCase> make_spectral_bsdf_case(WarpCaseInfo info, BsdfClaims claims, B bsdf, int hero) {
+    using Case = detail::SpectralChannelCase<B>;
+    if (!(hero >= 0 && hero < static_cast<int>(Case::kN)))
+        throw std::invalid_argument("make_spectral_bsdf_case: hero " + std::to_string(hero) + " is not a channel of " +
+                                    std::to_string(Case::kN));
+    claims.lobes = bsdf.flags();
+    if constexpr (requires { bsdf.eta(hero); }) claims.eta = bsdf.eta(hero);
+    auto c = std::make_unique<Case>(std::move(info), claims, std::move(bsdf), hero);
+    validate_case(*c);
+    return c;
+}
+
+/// The spectral view of a case, or nullptr.
+inline const SpectralChannels* as_spectral(const WarpCase& warp) {
+    return dynamic_cast<const SpectralChannels*>(&warp);
+}
 
 }  // namespace warpcheck

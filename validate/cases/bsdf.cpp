@@ -6,6 +6,7 @@
 // --all stays under a minute); WARPCHECK_BSDF_GRID=full in the environment
 // registers the larger grids instead (more roughnesses, theta_o 80 and 89),
 // about four times the cases.
+#include <array>
 #include <cstdlib>
 #include <string_view>
 #include <utility>
@@ -17,6 +18,7 @@
 #include "sampling/bsdf_layered.h"
 #include "sampling/bsdf_phase.h"
 #include "sampling/bsdf_plastic.h"
+#include "sampling/bsdf_spectral.h"
 #include "validate/api/bsdf_grid.h"
 #include "validate/api/registry.h"
 
@@ -146,7 +148,7 @@ void register_coated(Registry& registry) {
                   {.family = "coated_diffuse",
                    .description = "layered: a smooth dielectric coat over a Lambertian base, f a random-walk "
                                   "estimate (stochastic)"},
-                  {{"R", {0.8}, kUnit}, {"eta", {kGlass}, kEta}, {"theta_o", theta_above(), kThetaBothSides}},
+                  {{"R", {0.8}, kUnit}, {"eta", {kGlass}, kEta}, {"theta_o", axis({0, 85}, {0, 60, 85}), kThetaBothSides}},
                   [](WarpCaseInfo info, const GridPoint& p) {
                       return make_bsdf_case(std::move(info), coated_claims(p),
                                             CoatedBsdf(Lambertian(as_float(p["R"])), as_float(p["eta"])));
@@ -155,10 +157,48 @@ void register_coated(Registry& registry) {
                   {.family = "coated_conductor",
                    .description = "layered: a smooth dielectric coat over a rough gold conductor, f a random-walk "
                                   "estimate (stochastic)"},
-                  {{"alpha", {0.3}, kCoatedRoughness}, {"eta", {kGlass}, kEta}, {"theta_o", {30, 80}, kThetaBothSides}},
+                  {{"alpha", {0.3}, kCoatedRoughness}, {"eta", {kGlass}, kEta}, {"theta_o", axis({80}, {30, 80}), kThetaBothSides}},
                   [](WarpCaseInfo info, const GridPoint& p) {
                       const RoughConductor base(TrowbridgeReitz(as_float(p["alpha"])), kGoldEta, kGoldK);
                       return make_bsdf_case(std::move(info), coated_claims(p), CoatedBsdf(base, as_float(p["eta"])));
+                  });
+}
+
+/// A dispersive glass's three wavelengths: eta - 0.005, eta, eta + 0.006
+/// (about a flint glass's spread between 650 and 450 nm, halved).
+std::array<float, 3> dispersed(double eta) {
+    return {as_float(eta - 0.005), as_float(eta), as_float(eta + 0.006)};
+}
+/// The hero channel of a spectral case: a grid axis, every channel its own
+/// case (the dispersive glass's default grid has its first only: its three
+/// heroes cost 5 CPU seconds, and validate --all has a minute; the full grid
+/// has all three).
+const GridAxis kHero = {"hero", {0, 1, 2}, {}};
+GridAxis dispersive_heroes() { return {"hero", axis({0}, {0, 1, 2}), {}}; }
+
+void register_spectral(Registry& registry) {
+    add_case_grid(registry,
+                  {.family = "rgb_conductor",
+                   .description = "spectral: a rough conductor (gold) with its Fresnel term per R, G, B, sampled with "
+                                  "one channel as the hero"},
+                  {{"alpha", {0.3}, kRoughness}, {"theta_o", {30}, kThetaBothSides}, kHero},
+                  [](WarpCaseInfo info, const GridPoint& p) {
+                      const RgbConductor c(TrowbridgeReitz(as_float(p["alpha"])), kGoldRgbEta, kGoldRgbK);
+                      return make_spectral_bsdf_case(std::move(info), {.wo = grid_wo(p)}, c, static_cast<int>(p["hero"]));
+                  });
+    // eta from 1.015, so that its first wavelength's index, eta - 0.005, starts
+    // where rough_dielectric's range does (kRoughEta says why 1.01).
+    add_case_grid(registry,
+                  {.family = "dispersive_dielectric",
+                   .description = "spectral: a rough dielectric with an index per wavelength (dispersion), the "
+                                  "secondary wavelengths terminated by a transmission"},
+                  {{"alpha", {0.3}, kRoughness},
+                   {"eta", {kGlass}, {{1.015, 4}}},
+                   {"theta_o", {30}, kThetaBothSides},
+                   dispersive_heroes()},
+                  [](WarpCaseInfo info, const GridPoint& p) {
+                      const DispersiveDielectric<3> d(TrowbridgeReitz(as_float(p["alpha"])), dispersed(p["eta"]));
+                      return make_spectral_bsdf_case(std::move(info), {.wo = grid_wo(p)}, d, static_cast<int>(p["hero"]));
                   });
 }
 
@@ -176,6 +216,7 @@ void register_bsdf_cases(Registry& registry) {
     register_dielectrics(registry);
     register_plastic(registry);
     register_coated(registry);
+    register_spectral(registry);
     register_henyey_greenstein(registry);
 }
 

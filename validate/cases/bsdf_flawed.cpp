@@ -12,6 +12,7 @@
 #include "sampling/bsdf_diffuse.h"
 #include "sampling/bsdf_layered.h"
 #include "sampling/bsdf_plastic.h"
+#include "sampling/bsdf_spectral.h"
 #include "validate/api/bsdf_case.h"
 #include "validate/api/registry.h"
 #include "validate/cases/bsdf_flawed.h"
@@ -233,6 +234,43 @@ std::unique_ptr<WarpCase> coated_conductor_jacobian() {
                          "coated conductor whose f drops the 1 / eta^2 of the paths that bounce inside the coat");
 }
 
+/// A spectral BSDF's channel case at theta_o 30 with one thing wrong.
+template <typename B>
+std::unique_ptr<WarpCase> spectral_flawed(std::string family, int hero, B bsdf, std::string description) {
+    return make_spectral_bsdf_case(
+        flawed_info(std::move(family), {{"alpha", 0.3}, {"theta_o", 30}, {"hero", static_cast<double>(hero)}}, std::move(description)),
+        {.wo = bsdf_direction(30)}, std::move(bsdf), hero);
+}
+
+RgbConductor green_high_conductor() {
+    return RgbConductor(TrowbridgeReitz(0.3f), kGoldRgbEta, kGoldRgbK, SpectralFlaw::GreenWeightHigh);
+}
+
+std::unique_ptr<WarpCase> rgb_green_high_seen_from_red() {
+    return spectral_flawed("rgb_conductor_green_weight_high", 0, green_high_conductor(),
+                           "RGB conductor whose sampled green value is 0.5% high (red the hero)");
+}
+
+std::unique_ptr<WarpCase> rgb_green_high_seen_from_green() {
+    return spectral_flawed("rgb_conductor_green_weight_high", 1, green_high_conductor(),
+                           "RGB conductor whose sampled green value is 0.5% high (green the hero)");
+}
+
+DispersiveDielectric<3> dispersive_glass(SpectralFlaw flaw) {
+    return DispersiveDielectric<3>(TrowbridgeReitz(0.3f), {1.495f, 1.5f, 1.506f}, flaw);
+}
+
+std::unique_ptr<WarpCase> dispersion_not_terminated() {
+    return spectral_flawed("dispersive_dielectric_not_terminated", 0,
+                           dispersive_glass(SpectralFlaw::SecondaryNotTerminated),
+                           "dispersive glass whose transmissions give the secondary wavelengths the hero's pdf");
+}
+
+std::unique_ptr<WarpCase> dispersion_with_hero_eta() {
+    return spectral_flawed("dispersive_dielectric_hero_eta", 0, dispersive_glass(SpectralFlaw::SecondaryWithHeroEta),
+                           "dispersive glass whose secondary wavelengths' f is evaluated with the hero's eta");
+}
+
 }  // namespace
 
 std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
@@ -262,6 +300,14 @@ std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
         {coated_diffuse_schlick, "bsdf_expectation", "f's coat transmittance by Schlick, the sampler's exact"},
         {coated_diffuse_albedo, "bsdf_expectation", "the sampler scales the base's albedo by 1.02"},
         {coated_conductor_jacobian, "bsdf_expectation", "f drops 1 / eta^2 on the paths inside the coat"},
+        // Spectral: a channel's value wrong as a secondary (only bsdf_spectral
+        // sees it) and as the hero (its weight, its albedo, and every
+        // secondary's allowance widened at every draw).
+        {rgb_green_high_seen_from_red, "bsdf_spectral", "green's sampled value 0.5% high, red the hero"},
+        {rgb_green_high_seen_from_green, "bsdf_weight", "green's sampled value 0.5% high, green the hero",
+         {"bsdf_albedo", "bsdf_spectral"}},
+        {dispersion_not_terminated, "bsdf_spectral", "a dispersive refraction keeps its secondary wavelengths"},
+        {dispersion_with_hero_eta, "bsdf_spectral", "secondary wavelengths' f with the hero's eta"},
     };
 }
 

@@ -67,6 +67,7 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(bsdf::make_bsdf_reciprocity_check());
     registry.add_check(bsdf::make_bsdf_energy_check());
     registry.add_check(bsdf::make_bsdf_expectation_check());
+    registry.add_check(bsdf::make_bsdf_spectral_check());
     registry.add_check(light::make_light_radiance_check());
     registry.add_check(light::make_light_support_check());
     registry.add_check(light::make_light_irradiance_check());

@@ -18,8 +18,8 @@
 namespace warpcheck {
 
 std::vector<std::string> default_fuzz_checks() {
-    return {"consistency",  "sample_pdf",       "weight",         "bsdf_weight",  "bsdf_delta",
-            "bsdf_energy", "bsdf_expectation", "light_radiance", "light_support"};
+    return {"consistency",      "sample_pdf",    "weight",         "bsdf_weight",  "bsdf_delta", "bsdf_energy",
+            "bsdf_expectation", "bsdf_spectral", "light_radiance", "light_support"};
 }
 
 namespace fuzz_detail {

@@ -32,6 +32,10 @@ std::unique_ptr<Check> make_bsdf_energy_check();
 /// integral of its estimated f |cos|, energy at most 1, and its MIS pdf
 /// positive wherever it samples.
 std::unique_ptr<Check> make_bsdf_expectation_check();
+/// "bsdf_spectral": a spectral BSDF's channel case (make_spectral_bsdf_case):
+/// every sample's secondary channels' f and pdf against f() and pdf() there
+/// (a pdf of 0: the channel terminated).
+std::unique_ptr<Check> make_bsdf_spectral_check();
 /// "bsdf_reciprocity": f(wo, wi) = f(wi, wo) (the eta^2 rule across an
 /// interface), where the case claims it.
 std::unique_ptr<Check> make_bsdf_reciprocity_check();

@@ -17,8 +17,9 @@
 namespace warpcheck {
 namespace {
 
-constexpr const char* kBsdfChecks[] = {"bsdf_chi2",   "bsdf_unbinned",    "bsdf_weight",     "bsdf_delta",
-                                       "bsdf_albedo", "bsdf_reciprocity", "bsdf_expectation"};
+constexpr const char* kBsdfChecks[] = {"bsdf_chi2",        "bsdf_unbinned",    "bsdf_weight",
+                                       "bsdf_delta",       "bsdf_albedo",      "bsdf_reciprocity",
+                                       "bsdf_expectation", "bsdf_spectral"};
 
 std::vector<std::string> bsdf_checks() { return {std::begin(kBsdfChecks), std::end(kBsdfChecks)}; }
 
@@ -46,6 +47,8 @@ TEST(BsdfBuiltins, HardestCasesPassOnTenSeeds) {
         "henyey_greenstein[g=0.9,theta_o=30]",
         "coated_diffuse[R=0.8,eta=1.5,theta_o=85]",
         "coated_conductor[alpha=0.3,eta=1.5,theta_o=80]",
+        "rgb_conductor[alpha=0.3,theta_o=30,hero=1]",
+        "dispersive_dielectric[alpha=0.3,eta=1.5,theta_o=30,hero=0]",
     };
     for (uint64_t seed = 1; seed <= 10; ++seed) {
         const RunResult r = run(registry, cases, seed, 250'000);
