@@ -1,7 +1,12 @@
 // Runs one check on one warp case outside the CLI, the way the runner does.
 #pragma once
 
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "validate/checks/check.h"
 #include "validate/run/runner.h"
@@ -13,6 +18,13 @@ namespace warpcheck::testing {
 /// takes in the slowest (sanitizer) build; tests of the budget itself run
 /// isolated with budgets of a second or two.
 inline constexpr double kTestTimeBudget = 600.0;
+
+/// A figure of a result; a test failure (and NaN) where the check wrote none.
+inline double figure_of(const CheckResult& r, std::string_view name) {
+    const std::optional<double> v = r.figure(name);
+    if (!v) ADD_FAILURE() << "no figure " << name << " in " << r.check_name;
+    return v.value_or(std::numeric_limits<double>::quiet_NaN());
+}
 
 inline CheckResult run_check(const Check& check, const WarpCase& warp, uint64_t samples = 200'000,
                              unsigned threads = 2, uint64_t seed = 1) {

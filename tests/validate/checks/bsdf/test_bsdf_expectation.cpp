@@ -23,12 +23,7 @@
 namespace warpcheck {
 namespace {
 
-double figure(const CheckResult& r, const std::string& name) {
-    for (const Figure& f : r.figures)
-        if (f.name == name) return f.value;
-    ADD_FAILURE() << "no figure " << name << " in " << r.check_name;
-    return NAN;
-}
+using testing::figure_of;
 
 /// A run of one check on one case judged at the level its power is stated at
 /// (a typical full run's: kPlannedTestsPerRun tests at alpha 0.01).
@@ -95,7 +90,7 @@ TEST(BsdfExpectation, TheStatedAlbedoShiftIsDetectedOnTenSeeds) {
         make_bsdf_case({.family = "coated_gold"}, {.wo = wo, .stochastic = true}, coated_gold(0.3f));
     const CheckResult base = run_judged(*check, *correct, 1, 250'000);
     ASSERT_EQ(base.verdict, Verdict::Pass) << base.message;
-    const double shift = figure(base, "power_relative_albedo_shift");
+    const double shift = figure_of(base, "power_relative_albedo_shift");
     ASSERT_GT(shift, 0.0);
     ASSERT_LT(shift, 0.05) << "250,000 draws should see a few percent";
     const auto twice = scaled_weights(coated_gold(0.3f), wo, static_cast<float>(1.0 + 1.5 * shift), kEverywhere);
@@ -149,11 +144,11 @@ TEST(BsdfExpectation, AnMisPdfOfZeroWhereItSamplesAndANanWeightFailByCount) {
             .with_pdf([coat](Vector3f a, Vector3f b) { return b.x < 0.0f ? 0.0f : coat.pdf(a, b); }));
     const CheckResult r = run_judged(*check, *half_pdf, 1, 100'000);
     EXPECT_EQ(r.verdict, Verdict::Fail);
-    EXPECT_GT(figure(r, "mis_pdf_zero_samples"), 10'000.0);
+    EXPECT_GT(figure_of(r, "mis_pdf_zero_samples"), 10'000.0);
     const auto nan_weight = scaled_weights(coat, wo, NAN, [](Vector3f wi) { return wi.z > 0.999f; });
     const CheckResult n = run_judged(*check, *nan_weight, 1, 100'000);
     EXPECT_EQ(n.verdict, Verdict::Fail);
-    EXPECT_GT(figure(n, "bad_weights"), 0.0);
+    EXPECT_GT(figure_of(n, "bad_weights"), 0.0);
 }
 
 // The checks that compare values pointwise do not apply to a stochastic case,

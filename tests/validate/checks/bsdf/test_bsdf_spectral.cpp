@@ -19,12 +19,7 @@
 namespace warpcheck {
 namespace {
 
-double figure(const CheckResult& r, const std::string& name) {
-    for (const Figure& f : r.figures)
-        if (f.name == name) return f.value;
-    ADD_FAILURE() << "no figure " << name << " in " << r.check_name;
-    return NAN;
-}
+using testing::figure_of;
 
 /// The RGB conductor with its blue value, as a secondary channel, scaled.
 struct BlueScaled {
@@ -75,7 +70,7 @@ TEST(BsdfSpectral, ASecondaryChannelTwiceTheToleranceOffFailsAndHalfOfItPasses) 
                                                  BlueScaled{gold(), 1.0f + 0x1p-11f}, hero);
         const CheckResult r = testing::run_check(*check, *off, 50'000);
         EXPECT_EQ(r.verdict, Verdict::Fail) << r.message;
-        EXPECT_GT(figure(r, "f_mismatches"), 0.9 * figure(r, "compared"));
+        EXPECT_GT(figure_of(r, "f_mismatches"), 0.9 * figure_of(r, "compared"));
         const auto close = make_spectral_bsdf_case({.family = "blue_close"}, {.wo = bsdf_direction(45)},
                                                    BlueScaled{gold(), 1.0f + 0x1p-13f}, hero);
         EXPECT_EQ(testing::run_check(*check, *close, 50'000).verdict, Verdict::Pass) << hero;
@@ -95,7 +90,7 @@ TEST(BsdfSpectral, ADispersiveGlassTerminatesItsSecondariesAndReportsEachChannel
     const auto hero0 = make_spectral_bsdf_case({.family = "glass"}, {.wo = wo}, glass, 0);
     const CheckResult r = testing::run_check(*bsdf::make_bsdf_spectral_check(), *hero0, 100'000);
     EXPECT_EQ(r.verdict, Verdict::Pass) << r.message;
-    EXPECT_GT(figure(r, "terminated"), 50'000.0);
+    EXPECT_GT(figure_of(r, "terminated"), 50'000.0);
     EXPECT_EQ(as_bsdf(*hero0)->claims().eta, 1.495f) << "the hero's eta is the case's claim";
 }
 
@@ -119,9 +114,9 @@ TEST(BsdfSpectral, AFastPathThatIsNotTheSamplesHeroFails) {
     const auto off = make_spectral_bsdf_case({.family = "fast_path_off"}, {.wo = bsdf_direction(45)}, FastPathOff{gold()}, 0);
     const CheckResult r = testing::run_check(*bsdf::make_bsdf_spectral_check(), *off, 20'000);
     EXPECT_EQ(r.verdict, Verdict::Fail);
-    EXPECT_GT(figure(r, "hero_mismatches"), 10'000.0);
+    EXPECT_GT(figure_of(r, "hero_mismatches"), 10'000.0);
     const auto same = make_spectral_bsdf_case({.family = "fast_path"}, {.wo = bsdf_direction(45)}, gold(), 0);
-    EXPECT_EQ(figure(testing::run_check(*bsdf::make_bsdf_spectral_check(), *same, 20'000), "hero_mismatches"), 0.0);
+    EXPECT_EQ(figure_of(testing::run_check(*bsdf::make_bsdf_spectral_check(), *same, 20'000), "hero_mismatches"), 0.0);
 }
 
 TEST(BsdfSpectral, AHeroThatIsNoChannelIsRefusedAndAPlainBsdfIsNotSpectral) {
