@@ -112,13 +112,19 @@ public:
         // Each secondary as the hero's sampled value times their ratio at wi
         // (one spectral evaluation on the sampled microfacet).
         const float fh = channels_[h].f(wo, s.wi), ph = channels_[h].pdf(wo, s.wi);
+        out.f[h] = s.f;
+        out.pdf[h] = s.pdf;
         for (std::size_t c = 0; c < N; ++c) {
+            if (c == h) continue;
             const RoughDielectric& d = flaw_ == SpectralFlaw::SecondaryWithHeroEta ? channels_[h] : channels_[c];
-            const float fc = d.f(wo, s.wi), pc = channels_[c].pdf(wo, s.wi);
-            out.f[c] = c == h ? s.f : fh > 0.0f ? s.f * (fc / fh) : fc;
-            if (c == h) out.pdf[c] = s.pdf;
-            else if (transmitted) out.pdf[c] = flaw_ == SpectralFlaw::SecondaryNotTerminated ? s.pdf : 0.0f;
-            else out.pdf[c] = ph > 0.0f ? s.pdf * (pc / ph) : pc;
+            const float fc = d.f(wo, s.wi);
+            out.f[c] = fh > 0.0f ? s.f * (fc / fh) : fc;
+            if (transmitted) {
+                out.pdf[c] = flaw_ == SpectralFlaw::SecondaryNotTerminated ? s.pdf : 0.0f;
+            } else {
+                const float pc = channels_[c].pdf(wo, s.wi);
+                out.pdf[c] = ph > 0.0f ? s.pdf * (pc / ph) : pc;
+            }
         }
         return out;
     }

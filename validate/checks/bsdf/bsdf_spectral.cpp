@@ -43,12 +43,12 @@ namespace spectral_detail {
 constexpr double kTolerance = 0x1p-12;
 
 struct Tally {
-    uint64_t draws = 0, random = 0, compared = 0, terminated = 0, delta = 0, unsampled = 0;
+    uint64_t draws = 0, compared = 0, terminated = 0, delta = 0, unsampled = 0;
     uint64_t bad_value = 0, f_mismatch = 0, pdf_mismatch = 0, direct = 0, hero_mismatch = 0;
     double worst_f = 0.0, worst_pdf = 0.0;
     std::string first;
     void merge(const Tally& o) {
-        draws += o.draws, random += o.random, compared += o.compared, terminated += o.terminated;
+        draws += o.draws, compared += o.compared, terminated += o.terminated;
         delta += o.delta, unsampled += o.unsampled, bad_value += o.bad_value;
         f_mismatch += o.f_mismatch, pdf_mismatch += o.pdf_mismatch, direct += o.direct;
         hero_mismatch += o.hero_mismatch;
@@ -96,7 +96,8 @@ double miss(double value, double hero, double want, double want_hero, uint64_t& 
     return relative_miss(value, want);
 }
 
-void compare_draw(const SpectralChannels& s, const Draw& d, Tally& t) {
+/// One draw's rules; fv and pv hold f() and pdf() of every channel at its wi.
+void compare_draw(const SpectralChannels& s, const Draw& d, std::span<float> fv, std::span<float> pv, Tally& t) {
     const int n = s.channels(), h = s.hero();
     const auto hu = static_cast<std::size_t>(h);
     for (int c = 0; c < n; ++c) {
@@ -106,7 +107,6 @@ void compare_draw(const SpectralChannels& s, const Draw& d, Tally& t) {
     }
     if (!(d.pdf[hu] > 0.0f)) return void(++t.unsampled);
     if (has(d.flags, BsdfFlags::Delta)) return void(++t.delta);
-    std::vector<float> fv(static_cast<std::size_t>(n)), pv(static_cast<std::size_t>(n));
     s.values_all(d.wi, fv, pv);
     ++t.compared;
     for (int c = 0; c < n; ++c) {
@@ -128,21 +128,23 @@ void compare_draw(const SpectralChannels& s, const Draw& d, Tally& t) {
 Tally tally(const BsdfCase& bsdf, const SpectralChannels& s, const CheckContext& ctx) {
     const auto n = static_cast<std::size_t>(s.channels());
     const auto parts = map_input_chunks<Tally>(
-        ctx, InputKind::Uniform3D, ctx.options().samples, true, [&](std::size_t chunk, std::span<const WarpInput> in) {
+        ctx, InputKind::Uniform3D, ctx.options().samples, true, [&](std::size_t, std::span<const WarpInput> in) {
             std::vector<WarpOutput> wi(in.size());
             std::vector<float> f(in.size() * n), pdf(in.size() * n);
             std::vector<BsdfFlags> flags(in.size());
             s.sample_all(in, wi, f, pdf, flags);
             std::vector<BsdfRecord> hero(in.size());  // what every other check of the case sees
             bsdf.sample_bsdf(in, hero);
+            std::vector<float> fv(n), pv(n);  // f() and pdf() at one wi, reused across the chunk
             Tally t;
             for (std::size_t k = 0; k < in.size(); ++k) {
                 ++t.draws;
-                t.random += chunk != 0;
                 const Draw d{&in[k], wi[k], std::span<const float>(f).subspan(k * n, n),
                              std::span<const float>(pdf).subspan(k * n, n), flags[k]};
-                if (!same_hero(hero[k], d, s.hero())) note(t, t.hero_mismatch, d, s.hero(), "the hero's sample differs from the spectral sample's hero channel", hero[k].f, d.f[static_cast<std::size_t>(s.hero())]);
-                compare_draw(s, d, t);
+                if (!same_hero(hero[k], d, s.hero()))
+                    note(t, t.hero_mismatch, d, s.hero(), "the hero's sample differs from the spectral sample's hero",
+                         hero[k].f, d.f[static_cast<std::size_t>(s.hero())]);
+                compare_draw(s, d, fv, pv, t);
             }
             return t;
         });
