@@ -155,27 +155,6 @@ private:
     float twice_area_ = 0.0f, area_ = 0.0f;
 };
 
-/// The last view of a light that a thread computed, by the light's geometry
-/// and the reference point (N floats, compared bit for bit, never by the
-/// light's address alone): a check calls pdf() millions of times from one
-/// reference point, and each view costs a few dozen nanoseconds of
-/// trigonometry in double. The view is a pure function of the key, so the
-/// memo changes no result; each thread has its own, so it needs no lock.
-template <typename View, std::size_t N, typename Compute>
-const View& memo_view(const std::array<float, N>& key, Compute compute) {
-    thread_local struct {
-        bool valid = false;
-        std::array<float, N> key{};
-        View view{};
-    } memo;
-    if (!memo.valid || std::memcmp(memo.key.data(), key.data(), sizeof(float) * N) != 0) {
-        memo.view = compute();
-        memo.key = key;
-        memo.valid = true;
-    }
-    return memo.view;
-}
-
 /// A 3-vector of doubles for the spherical triangle's trigonometry (see there).
 struct Vec3d {
     double x = 0.0, y = 0.0, z = 0.0;
@@ -352,7 +331,7 @@ public:
 
     LightSample sample(Vector3f ref, Point2f u) const {
         if (tri_.in_plane(ref)) return {};
-        const View view = view_from(ref);
+        const View& view = view_from(ref);
         if (!view.by_solid_angle) return tri_.sample_by_area(ref, u, Le_);
         const detail::Vec3d w = arvo(view, u);
         const Vector3f wi{static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z)};
@@ -362,7 +341,7 @@ public:
     float pdf(Vector3f ref, Vector3f wi) const {
         const detail::RayHit h = tri_.intersect(ref, wi);
         if (!h.hit()) return 0.0f;
-        const View view = view_from(ref);
+        const View& view = view_from(ref);
         return view.by_solid_angle ? static_cast<float>(1.0 / view.omega) : tri_.area_pdf(h);
     }
 
@@ -374,7 +353,7 @@ public:
     /// inverse, (0, 0) for a wi that misses.
     Point2f invert(Vector3f ref, Vector3f wi) const {
         if (tri_.in_plane(ref) || !(std::isfinite(wi.x) && std::isfinite(wi.y) && std::isfinite(wi.z))) return {};
-        const View view = view_from(ref);
+        const View& view = view_from(ref);
         if (view.by_solid_angle) return arvo_inverse(view, detail::normalize(detail::to_double(wi)));
         const detail::RayHit h = tri_.intersect(ref, wi);
         return h.hit() ? detail::Triangle::invert_area(h.b1, h.b2) : Point2f{};
@@ -493,7 +472,7 @@ public:
 
     LightSample sample(Vector3f ref, Point2f u) const {
         if (dot(n_, p_ - ref) == 0.0f) return {};
-        const View view = view_from(ref);
+        const View& view = view_from(ref);
         if (!view.by_solid_angle) return sample_by_area(ref, u);
         const detail::Vec3d w = urena(view, u);
         const Vector3f wi{static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z)};
@@ -504,7 +483,7 @@ public:
     float pdf(Vector3f ref, Vector3f wi) const {
         const detail::RayHit h = intersect(ref, wi);
         if (!h.hit()) return 0.0f;
-        const View view = view_from(ref);
+        const View& view = view_from(ref);
         return view.by_solid_angle ? static_cast<float>(1.0 / view.omega) : h.t * h.t / (h.abs_cos * area_);
     }
 
@@ -518,7 +497,7 @@ public:
     Point2f invert(Vector3f ref, Vector3f wi) const {
         if (dot(n_, p_ - ref) == 0.0f || !(std::isfinite(wi.x) && std::isfinite(wi.y) && std::isfinite(wi.z)))
             return {};
-        const View view = view_from(ref);
+        const View& view = view_from(ref);
         const float top = kOneMinusEpsilon;
         if (!view.by_solid_angle) {
             const detail::RayHit h = intersect(ref, wi);

@@ -2,9 +2,13 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <numbers>
+#include <optional>
 
 #include "sampling/float_bits.h"
 
@@ -95,6 +99,27 @@ template <typename Ops>
     c = Ops::select(negate_cos, -c_abs, c_abs);
 }
 #pragma GCC diagnostic pop
+
+/// The last value a thread computed from a key of N floats (compared bit for
+/// bit): a light's view from one reference point, a microfacet warp seen from
+/// one wo. A check evaluates millions of directions from one key, and each
+/// value costs a few dozen nanoseconds of trigonometry; the value is a pure
+/// function of the key, so the memo changes no result, and each thread has
+/// its own, so it needs no lock. The reference is valid until the thread's
+/// next call with the same View type.
+template <typename View, std::size_t N, typename Compute>
+const View& memo_view(const std::array<float, N>& key, Compute compute) {
+    thread_local struct {
+        std::array<float, N> key{};
+        std::optional<View> view;
+    } memo;
+    if (!memo.view || std::memcmp(memo.key.data(), key.data(), sizeof(float) * N) != 0) {
+        memo.view.reset();  // a compute() that throws leaves no stale value behind
+        memo.view.emplace(compute());
+        memo.key = key;
+    }
+    return *memo.view;
+}
 
 }  // namespace detail
 

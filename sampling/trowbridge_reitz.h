@@ -16,6 +16,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -325,8 +326,12 @@ private:
 
 inline TrowbridgeReitzNormals TrowbridgeReitz::normals() const { return TrowbridgeReitzNormals(*this); }
 
+/// Memoised per thread by (alpha_x, alpha_y, wo), bit for bit: a BSDF's
+/// sampler builds the warp for every sample, and a check draws millions from
+/// one wo (the constructor's atan2, cos and sin cost more than a sample).
 inline TrowbridgeReitzVisibleNormals TrowbridgeReitz::visible_normals(Vector3f wo) const {
-    return TrowbridgeReitzVisibleNormals(*this, wo);
+    return detail::memo_view<TrowbridgeReitzVisibleNormals>(std::array<float, 5>{ax_, ay_, wo.x, wo.y, wo.z},
+                                                            [&] { return TrowbridgeReitzVisibleNormals(*this, wo); });
 }
 
 }  // namespace warpcheck
