@@ -73,6 +73,22 @@ inline LightSample toward_area_point(Vector3f ref, Vector3f point, Vector3f n, f
     return {wi, dist2 / (abs_cos * area), Le, dist};
 }
 
+/// Whether a planar light is seen edge-on within the float resolution of a
+/// direction from a point at offset d from one of its points (n its unit
+/// normal, `extent` its largest chord): its elevation |n . d| / |d| (the
+/// height n . d is computed in float from a rounded difference, off by a few
+/// ulps of |d|) or its angular height, about the elevation times
+/// extent / |d|, below 2^-21 rad (8 ulps of a unit vector's components).
+/// No float direction then resolves the light: a ray along one may meet it
+/// or not by rounding, and its sampled directions land on either side of it
+/// at random. Such a light gives no sample and a pdf of 0; what it drops is
+/// under 2^-21 extent / |d| sr, the float resolution of its solid angle.
+inline bool seen_edge_on(Vector3f n, Vector3f d, float extent) {
+    const double h = static_cast<double>(dot(n, d)), d2 = static_cast<double>(dot(d, d));
+    const double e = static_cast<double>(extent);
+    return h * h * std::min(d2, e * e) <= 0x1p-42 * d2 * d2;
+}
+
 /// A triangle's geometry: the area warp, the ray intersection and the change
 /// of measure from area to solid angle, shared by the two triangle lights.
 class Triangle {
@@ -90,6 +106,7 @@ public:
             throw std::invalid_argument(light + ": degenerate triangle (its vertices are collinear or coincide)");
         n_ = (1.0f / twice_area_) * normal;
         area_ = 0.5f * twice_area_;
+        extent_ = std::max({length(e1_), length(e2_), length(e2_ - e1_)});
     }
 
     Vector3f p0() const { return p0_; }
@@ -97,8 +114,8 @@ public:
     Vector3f p2() const { return p0_ + e2_; }
     float area() const { return area_; }
 
-    /// Whether ref lies in the triangle's plane (in float): then no ray from it meets the triangle.
-    bool in_plane(Vector3f ref) const { return dot(n_, ref - p0_) == 0.0f; }
+    /// Whether the triangle is seen edge-on from ref within float resolution (seen_edge_on).
+    bool in_plane(Vector3f ref) const { return seen_edge_on(n_, ref - p0_, extent_); }
 
     /// Uniform by area, the square-root warp: b1 = s (1 - u.y), b2 = s u.y with
     /// s = sqrt(u.x), so the point p0 + b1 e1 + b2 e2 has density 1/area.
@@ -152,7 +169,7 @@ public:
 
 private:
     Vector3f p0_, e1_, e2_, n_;
-    float twice_area_ = 0.0f, area_ = 0.0f;
+    float twice_area_ = 0.0f, area_ = 0.0f, extent_ = 0.0f;
 };
 
 /// A 3-vector of doubles for the spherical triangle's trigonometry (see there).
@@ -466,12 +483,13 @@ public:
             throw std::invalid_argument("spherical_rectangle_light: the edges must be perpendicular");
         n_ = normalize(cross(ex, ey));
         area_ = lx * ly;
+        extent_ = std::sqrt(lx * lx + ly * ly);
         inv_lx2_ = 1.0f / (lx * lx);
         inv_ly2_ = 1.0f / (ly * ly);
     }
 
     LightSample sample(Vector3f ref, Point2f u) const {
-        if (dot(n_, p_ - ref) == 0.0f) return {};
+        if (detail::seen_edge_on(n_, p_ - ref, extent_)) return {};
         const View& view = view_from(ref);
         if (!view.by_solid_angle) return sample_by_area(ref, u);
         const detail::Vec3d w = urena(view, u);
@@ -495,7 +513,7 @@ public:
     /// its u; in the area regime, the edge fractions of the hit; (0, 0) for a
     /// direction away from the plane.
     Point2f invert(Vector3f ref, Vector3f wi) const {
-        if (dot(n_, p_ - ref) == 0.0f || !(std::isfinite(wi.x) && std::isfinite(wi.y) && std::isfinite(wi.z)))
+        if (detail::seen_edge_on(n_, p_ - ref, extent_) || !(std::isfinite(wi.x) && std::isfinite(wi.y) && std::isfinite(wi.z)))
             return {};
         const View& view = view_from(ref);
         const float top = kOneMinusEpsilon;
@@ -605,7 +623,7 @@ private:
     detail::RayHit intersect(Vector3f ref, Vector3f wi) const {
         const float h = dot(n_, p_ - ref);
         const float cos_n = dot(wi, n_);
-        if (h == 0.0f || cos_n == 0.0f) return {};
+        if (detail::seen_edge_on(n_, p_ - ref, extent_) || cos_n == 0.0f) return {};
         const float t = h / cos_n;
         if (!(t > 0.0f)) return {};
         const Vector3f q = (ref + t * wi) - p_;
@@ -615,7 +633,7 @@ private:
     }
 
     Vector3f p_, ex_, ey_, n_{};
-    float Le_, area_ = 0.0f, inv_lx2_ = 0.0f, inv_ly2_ = 0.0f;
+    float Le_, area_ = 0.0f, extent_ = 0.0f, inv_lx2_ = 0.0f, inv_ly2_ = 0.0f;
 };
 
 /// A disk of radius r around center, facing along normal (both sides emit),
@@ -639,7 +657,7 @@ public:
     }
 
     LightSample sample(Vector3f ref, Point2f u) const {
-        if (dot(frame_.n, c_ - ref) == 0.0f) return {};
+        if (detail::seen_edge_on(frame_.n, c_ - ref, 2.0f * r_)) return {};
         const Point2f p = UniformDiskConcentric{}.sample(u);
         return detail::toward_area_point(ref, c_ + frame_.to_world(r_ * p.x, r_ * p.y, 0.0f), frame_.n, area_, Le_);
     }
@@ -657,7 +675,7 @@ private:
     detail::RayHit intersect(Vector3f ref, Vector3f wi) const {
         const float h = dot(frame_.n, c_ - ref);
         const float cos_n = dot(wi, frame_.n);
-        if (h == 0.0f || cos_n == 0.0f) return {};
+        if (detail::seen_edge_on(frame_.n, c_ - ref, 2.0f * r_) || cos_n == 0.0f) return {};
         const float t = h / cos_n;
         if (!(t > 0.0f)) return {};
         const Vector3f q = (ref + t * wi) - c_;

@@ -11,6 +11,7 @@
 // The default grid keeps validate --all under a minute; WARPCHECK_LIGHT_GRID=full
 // in the environment adds the views that repeat a default one's difficulty
 // (the triangles facing the reference point, and seen from their backs).
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <string_view>
@@ -85,40 +86,62 @@ void add_light(Registry& registry, const char* family, const char* description, 
                                       claims, std::move(light)));
 }
 
+constexpr const char* kSphereDescription =
+    "sphere light of radius 1: uniform over the visible cone from outside, by area from inside";
+
+SphereLight sphere_at(double distance, double theta) {
+    const double t = radians(theta);
+    return SphereLight(as_vector(distance * std::sin(t), 0.0, distance * std::cos(t)), 1.0f, kLe);
+}
+
 void register_sphere_lights(Registry& registry) {
     struct At {
         double distance, theta;
     };
     // Near; grazing the reference surface; below it; far (1e-3 rad across); inside.
-    for (const At& at : {At{4, 0}, At{4, 89}, At{4, 120}, At{1000, 30}, At{0.5, 0}}) {
-        const double t = radians(at.theta);
-        add_light(registry, "sphere_light",
-                  "sphere light of radius 1: uniform over the visible cone from outside, by area from inside",
-                  {{"distance", at.distance}, {"theta", at.theta}},
-                  SphereLight(as_vector(at.distance * std::sin(t), 0.0, at.distance * std::cos(t)), 1.0f, kLe));
-    }
+    for (const At& at : {At{4, 0}, At{4, 89}, At{4, 120}, At{1000, 30}, At{0.5, 0}})
+        add_light(registry, "sphere_light", kSphereDescription, {{"distance", at.distance}, {"theta", at.theta}},
+                  sphere_at(at.distance, at.theta));
+    // The family --fuzz draws from: the reference point anywhere from the
+    // sphere's centre to 10^4 radii away (10^-4 rad across), on the sphere's
+    // surface included, the light anywhere around the reference surface.
+    registry.add_family({{.family = "sphere_light", .description = kSphereDescription},
+                         {{"distance", {4, 1000, 0.5}, {{0.0, 1e4}}}, {"theta", {0, 89, 120, 30}, {{0.0, 180.0}}}},
+                         [](WarpCaseInfo info, const GridPoint& at) {
+                             return make_light_case(std::move(info), kAtOrigin, sphere_at(at["distance"], at["theta"]));
+                         }});
 }
+
+constexpr const char* kTriangleDescription = "two-sided triangle light sampled by area, converted to solid angle";
+constexpr const char* kSphericalTriangleDescription = "two-sided triangle light sampled uniformly by solid angle (Arvo)";
+constexpr const char* kRectangleDescription =
+    "two-sided rectangle light sampled uniformly by solid angle (Urena et al. 2013)";
+constexpr const char* kDiskDescription = "two-sided disk light of radius 0.5 sampled by area, converted to solid angle";
+
+/// The triangle's corners at a placement, as every triangle light has them.
+std::array<Vector3f, 3> triangle_at(const Placement& p) {
+    return {p.point(-0.5, -0.4), p.point(0.6, -0.3), p.point(0.0, 0.6)};
+}
+
+SphericalRectangleLight rectangle_at(const Placement& p) {
+    const Vector3f corner = p.point(-0.5, -0.4);
+    return SphericalRectangleLight(corner, p.point(0.6, -0.4) - corner, p.point(-0.5, 0.5) - corner, kLe);
+}
+
+DiskLight disk_at(const Placement& p) { return DiskLight(p.point(0.0, 0.0), p.normal(), 0.5f, kLe); }
 
 void register_planar_lights(Registry& registry) {
     const std::vector<Placement> placements = planar_placements();
     for (const Placement& p : placements) {
-        const Vector3f a = p.point(-0.5, -0.4), b = p.point(0.6, -0.3), c = p.point(0.0, 0.6);
-        add_light(registry, "triangle_light", "two-sided triangle light sampled by area, converted to solid angle",
-                  p.params(), TriangleLight(a, b, c, kLe));
-        add_light(registry, "spherical_triangle_light",
-                  "two-sided triangle light sampled uniformly by solid angle (Arvo)", p.params(),
+        const auto [a, b, c] = triangle_at(p);
+        add_light(registry, "triangle_light", kTriangleDescription, p.params(), TriangleLight(a, b, c, kLe));
+        add_light(registry, "spherical_triangle_light", kSphericalTriangleDescription, p.params(),
                   SphericalTriangleLight(a, b, c, kLe));
     }
-    for (const Placement& p : placements) {
-        const Vector3f corner = p.point(-0.5, -0.4);
-        const Vector3f ex = p.point(0.6, -0.4) - corner, ey = p.point(-0.5, 0.5) - corner;
-        add_light(registry, "spherical_rectangle_light",
-                  "two-sided rectangle light sampled uniformly by solid angle (Urena et al. 2013)", p.params(),
-                  SphericalRectangleLight(corner, ex, ey, kLe));
-    }
+    for (const Placement& p : placements)
+        add_light(registry, "spherical_rectangle_light", kRectangleDescription, p.params(), rectangle_at(p));
     for (const Placement& p : {Placement{2, 0, 0}, placements[0], placements[2]})
-        add_light(registry, "disk_light", "two-sided disk light of radius 0.5 sampled by area, converted to solid angle",
-                  p.params(), DiskLight(p.point(0.0, 0.0), p.normal(), 0.5f, kLe));
+        add_light(registry, "disk_light", kDiskDescription, p.params(), disk_at(p));
 }
 
 /// An image of `width` x `height` pixels, each value(column, row).

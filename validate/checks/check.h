@@ -207,4 +207,18 @@ public:
     virtual CheckResult run(const WarpCase& warp, const CheckContext& ctx) const = 0;
 };
 
+/// The row of a check that compared nothing because the case's sampler
+/// declined every input (a light not visible from its reference point: a
+/// planar light seen edge-on within float rounding): n/a, saying so, never a
+/// pass that tested nothing.
+inline CheckResult nothing_sampled(uint64_t inputs) {
+    CheckResult r;
+    r.verdict = Verdict::NotApplicable;
+    r.summary = "not applicable: every input declined (nothing visible to sample)";
+    r.message = "the sampler declined all " + std::to_string(inputs) +
+                " inputs (a light not visible from its reference point): there was nothing to compare";
+    r.figures = {{"declined", static_cast<double>(inputs)}};
+    return r;
+}
+
 }  // namespace warpcheck

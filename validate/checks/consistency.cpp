@@ -45,15 +45,6 @@
 namespace warpcheck {
 namespace {
 
-/// Every kEdgeBandStride-th random sample with a positive pdf is probed
-/// kProbeUlps spacings along each coordinate both ways for a zero pdf inside
-/// the domain: the share of samples that lie that close to an edge of the
-/// support, measured. A support thin in one direction (a ring 1e-4 wide has
-/// 5e-3 of its samples within 4 spacings of an edge) rounds that many more
-/// samples across its edges than the fixed rate allows; the bound then uses
-/// the measured share. 1 in 16 costs 2d / 16 extra pdf evaluations a sample.
-constexpr std::size_t kEdgeBandStride = 16;
-
 struct Example {
     WarpInput input;
     WarpOutput output{};
@@ -68,8 +59,7 @@ struct ConsistencyStats {
     Tally<Example> boundary_random;  ///< the boundary zeros among random inputs (bounded as rounded_random)
     Tally<Example> rounded_random;  ///< pdf 0 within kProbeUlps of a positive pdf: random inputs
     uint64_t rounded_edges = 0;     ///< the same among the edge inputs
-    uint64_t band_probed = 0;       ///< random samples with a positive pdf probed for a nearby edge
-    uint64_t band_near_edge = 0;    ///< of those, within kProbeUlps of a zero pdf inside the domain
+    EdgeBand band;                  ///< random samples with a positive pdf probed for a zero pdf nearby
     double min_pdf = std::numeric_limits<double>::infinity();
     double max_pdf = 0.0;
 
@@ -79,8 +69,7 @@ struct ConsistencyStats {
         declined += o.declined;
         rounded_random.merge(o.rounded_random);
         rounded_edges += o.rounded_edges;
-        band_probed += o.band_probed;
-        band_near_edge += o.band_near_edge;
+        band.merge(o.band);
         nan_sample.merge(o.nan_sample);
         outside.merge(o.outside);
         bad_pdf.merge(o.bad_pdf);
@@ -135,22 +124,11 @@ bool positive_nearby(const WarpCase& warp, const WarpOutput& x) {
 }
 
 /// Whether x, a sample with a positive pdf, lies within kProbeUlps spacings of
-/// a zero pdf inside the domain, probed along each coordinate both ways.
+/// a zero pdf inside the domain (axis_probes: a zero just beyond the domain's
+/// own boundary is not a support's edge; the boundary's zeros are bounded
+/// apart, boundary_problem).
 bool near_support_edge(const WarpCase& warp, const WarpOutput& x) {
-    const chi2::Domain& domain = warp.domain();
-    const std::array<float, 3> step = probe_steps(domain, x);
-    std::vector<WarpOutput> probes;
-    for (int k = 0; k < domain.point_dimension(); ++k)
-        for (const float sign : {1.0f, -1.0f}) {
-            WarpOutput y = x;
-            y[static_cast<std::size_t>(k)] += sign * kProbeUlps * step[static_cast<std::size_t>(k)];
-            // Inside the domain without its membership slack: a zero just
-            // beyond the domain's own boundary is not a support's edge (the
-            // boundary's zeros are bounded apart, boundary_problem).
-            const chi2::DomainPoint q = to_domain_point(y);
-            if (std::visit([&](const auto& kind) { return kind.contains(q, chi2::DomainSlack{}); }, domain.shape()))
-                probes.push_back(y);
-        }
+    const std::vector<WarpOutput> probes = axis_probes(warp.domain(), x);
     if (probes.empty()) return false;
     std::vector<double> pdf(probes.size());
     warp.pdf(probes, pdf);
@@ -173,8 +151,7 @@ ConsistencyStats classify_chunk(const WarpCase& warp, std::size_t chunk, std::sp
         const Example e{inputs[i], x[i], pdf[i]};
         if (chunk > 0 && warp.has_pdf() && i % kEdgeBandStride == 0 && pdf[i] > 0.0 && std::isfinite(pdf[i]) &&
             domain.contains(to_domain_point(x[i]))) {
-            ++s.band_probed;
-            s.band_near_edge += near_support_edge(warp, x[i]) ? 1 : 0;
+            s.band.add(near_support_edge(warp, x[i]));
         }
         if (!classify(s, domain, index, e, chunk > 0)) continue;
         // A zero pdf inside the domain: rounded across the support's edge, or a violation.
@@ -210,16 +187,6 @@ ConsistencyStats compute(const WarpCase& warp, const CheckContext& ctx) {
     return merge_in_order(parts);
 }
 
-/// The share of random samples within kProbeUlps of a support edge
-/// (kEdgeBandStride), bounded above: the measured share with 6 standard
-/// deviations of its count added, 0 when none was seen (the fixed rate then
-/// applies alone).
-double edge_band_share(const ConsistencyStats& s) {
-    if (s.band_near_edge == 0 || s.band_probed == 0) return 0.0;
-    const double k = static_cast<double>(s.band_near_edge);
-    return (k + 6.0 * std::sqrt(k) + 1.0) / static_cast<double>(s.band_probed);
-}
-
 /// How many random samples may lie on the domain's boundary with pdf 0: a
 /// Poisson bound at kRoundedAcrossEdgeRate (the boundary has no measure).
 uint64_t boundary_bound(const ConsistencyStats& s) {
@@ -230,10 +197,7 @@ uint64_t boundary_bound(const ConsistencyStats& s) {
 /// bound on the larger of kRoundedAcrossEdgeRate and the measured share of
 /// samples that lie within the probe's reach of a support edge (only those
 /// can round across it).
-uint64_t rounded_bound(const ConsistencyStats& s) {
-    const double rate = std::max(kRoundedAcrossEdgeRate, edge_band_share(s));
-    return chi2::poisson_count_bound(static_cast<double>(s.random_count) * rate, kConsistencyBoundTail);
-}
+uint64_t rounded_bound(const ConsistencyStats& s) { return rounded_across_edge_bound(s.random_count, s.band); }
 
 struct Finding {
     const Tally<Example>* tally;
@@ -333,8 +297,8 @@ void add_figures(CheckResult& r, const ConsistencyStats& s) {
                  {"zero_pdf_rounded_random", static_cast<double>(s.rounded_random.count)},
                  {"zero_pdf_rounded_edge_inputs", static_cast<double>(s.rounded_edges)},
                  {"zero_pdf_rounded_bound", static_cast<double>(rounded_bound(s))},
-                 {"edge_band_probed", static_cast<double>(s.band_probed)},
-                 {"edge_band_near_edge", static_cast<double>(s.band_near_edge)}};
+                 {"edge_band_probed", static_cast<double>(s.band.probed)},
+                 {"edge_band_near_edge", static_cast<double>(s.band.near)}};
 }
 
 class ConsistencyCheck final : public Check {
@@ -349,6 +313,7 @@ public:
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const ConsistencyStats stats = compute(warp, ctx);
+        if (stats.count == 0 && stats.declined > 0) return nothing_sampled(stats.declined);
         CheckResult r;
         add_figures(r, stats);
         judge_and_explain(r, stats, warp, ctx.options().strict);

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
+#include <variant>
 
 #include "chi2/count_bounds.h"
 #include "sampling/bsdf.h"  // Frame
 #include "sampling/float_bits.h"
+#include "validate/checks/check.h"
 
 namespace warpcheck {
 
@@ -55,9 +58,38 @@ std::vector<WarpOutput> float_neighbours(const WarpOutput& w, double step) {
     return out;
 }
 
-uint64_t rounded_across_edge_bound(uint64_t random_samples) {
-    return chi2::poisson_count_bound(static_cast<double>(random_samples) * kRoundedAcrossEdgeRate,
-                                     kConsistencyBoundTail);
+double EdgeBand::share() const {
+    if (near == 0 || probed == 0) return 0.0;
+    const double k = static_cast<double>(near);
+    return (k + 6.0 * std::sqrt(k) + 1.0) / static_cast<double>(probed);
+}
+
+std::vector<WarpOutput> axis_probes(const chi2::Domain& domain, const WarpOutput& x) {
+    const std::array<float, 3> step = probe_steps(domain, x);
+    const double length_slack = domain.slack().x;
+    std::vector<WarpOutput> probes;
+    for (int k = 0; k < domain.point_dimension(); ++k)
+        for (const float sign : {1.0f, -1.0f}) {
+            WarpOutput y = x;
+            y[static_cast<std::size_t>(k)] += sign * kProbeUlps * step[static_cast<std::size_t>(k)];
+            const chi2::DomainPoint q = to_domain_point(y);
+            const bool inside = std::visit(
+                [&](const auto& kind) {
+                    if constexpr (std::is_same_v<std::decay_t<decltype(kind)>, chi2::SphericalCap>)
+                        return std::abs(std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) - 1.0) <= length_slack &&
+                               q[2] >= kind.z_min;
+                    else
+                        return kind.contains(q, chi2::DomainSlack{});
+                },
+                domain.shape());
+            if (inside) probes.push_back(y);
+        }
+    return probes;
+}
+
+uint64_t rounded_across_edge_bound(uint64_t random_samples, const EdgeBand& band) {
+    const double rate = std::max(kRoundedAcrossEdgeRate, band.share());
+    return chi2::poisson_count_bound(static_cast<double>(random_samples) * rate, kConsistencyBoundTail);
 }
 
 }  // namespace warpcheck

@@ -11,7 +11,10 @@
 // pixel's border) is excused where they agree with the returned value at one
 // of x's float neighbours (float_probe.h, the rule consistency uses for a
 // zero pdf at a support's edge): edge inputs, which map onto such edges by
-// design, are counted; random ones are bounded as consistency bounds them.
+// design, are counted; random ones are bounded as consistency bounds them:
+// by the fixed rate, or by the measured share of samples whose reference
+// changes beyond the tolerance within kProbeUlps spacings (EdgeBand), where
+// that is larger (a light 1e-4 rad across has 1e-2 of its samples there).
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -19,6 +22,7 @@
 
 #include <fmt/format.h>
 
+#include "validate/api/light_case.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/float_probe.h"
@@ -48,17 +52,21 @@ struct Example {
 
 struct ReturnedValueStats {
     uint64_t count = 0, mismatches = 0, random_count = 0;
+    uint64_t declined = 0;            ///< a light's inputs that gave no sample (returned pdf 0)
     uint64_t excused_edges = 0;       ///< edge inputs whose value agrees at a float neighbour of x
     Tally<Example> excused_random;    ///< random inputs likewise (bounded)
+    EdgeBand band;                    ///< random samples probed for a discontinuity of the reference nearby
     double max_relative = 0.0;
     WorstK<Example> worst{10};
 
     void merge(const ReturnedValueStats& o) {
         count += o.count;
+        declined += o.declined;
         mismatches += o.mismatches;
         random_count += o.random_count;
         excused_edges += o.excused_edges;
         excused_random.merge(o.excused_random);
+        band.merge(o.band);
         max_relative = max_nan_wins(max_relative, o.max_relative);
         worst.merge(o.worst);
     }
@@ -88,7 +96,21 @@ bool agrees_nearby(const WarpCase& warp, What what, const Example& e) {
                        [&](const Example& n) { return relative_difference(e.returned, n.reference) <= kRelativeTolerance; });
 }
 
+/// Whether the reference at x differs, beyond the tolerance, from itself
+/// kProbeUlps spacings away along a coordinate (axis_probes): x lies that
+/// close to a discontinuity of it (a silhouette, a pixel's border), where
+/// rounding can carry a sample across.
+bool near_discontinuity(const WarpCase& warp, What what, const Example& e) {
+    const std::vector<WarpOutput> probes = axis_probes(warp.domain(), e.output);
+    if (probes.empty()) return false;
+    std::vector<Example> ex(probes.size());
+    references(warp, what, probes, ex);
+    return std::any_of(ex.begin(), ex.end(),
+                       [&](const Example& n) { return relative_difference(e.reference, n.reference) > kRelativeTolerance; });
+}
+
 ReturnedValueStats compute(const WarpCase& warp, const CheckContext& ctx, What what) {
+    const bool declines = declines_samples(warp);
     auto parts = map_input_chunks<ReturnedValueStats>(ctx, warp.input_kind(), ctx.options().samples, true,
                                          [&](std::size_t chunk, std::span<const WarpInput> inputs) {
         std::vector<WarpOutput> x(inputs.size());
@@ -104,6 +126,9 @@ ReturnedValueStats compute(const WarpCase& warp, const CheckContext& ctx, What w
             ex[i].returned = value[i];
             const double rel = relative_difference(value[i], ex[i].reference);
             ++s.count;
+            if (declines && value[i] == 0.0) ++s.declined;
+            if (chunk > 0 && i % kEdgeBandStride == 0 && std::isfinite(ex[i].reference))
+                s.band.add(near_discontinuity(warp, what, ex[i]));
             if (!(rel <= kRelativeTolerance) && std::isfinite(value[i]) && agrees_nearby(warp, what, ex[i])) {
                 if (chunk == 0) ++s.excused_edges;
                 else s.excused_random.add(chunk * kInputChunkSize + i, ex[i]);
@@ -124,7 +149,7 @@ ReturnedValueStats compute(const WarpCase& warp, const CheckContext& ctx, What w
 void judge(CheckResult& r, const ReturnedValueStats& s, What what) {
     const char* value = what == What::Pdf ? "pdf" : "weight";
     const char* reference = what == What::Pdf ? "pdf(x)" : "eval(x) / pdf(x)";
-    const uint64_t bound = rounded_across_edge_bound(s.random_count);
+    const uint64_t bound = rounded_across_edge_bound(s.random_count, s.band);
     const uint64_t excused = s.excused_edges + s.excused_random.count;
     r.summary = fmt::format("max rel. diff {:.3g}", s.max_relative);
     if (excused > 0) r.summary += fmt::format(", {} agree a float step away", excused);
@@ -188,6 +213,7 @@ public:
 
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const ReturnedValueStats s = compute(warp, ctx, what_);
+        if (s.count > 0 && s.declined == s.count) return nothing_sampled(s.count);
         CheckResult r;
         r.samples = s.count;
         r.figures = {{"samples", static_cast<double>(s.count)},
@@ -195,7 +221,9 @@ public:
                      {"max_relative_difference", s.max_relative},
                      {"agree_at_neighbour_edge_inputs", static_cast<double>(s.excused_edges)},
                      {"agree_at_neighbour_random", static_cast<double>(s.excused_random.count)},
-                     {"agree_at_neighbour_bound", static_cast<double>(rounded_across_edge_bound(s.random_count))},
+                     {"agree_at_neighbour_bound", static_cast<double>(rounded_across_edge_bound(s.random_count, s.band))},
+                     {"edge_band_probed", static_cast<double>(s.band.probed)},
+                     {"edge_band_near", static_cast<double>(s.band.near)},
                      {"tolerance", kRelativeTolerance}};
         judge(r, s, what_);
         r.tables.push_back(worst_table(s, warp, what_));

@@ -11,8 +11,10 @@
 // own L at one of wi's float neighbours (float_probe.h, the rule consistency
 // and sample_pdf use) equals the returned L: edge inputs, which the sampler
 // maps onto the silhouette by design, are counted; random ones are bounded
-// as consistency bounds samples rounded across a support's edge, while a
-// sampler that aims past the light misses far more often.
+// as consistency bounds samples rounded across a support's edge (the fixed
+// rate, or the measured share of samples within kProbeUlps of the
+// silhouette, EdgeBand, for a light a thousandth of a radian across), while
+// a sampler that aims past the light misses far more often.
 // Samples below the reference surface and samples that carry no light (L = 0,
 // the back of a one-sided emitter) are counted and named in the row, not
 // failed: a light sampler does not know the surface, and a dark sample is
@@ -50,6 +52,7 @@ struct Example {
 struct RadianceStats {
     uint64_t count = 0, random_count = 0, no_sample = 0, behind_surface = 0, dark = 0, excused_edges = 0;
     Tally<Example> misses, mismatches, invalid, excused_random;
+    EdgeBand band;  ///< random samples probed for a change of L nearby (a silhouette within kProbeUlps)
     double max_relative = 0.0;
 
     void merge(const RadianceStats& o) {
@@ -60,6 +63,7 @@ struct RadianceStats {
         random_count += o.random_count;
         excused_edges += o.excused_edges;
         excused_random.merge(o.excused_random);
+        band.merge(o.band);
         misses.merge(o.misses);
         mismatches.merge(o.mismatches);
         invalid.merge(o.invalid);
@@ -76,6 +80,17 @@ bool agrees_nearby(const LightCase& light, const WarpOutput& wi, float returned)
     return std::any_of(L.begin(), L.end(), [&](double v) {
         return std::abs(v - static_cast<double>(returned)) <= kRelativeTolerance * static_cast<double>(returned);
     });
+}
+
+/// Whether L(ref, wi) > 0 changes beyond the tolerance within kProbeUlps
+/// spacings of wi along a coordinate (axis_probes): wi lies that close to
+/// the silhouette or a border, where rounding can carry a sample across.
+bool near_silhouette(const LightCase& light, const WarpOutput& wi, double L) {
+    const std::vector<WarpOutput> n = axis_probes(light.domain(), wi);
+    if (n.empty()) return false;
+    std::vector<double> values(n.size());
+    light.radiance(n, values);
+    return std::any_of(values.begin(), values.end(), [&](double v) { return std::abs(v - L) > kRelativeTolerance * L; });
 }
 
 RadianceStats compute(const LightCase& light, const CheckContext& ctx) {
@@ -102,6 +117,7 @@ RadianceStats compute(const LightCase& light, const CheckContext& ctx) {
                 s.invalid.add(index, e);
                 continue;
             }
+            if (chunk > 0 && i % kEdgeBandStride == 0 && L[i] > 0.0) s.band.add(near_silhouette(light, r.wi, L[i]));
             if (light.behind_surface(r.wi)) ++s.behind_surface;
             if (r.L == 0.0f && L[i] == 0.0) {
                 ++s.dark;
@@ -133,7 +149,7 @@ std::string describe(const Example& e) {
 
 void judge(CheckResult& r, const RadianceStats& s) {
     const uint64_t sampled = s.count - s.no_sample;
-    const uint64_t bound = rounded_across_edge_bound(s.random_count);
+    const uint64_t bound = rounded_across_edge_bound(s.random_count, s.band);
     std::vector<std::string> notes;
     if (s.behind_surface > 0)
         notes.push_back(fmt::format("{} samples lie behind the reference surface", s.behind_surface));
@@ -184,6 +200,7 @@ public:
     }
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const RadianceStats s = compute(*as_light(warp), ctx);
+        if (s.count > 0 && s.no_sample == s.count) return nothing_sampled(s.count);
         CheckResult r;
         r.samples = s.count;
         r.figures = {{"samples", static_cast<double>(s.count)},
@@ -193,7 +210,9 @@ public:
                      {"mismatches", static_cast<double>(s.mismatches.count)},
                      {"agree_at_neighbour_edge_inputs", static_cast<double>(s.excused_edges)},
                      {"agree_at_neighbour_random", static_cast<double>(s.excused_random.count)},
-                     {"agree_at_neighbour_bound", static_cast<double>(rounded_across_edge_bound(s.random_count))},
+                     {"agree_at_neighbour_bound", static_cast<double>(rounded_across_edge_bound(s.random_count, s.band))},
+                     {"edge_band_probed", static_cast<double>(s.band.probed)},
+                     {"edge_band_near", static_cast<double>(s.band.near)},
                      {"behind_surface", static_cast<double>(s.behind_surface)},
                      {"dark_samples", static_cast<double>(s.dark)},
                      {"max_relative_difference", s.max_relative},

@@ -49,6 +49,7 @@ constexpr double kExcusedFloor = 16.0;
 struct Cap {
     WarpOutput axis{0.0f, 0.0f, 1.0f};
     double angle = std::numbers::pi;  ///< half-angle
+    bool sampled = false;             ///< whether the pilot drew any sample (else the whole sphere)
 };
 
 /// The cap around the pilot's mass: its mean direction, out to twice its widest angle.
@@ -62,6 +63,7 @@ Cap pilot_cap(const LightCase& light, const CheckContext& ctx) {
     const double len = std::hypot(m[0], m[1], m[2]);
     if (w.empty() || !(len > 0.0)) return {};
     Cap cap;
+    cap.sampled = true;
     cap.axis = {static_cast<float>(m[0] / len), static_cast<float>(m[1] / len), static_cast<float>(m[2] / len)};
     double widest = 0.0;
     for (const WarpOutput& x : w) {
@@ -211,6 +213,16 @@ public:
         if (!(static_cast<double>(s.excused) <= limit))
             failures.push_back(fmt::format("{} probes disagree within {:.3g} rad of a boundary: more than the {:.0f} "
                                            "a band that wide around the light holds", s.excused, step, limit));
+        if (s.lit == 0 && !cap.sampled && failures.empty()) {
+            // Both sides agree that there is no light to see (a planar light
+            // seen edge-on within float rounding): nothing was compared.
+            r.verdict = Verdict::NotApplicable;
+            r.summary = "not applicable: the light is not visible from ref";
+            r.message = fmt::format("the sampler declined every pilot input and none of {} probes over the sphere "
+                                    "found light: the light is not visible from ref, so no support was compared",
+                                    s.probes);
+            return r;
+        }
         if (s.lit == 0)
             failures.push_back("no probe found light: L(ref, w) is 0 over the sphere and around the samples");
         r.verdict = failures.empty() ? Verdict::Pass : Verdict::Fail;

@@ -11,6 +11,7 @@
 #include "support/support_warps.h"
 #include "sampling/hemisphere.h"
 #include "validate/checks/checks.h"
+#include "validate/checks/float_probe.h"
 
 namespace warpcheck {
 namespace {
@@ -281,6 +282,35 @@ TEST(InversePdfMean, ASupportLargerThanTheDomainIsRefused) {
             registry.add_case(bucket_table("too_large", 5.0, 1.0f));
         },
         std::invalid_argument);
+}
+
+// The probes that measure the edge band (float_probe.h): on the sphere, a
+// step along one coordinate moves a unit vector off the sphere by a float
+// step, inside the domain's tolerance on length, so all six probes stand
+// (they were all thrown away, and no band was ever measured on a direction);
+// on the hemisphere, a probe below the horizon is beyond the domain's own
+// boundary and is left out; on the square, probes past its side likewise.
+TEST(EdgeBandProbes, DirectionsKeepTheirProbesAndABoundaryDropsThem) {
+    const WarpOutput w{0.6f, 0.0f, 0.8f};
+    EXPECT_EQ(axis_probes(chi2::Domain::sphere(), w).size(), 6u);
+    const WarpOutput horizon{1.0f, 0.0f, 0.0f};
+    const auto probes = axis_probes(chi2::Domain::spherical_cap(0.0), horizon);
+    EXPECT_EQ(probes.size(), 5u);
+    for (const WarpOutput& p : probes) EXPECT_GE(p[2], 0.0f);
+    EXPECT_EQ(axis_probes(chi2::Domain::unit_square(), WarpOutput{0.0f, 0.5f, 0.0f}).size(), 3u);
+}
+
+// The bound follows the measured share: none measured, the fixed rate; a
+// share measured, the Poisson bound at the share's upper bound.
+TEST(EdgeBandProbes, TheBoundUsesTheMeasuredShareWhereItIsLarger) {
+    EdgeBand none;
+    none.probed = 10'000;
+    EXPECT_EQ(rounded_across_edge_bound(1'000'000, none), rounded_across_edge_bound(1'000'000));
+    EdgeBand band;
+    for (int i = 0; i < 10'000; ++i) band.add(i % 100 == 0);  // a share of 1%
+    EXPECT_NEAR(band.share(), (100.0 + 60.0 + 1.0) / 10'000.0, 1e-12);
+    EXPECT_GT(rounded_across_edge_bound(1'000'000, band), 16'100u);
+    EXPECT_LT(rounded_across_edge_bound(1'000'000, band), 17'500u);
 }
 
 }  // namespace
