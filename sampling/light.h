@@ -83,11 +83,12 @@ inline LightSample toward_area_point(Vector3f ref, Vector3f point, Vector3f n, f
 /// or not by rounding, and its sampled directions land on either side of it
 /// at random. Such a light gives no sample and a pdf of 0; what it drops is
 /// under 2^-21 extent / |d| sr, the float resolution of its solid angle.
-inline bool seen_edge_on(Vector3f n, Vector3f d, float extent) {
-    const double h = static_cast<double>(dot(n, d)), d2 = static_cast<double>(dot(d, d));
-    const double e = static_cast<double>(extent);
-    return h * h * std::min(d2, e * e) <= 0x1p-42 * d2 * d2;
+/// The same from the height h = n . d and d . d, where a caller has them.
+inline bool seen_edge_on(float height, float d2, float extent) {
+    const double h = height, dd = d2, e = extent;
+    return h * h * std::min(dd, e * e) <= 0x1p-42 * dd * dd;
 }
+inline bool seen_edge_on(Vector3f n, Vector3f d, float extent) { return seen_edge_on(dot(n, d), dot(d, d), extent); }
 
 /// A triangle's geometry: the area warp, the ray intersection and the change
 /// of measure from area to solid angle, shared by the two triangle lights.
@@ -134,7 +135,6 @@ public:
     /// Möller–Trumbore, two-sided, edges included. det = e1 . (wi x e2) = -wi . (e1 x e2),
     /// so |cos| at the light is |det| / |e1 x e2|, nonzero whenever det is.
     RayHit intersect(Vector3f ref, Vector3f wi) const {
-        if (in_plane(ref)) return {};
         const Vector3f pvec = cross(wi, e2_);
         const float det = dot(e1_, pvec);
         if (det == 0.0f) return {};
@@ -146,7 +146,8 @@ public:
         const float b2 = dot(wi, qvec) * inv_det;
         if (!(b2 >= 0.0f && b1 + b2 <= 1.0f)) return {};
         const float t = dot(e2_, qvec) * inv_det;
-        if (!(t > 0.0f)) return {};
+        // Edge-on last (tvec is ref - p0): a quadrature evaluates millions of directions, most of them misses.
+        if (!(t > 0.0f) || seen_edge_on(dot(n_, tvec), dot(tvec, tvec), extent_)) return {};
         return {t, std::abs(det) / twice_area_, b1, b2};
     }
 
@@ -623,12 +624,14 @@ private:
     detail::RayHit intersect(Vector3f ref, Vector3f wi) const {
         const float h = dot(n_, p_ - ref);
         const float cos_n = dot(wi, n_);
-        if (detail::seen_edge_on(n_, p_ - ref, extent_) || cos_n == 0.0f) return {};
+        if (cos_n == 0.0f) return {};
         const float t = h / cos_n;
         if (!(t > 0.0f)) return {};
         const Vector3f q = (ref + t * wi) - p_;
         const float a = dot(q, ex_) * inv_lx2_, b = dot(q, ey_) * inv_ly2_;
         if (!(a >= 0.0f && a <= 1.0f && b >= 0.0f && b <= 1.0f)) return {};
+        const Vector3f d = p_ - ref;
+        if (detail::seen_edge_on(h, dot(d, d), extent_)) return {};  // last: most directions miss
         return {t, std::abs(cos_n), a, b};
     }
 
@@ -675,11 +678,13 @@ private:
     detail::RayHit intersect(Vector3f ref, Vector3f wi) const {
         const float h = dot(frame_.n, c_ - ref);
         const float cos_n = dot(wi, frame_.n);
-        if (detail::seen_edge_on(frame_.n, c_ - ref, 2.0f * r_) || cos_n == 0.0f) return {};
+        if (cos_n == 0.0f) return {};
         const float t = h / cos_n;
         if (!(t > 0.0f)) return {};
         const Vector3f q = (ref + t * wi) - c_;
         if (!(dot(q, q) <= r_ * r_)) return {};
+        const Vector3f d = c_ - ref;
+        if (detail::seen_edge_on(h, dot(d, d), 2.0f * r_)) return {};  // last: most directions miss
         return {t, std::abs(cos_n)};
     }
 

@@ -87,6 +87,36 @@ std::vector<WarpOutput> axis_probes(const chi2::Domain& domain, const WarpOutput
     return probes;
 }
 
+std::vector<WarpInput> inward_ladder(const WarpInput& u, InputKind kind) {
+    if (kind != InputKind::Uniform1D && kind != InputKind::Uniform2D) return {};
+    const int dims = input_dimension(kind);
+    std::vector<WarpInput> out;
+    for (int e = 24; e >= 3; e -= 3) {
+        WarpInput v = u;
+        for (int k = 0; k < dims; ++k) {
+            float& c = v.u[static_cast<std::size_t>(k)];
+            c = c < 0.5f ? c + std::ldexp(1.0f, -e) : c > 0.5f ? c - std::ldexp(1.0f, -e) : c;
+        }
+        out.push_back(v);
+    }
+    return out;
+}
+
+bool converges_to(const chi2::Domain& domain, const WarpOutput& x, std::span<const WarpOutput> ladder) {
+    if (ladder.empty()) return false;
+    const auto distance = [&](const WarpOutput& y) {
+        double d2 = 0.0;
+        for (std::size_t k = 0; k < 3; ++k) d2 += (static_cast<double>(y[k]) - x[k]) * (static_cast<double>(y[k]) - x[k]);
+        return std::sqrt(d2);
+    };
+    for (const WarpOutput& y : ladder)
+        if (!std::isfinite(distance(y))) return false;
+    const std::array<float, 3> step = probe_steps(domain, x);
+    const double reach = kProbeUlps * static_cast<double>(std::max({step[0], step[1], step[2]}));
+    const double nearest = distance(ladder.front()), farthest = distance(ladder.back());
+    return nearest <= reach || nearest <= farthest / 16.0;
+}
+
 uint64_t rounded_across_edge_bound(uint64_t random_samples, const EdgeBand& band) {
     const double rate = std::max(kRoundedAcrossEdgeRate, band.share());
     return chi2::poisson_count_bound(static_cast<double>(random_samples) * rate, kConsistencyBoundTail);

@@ -7,9 +7,11 @@
 // light_radiance hold them to the same rule.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "validate/api/warp_case.h"
@@ -71,14 +73,18 @@ inline constexpr std::size_t kFloatNeighbours = 8;
 /// seen edge-on.
 std::vector<WarpOutput> float_neighbours(const WarpOutput& w, double step = kFloatStep);
 
-/// Every kEdgeBandStride-th random sample is probed for a discontinuity
-/// nearby (EdgeBand): 1 in 64 costs 2d / 64 extra evaluations a sample, and
-/// at 10^6 samples still measures a share of 10^-3 to within a third.
-inline constexpr std::size_t kEdgeBandStride = 64;
+/// Random samples probed for a discontinuity nearby (EdgeBand): about 2^14
+/// of them, every k-th for k = samples / 2^14 clamped to [1, 64]. 2^14
+/// probes measure a share of 10^-3 to within a quarter (16 seen); fewer
+/// samples are all probed (at 2 x 10^4, a band of 10^-3 seen 20 times, not
+/// 5); at 10^6 a probe costs 2d / 61 extra evaluations a sample.
+inline std::size_t edge_band_stride(uint64_t samples) {
+    return static_cast<std::size_t>(std::clamp<uint64_t>(samples >> 14, 1, 64));
+}
 
 /// The share of random samples that lie within kProbeUlps spacings of a
 /// discontinuity of what a check compares, measured on every
-/// kEdgeBandStride-th: only those can be rounded across it. The fixed rate
+/// edge_band_stride-th: only those can be rounded across it. The fixed rate
 /// kRoundedAcrossEdgeRate covers edges that are images of lines of inputs;
 /// a support that is thin in some direction has far more of its samples
 /// that close to an edge (a ring 1e-4 wide: 5e-3 of them; a light 1e-4 rad
@@ -109,6 +115,28 @@ struct EdgeBand {
 /// with the slack on a direction's length (a step along one coordinate moves
 /// a unit vector off the sphere by up to kProbeUlps spacings).
 std::vector<WarpOutput> axis_probes(const chi2::Domain& domain, const WarpOutput& x);
+
+/// The inputs that approach u from inside the unit square or interval:
+/// u moved towards its centre by 2^-24, 2^-21, ..., 2^-3 in each coordinate,
+/// in that order (empty for raw bits and for a BSDF's three uniforms, whose
+/// first picks a lobe). A sample that fails its check and that no float
+/// neighbour excuses may still lie on its support's closure below float
+/// resolution (a light's corner seen at a grazing angle is thinner than a
+/// float direction for a distance of 10^-2 of the light): it does if the
+/// samples of these inputs converge to it (converges_to) and one of them
+/// passes the check. Only for edge inputs, which map onto a support's edges
+/// and corners by design: a sampler that maps one to a wrong place (a
+/// default direction, a clamp past the support) has samples nearby that do
+/// not converge to it, while a sampler that overshoots its support
+/// continuously would pass this test, and its random samples catch it.
+std::vector<WarpInput> inward_ladder(const WarpInput& u, InputKind kind);
+
+/// Whether the samples of inward_ladder(u) converge to x, the sample of u:
+/// the nearest step's sample within kProbeUlps float steps of x, or nearer
+/// than 1/16 of the farthest step's (a continuous warp: a square-root map
+/// closes 2^10.5 times over the ladder's 2^21, a linear one 2^21 times; a
+/// jump does not close at all). Every sample must be finite.
+bool converges_to(const chi2::Domain& domain, const WarpOutput& x, std::span<const WarpOutput> ladder);
 
 /// How many random samples may be excused by their neighbourhood: a Poisson
 /// bound, with tail kConsistencyBoundTail, at the larger of

@@ -267,7 +267,7 @@ TEST(Fuzz, BuiltinFamiliesAreCleanOverTheirDeclaredRangesOnSeveralSeeds) {
         o.run.seed = seed;
         o.run.samples = 20'000;
         const FuzzReport r = run_fuzz(registry, o);
-        EXPECT_EQ(r.families, 12u);  // the seven of issue 38, two coated (stochastic), two spectral, sphere_light
+        EXPECT_EQ(r.families, 16u);  // the seven of issue 38, two coated (stochastic), two spectral, five lights
         EXPECT_GT(r.points, 300u);
         EXPECT_TRUE(r.clean()) << fuzz_report_text(r);
     }

@@ -50,6 +50,7 @@ struct Cap {
     WarpOutput axis{0.0f, 0.0f, 1.0f};
     double angle = std::numbers::pi;  ///< half-angle
     bool sampled = false;             ///< whether the pilot drew any sample (else the whole sphere)
+    std::size_t lit_samples = 0;      ///< the pilot's samples along which the light's own L(ref, w) > 0
 };
 
 /// The cap around the pilot's mass: its mean direction, out to twice its widest angle.
@@ -71,6 +72,9 @@ Cap pilot_cap(const LightCase& light, const CheckContext& ctx) {
         widest = std::max(widest, std::acos(std::clamp(c, -1.0, 1.0)));
     }
     cap.angle = std::min(std::numbers::pi, 2.0 * widest + 0x1p-20);
+    std::vector<double> L(w.size());
+    light.radiance(w, L);
+    cap.lit_samples = static_cast<std::size_t>(std::count_if(L.begin(), L.end(), [](double v) { return v > 0.0; }));
     return cap;
 }
 
@@ -196,7 +200,8 @@ public:
                      {"pdf_without_light", static_cast<double>(s.pdf_without_light.count)},
                      {"invalid", static_cast<double>(s.invalid.count)},
                      {"excused_at_boundary", static_cast<double>(s.excused)},
-                     {"excused_limit", limit}};
+                     {"excused_limit", limit},
+                     {"lit_pilot_samples", static_cast<double>(cap.lit_samples)}};
         r.summary = fmt::format("{} lit of {} probes, cap {:.3g} rad", s.lit, s.probes, cap.angle);
         std::vector<std::string> failures;
         if (s.invalid.count > 0)
@@ -223,7 +228,15 @@ public:
                                     s.probes);
             return r;
         }
-        if (s.lit == 0)
+        // No probe lit, but the light's own L finds light along the sampler's
+        // directions: the lit region is thinner than the probes resolve (a
+        // sliver of a far light seen nearly edge-on), so only half the rule
+        // (no pdf where there is no light) was tested: said, not failed.
+        if (s.lit == 0 && cap.lit_samples > 0)
+            r.weak = fmt::format("no probe of {} landed on the light, whose lit region is too thin for them ({} of "
+                                 "the pilot's samples find its light): lit directions of pdf 0 were not looked for",
+                                 s.probes, cap.lit_samples);
+        else if (s.lit == 0)
             failures.push_back("no probe found light: L(ref, w) is 0 over the sphere and around the samples");
         r.verdict = failures.empty() ? Verdict::Pass : Verdict::Fail;
         if (!failures.empty()) {
