@@ -75,18 +75,23 @@ inline LightSample toward_area_point(Vector3f ref, Vector3f point, Vector3f n, f
 
 /// Whether a planar light is seen edge-on within the float resolution of a
 /// direction from a point at offset d from one of its points (n its unit
-/// normal, `extent` its largest chord): its elevation |n . d| / |d| (the
-/// height n . d is computed in float from a rounded difference, off by a few
-/// ulps of |d|) or its angular height, about the elevation times
-/// extent / |d|, below 2^-21 rad (8 ulps of a unit vector's components).
+/// normal, `extent` at least the distance from that point to any other of
+/// the light), from the height h = n . d and d . d:
+///  - the height below its own rounding, |h| <= 2^-21 |d| (computed in float
+///    from a rounded difference, it is off by a few ulps of |d|, so its sign
+///    is not determined): the point lies in the light's plane as far as
+///    float can tell;
+///  - or the light's angular height under 2^-21 rad (8 ulps of a unit
+///    vector's components) from wherever it is seen: at most extent |h| / D^2
+///    for D = |d| - extent, the nearest the light can be (only where D > 0).
 /// No float direction then resolves the light: a ray along one may meet it
 /// or not by rounding, and its sampled directions land on either side of it
-/// at random. Such a light gives no sample and a pdf of 0; what it drops is
-/// under 2^-21 extent / |d| sr, the float resolution of its solid angle.
-/// The same from the height h = n . d and d . d, where a caller has them.
+/// at random. Such a light gives no sample and a pdf of 0.
 inline bool seen_edge_on(float height, float d2, float extent) {
     const double h = height, dd = d2, e = extent;
-    return h * h * std::min(dd, e * e) <= 0x1p-42 * dd * dd;
+    if (h * h <= 0x1p-42 * dd) return true;
+    const double near = std::sqrt(dd) - e;
+    return near > 0.0 && h * h * e * e <= 0x1p-42 * near * near * near * near;
 }
 inline bool seen_edge_on(Vector3f n, Vector3f d, float extent) { return seen_edge_on(dot(n, d), dot(d, d), extent); }
 

@@ -103,7 +103,7 @@ void register_sphere_lights(Registry& registry) {
         add_light(registry, "sphere_light", kSphereDescription, {{"distance", at.distance}, {"theta", at.theta}},
                   sphere_at(at.distance, at.theta));
     // The family --fuzz draws from: the reference point anywhere from the
-    // sphere's centre to 10^4 radii away (10^-4 rad across), on the sphere's
+    // sphere's centre to 10^4 radii away (an angular radius of 10^-4), on the sphere's
     // surface included, the light anywhere around the reference surface.
     registry.add_family({{.family = "sphere_light", .description = kSphereDescription},
                          {{"distance", {4, 1000, 0.5}, {{0.0, 1e4}}}, {"theta", {0, 89, 120, 30}, {{0.0, 180.0}}}},
@@ -131,7 +131,7 @@ SphericalRectangleLight rectangle_at(const Placement& p) {
 DiskLight disk_at(const Placement& p) { return DiskLight(p.point(0.0, 0.0), p.normal(), 0.5f, kLe); }
 
 /// A planar light's family for --fuzz: the light's centre from 0.1 to 10^4
-/// away (a light of size ~1 seen at 10^-4 rad), anywhere around the
+/// away (a light of size ~1 seen 10^-4 rad wide), anywhere around the
 /// reference surface, turned to any tilt but within a degree of edge-on
 /// (180: seen from its back). Nearer edge-on than that, two float limits
 /// show, stated here, not hidden (the note of stop 52 has reruns): an

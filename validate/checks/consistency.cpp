@@ -63,6 +63,7 @@ struct Example {
 struct ConsistencyStats {
     uint64_t count = 0, random_count = 0;
     uint64_t declined = 0;  ///< a light's inputs that gave no sample (pdf 0 returned): skipped
+    uint64_t declined_random = 0;  ///< of those, random inputs
     Tally<Example> nan_sample, outside, bad_pdf, zero_pdf;
     uint64_t boundary_zero = 0;
     Tally<Example> boundary_random;  ///< the boundary zeros among random inputs (bounded as rounded_random)
@@ -79,6 +80,7 @@ struct ConsistencyStats {
         count += o.count;
         random_count += o.random_count;
         declined += o.declined;
+        declined_random += o.declined_random;
         rounded_random.merge(o.rounded_random);
         rounded_edges += o.rounded_edges;
         band.merge(o.band);
@@ -147,13 +149,14 @@ bool limit_of_support(const WarpCase& warp, const WarpInput& input, const WarpOu
     std::vector<double> pdf(ladder.size());
     if (declines_samples(warp)) {
         warp.sample_with_value(ladder, xs, pdf);
-        if (std::any_of(pdf.begin(), pdf.end(), [](double v) { return v == 0.0; })) return false;
+        if (std::any_of(pdf.begin(), pdf.end(), [](double v) { return v == 0.0; })) return false;  // declined
     } else {
         warp.sample(ladder, xs);
     }
     warp.pdf(xs, pdf);
-    return converges_to(warp.domain(), x, xs) &&
-           std::any_of(pdf.begin(), pdf.end(), [](double v) { return v > 0.0 && std::isfinite(v); });
+    std::vector<unsigned char> passes(ladder.size());
+    for (std::size_t k = 0; k < ladder.size(); ++k) passes[k] = pdf[k] > 0.0 && std::isfinite(pdf[k]);
+    return excused_in_the_limit(warp.domain(), x, xs, passes);
 }
 
 /// Whether x, a sample with a positive pdf, lies within kProbeUlps spacings of
@@ -178,6 +181,7 @@ ConsistencyStats classify_chunk(const WarpCase& warp, std::size_t chunk, std::sp
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         if (!declined.empty() && declined[i]) {
             ++s.declined;
+            s.declined_random += chunk > 0 ? 1 : 0;
             continue;
         }
         const uint64_t index = chunk * kInputChunkSize + i;
@@ -233,7 +237,9 @@ uint64_t boundary_bound(const ConsistencyStats& s) {
 /// bound on the larger of kRoundedAcrossEdgeRate and the measured share of
 /// samples that lie within the probe's reach of a support edge (only those
 /// can round across it).
-uint64_t rounded_bound(const ConsistencyStats& s) { return rounded_across_edge_bound(s.random_count, s.band); }
+uint64_t rounded_bound(const ConsistencyStats& s) {
+    return rounded_across_edge_bound(s.random_count - s.declined_random, s.band);
+}
 
 struct Finding {
     const Tally<Example>* tally;

@@ -60,8 +60,8 @@ std::vector<WarpOutput> float_neighbours(const WarpOutput& w, double step) {
 
 double EdgeBand::share() const {
     if (near == 0 || probed == 0) return 0.0;
-    const double k = static_cast<double>(near);
-    return (k + 6.0 * std::sqrt(k) + 1.0) / static_cast<double>(probed);
+    const double root = std::sqrt(static_cast<double>(near) + 1.0) + 3.5;
+    return root * root / static_cast<double>(probed);
 }
 
 std::vector<WarpOutput> axis_probes(const chi2::Domain& domain, const WarpOutput& x) {
@@ -102,19 +102,30 @@ std::vector<WarpInput> inward_ladder(const WarpInput& u, InputKind kind) {
     return out;
 }
 
-bool converges_to(const chi2::Domain& domain, const WarpOutput& x, std::span<const WarpOutput> ladder) {
-    if (ladder.empty()) return false;
-    const auto distance = [&](const WarpOutput& y) {
+bool excused_in_the_limit(const chi2::Domain& domain, const WarpOutput& x, std::span<const WarpOutput> ladder,
+                          std::span<const unsigned char> passes) {
+    if (ladder.size() < 2 || passes.size() != ladder.size()) return false;
+    std::vector<double> d(ladder.size());
+    for (std::size_t k = 0; k < ladder.size(); ++k) {
         double d2 = 0.0;
-        for (std::size_t k = 0; k < 3; ++k) d2 += (static_cast<double>(y[k]) - x[k]) * (static_cast<double>(y[k]) - x[k]);
-        return std::sqrt(d2);
-    };
-    for (const WarpOutput& y : ladder)
-        if (!std::isfinite(distance(y))) return false;
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double diff = static_cast<double>(ladder[k][c]) - static_cast<double>(x[c]);
+            d2 += diff * diff;
+        }
+        d[k] = std::sqrt(d2);
+        if (!std::isfinite(d[k])) return false;
+    }
     const std::array<float, 3> step = probe_steps(domain, x);
     const double reach = kProbeUlps * static_cast<double>(std::max({step[0], step[1], step[2]}));
-    const double nearest = distance(ladder.front()), farthest = distance(ladder.back());
-    return nearest <= reach || nearest <= farthest / 16.0;
+    // Closing in step by step, and closed at the nearest step.
+    for (std::size_t k = 0; k + 1 < d.size(); ++k)
+        if (!(d[k] <= d[k + 1] + reach)) return false;
+    if (!(d[0] <= reach || d[0] <= 0.5 * d[1])) return false;
+    // The witness: the farthest step, where the support is resolved, passes.
+    // Nearer steps may fail as x does (rounded across a support thinner
+    // than a float step there), and a pocket of the support that they find
+    // is left to the random samples, which get no such excuse.
+    return passes.back() != 0;
 }
 
 uint64_t rounded_across_edge_bound(uint64_t random_samples, const EdgeBand& band) {

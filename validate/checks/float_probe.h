@@ -30,6 +30,14 @@ namespace warpcheck {
 /// weight, bsdf_weight and mis_weights hold values to it.
 inline constexpr double kReturnedValueTolerance = 0x1p-12;
 
+/// What counts as a discontinuity for the edge band (EdgeBand) of a value
+/// that is not a pdf's support: a change of more than 2^-6 relative within
+/// kProbeUlps float steps. 64 times the 2^-12 a returned value is held to, so
+/// a value's float noise (which can exceed 2^-12 where it is steep) does not
+/// pass for a band of jumps and widen the bound for its own errors, while a
+/// silhouette (L or pdf to 0) or a pixel's border (a factor) is one.
+inline constexpr double kJumpTolerance = 0x1p-6;
+
 /// How far a zero-pdf sample's neighbours are probed: kProbeUlps float
 /// spacings at the domain's extent (Domain::slack's scale) in each coordinate.
 /// A float warp computes a coordinate from terms as large as the domain (a
@@ -75,9 +83,9 @@ std::vector<WarpOutput> float_neighbours(const WarpOutput& w, double step = kFlo
 
 /// Random samples probed for a discontinuity nearby (EdgeBand): about 2^14
 /// of them, every k-th for k = samples / 2^14 clamped to [1, 64]. 2^14
-/// probes measure a share of 10^-3 to within a quarter (16 seen); fewer
-/// samples are all probed (at 2 x 10^4, a band of 10^-3 seen 20 times, not
-/// 5); at 10^6 a probe costs 2d / 61 extra evaluations a sample.
+/// probes see a share of 10^-3 16 times; fewer samples are all probed (at
+/// 2 x 10^4, a band of 10^-3 seen 20 times, where every 16th saw it about
+/// once); at 10^6 a probe costs 2d / 61 extra evaluations a sample.
 inline std::size_t edge_band_stride(uint64_t samples) {
     return static_cast<std::size_t>(std::clamp<uint64_t>(samples >> 14, 1, 64));
 }
@@ -87,9 +95,9 @@ inline std::size_t edge_band_stride(uint64_t samples) {
 /// edge_band_stride-th: only those can be rounded across it. The fixed rate
 /// kRoundedAcrossEdgeRate covers edges that are images of lines of inputs;
 /// a support that is thin in some direction has far more of its samples
-/// that close to an edge (a ring 1e-4 wide: 5e-3 of them; a light 1e-4 rad
-/// across, whose directions resolve 3e-4 of its width: 1e-2), and the bound
-/// then uses the measured share. consistency probes for a zero pdf; sample_pdf,
+/// that close to an edge (a ring 1e-4 wide: 5e-3 of them; a sphere light of
+/// angular radius 1e-4: about 4e-3), and the bound then uses the measured
+/// share. consistency probes for a zero pdf; sample_pdf,
 /// weight and light_radiance for a value that differs beyond
 /// kReturnedValueTolerance.
 struct EdgeBand {
@@ -103,9 +111,10 @@ struct EdgeBand {
         probed += o.probed;
         near += o.near;
     }
-    /// The measured share bounded above (the count plus 6 of its standard
-    /// deviations, plus 1: a bound that a correct warp's share exceeds with
-    /// a chance far below kConsistencyBoundTail); 0 when none was near.
+    /// The measured share bounded above: (sqrt(k + 1) + 3.5)^2 / probed for
+    /// k near, above the exact Poisson upper limit at tail 1e-9 (about 24 at
+    /// k = 1, 27 at 2, 54 at 16; the formula gives 24.1, 27.4, 58.1); 0 when
+    /// none was near (the fixed rate then stands alone).
     double share() const;
 };
 
@@ -123,20 +132,27 @@ std::vector<WarpOutput> axis_probes(const chi2::Domain& domain, const WarpOutput
 /// neighbour excuses may still lie on its support's closure below float
 /// resolution (a light's corner seen at a grazing angle is thinner than a
 /// float direction for a distance of 10^-2 of the light): it does if the
-/// samples of these inputs converge to it (converges_to) and one of them
-/// passes the check. Only for edge inputs, which map onto a support's edges
+/// samples of these inputs converge to it and pass the check further out
+/// (excused_in_the_limit). Only for edge inputs, which map onto a support's edges
 /// and corners by design: a sampler that maps one to a wrong place (a
 /// default direction, a clamp past the support) has samples nearby that do
 /// not converge to it, while a sampler that overshoots its support
 /// continuously would pass this test, and its random samples catch it.
 std::vector<WarpInput> inward_ladder(const WarpInput& u, InputKind kind);
 
-/// Whether the samples of inward_ladder(u) converge to x, the sample of u:
-/// the nearest step's sample within kProbeUlps float steps of x, or nearer
-/// than 1/16 of the farthest step's (a continuous warp: a square-root map
-/// closes 2^10.5 times over the ladder's 2^21, a linear one 2^21 times; a
-/// jump does not close at all). Every sample must be finite.
-bool converges_to(const chi2::Domain& domain, const WarpOutput& x, std::span<const WarpOutput> ladder);
+/// Whether x, the sample of an edge input u that failed its check, is the
+/// limit of the samples `ladder` of inward_ladder(u) (nearest first), and
+/// they show the support around it: every one finite; their distances from
+/// x never growing as the step shrinks (beyond kProbeUlps float steps); the
+/// nearest within kProbeUlps float steps of x or at most half the next one's
+/// distance (a square-root warp closes to 0.35 per step of 8, a linear one
+/// to 0.125; a jump of any size keeps its distance, about 1); and the
+/// farthest step passes the check (passes[k]: the caller's rule at
+/// ladder[k]; nearer steps may fail as x does, rounded across a support
+/// thinner than a float step). So x lies where continuous
+/// paths of correct samples end, below the float resolution of its support.
+bool excused_in_the_limit(const chi2::Domain& domain, const WarpOutput& x, std::span<const WarpOutput> ladder,
+                          std::span<const unsigned char> passes);
 
 /// How many random samples may be excused by their neighbourhood: a Poisson
 /// bound, with tail kConsistencyBoundTail, at the larger of
