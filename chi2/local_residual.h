@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <span>
 
+#include "chi2/parallel.h"
+
 namespace warpcheck::chi2 {
 
 /// The share of a chi-square check's level that the largest residual gets
@@ -42,8 +44,10 @@ LocalResidual largest_cell_residual(std::span<const uint64_t> counts, std::span<
 /// `upper`, one below it by the lower tail at `lower`, one inside it is not
 /// evidence (p 1); each is at least the p-value at the true expectation when
 /// it lies in the band, so the test stays conservative. The residual reported
-/// is the distance to the band over sqrt(upper).
+/// is the distance to the band over sqrt(upper). The cells' p-values are
+/// computed on `parallel_for`; the result does not depend on it.
 LocalResidual largest_cell_residual(std::span<const uint64_t> counts, std::span<const double> expected,
-                                    std::span<const double> lower, std::span<const double> upper, uint64_t n);
+                                    std::span<const double> lower, std::span<const double> upper, uint64_t n,
+                                    const ParallelFor& parallel_for = serial_for);
 
 }  // namespace warpcheck::chi2

@@ -486,10 +486,9 @@ struct PilotCut {
 /// float stand for its whole interval) where that leaves the cluster's piece
 /// under half the side. Returns the share of the side the cluster's piece
 /// keeps (1: no cut).
-double cluster_cut(std::vector<double> c, double lo, double hi, double resolution, std::vector<double>& edges) {
+double cluster_cut(const std::vector<double>& c, double lo, double hi, double resolution, std::vector<double>& edges) {
     const double side = hi - lo;
     if (c.size() < kMinPilotCluster || !(side > 0.0) || !std::isfinite(side)) return 1.0;
-    std::sort(c.begin(), c.end());
     const double close = side / (kPilotClusterDensity * static_cast<double>(c.size()));
     std::size_t best_first = 0, best_count = 0;
     for (std::size_t i = 0; i < c.size();) {
@@ -518,10 +517,10 @@ double cluster_cut(std::vector<double> c, double lo, double hi, double resolutio
 /// unless that eighth is under `resolution` (points that round to one float
 /// stand for its whole interval: no narrower piece is meant). Returns the
 /// gap's share of the side (0: no cut).
-double gap_cut(std::vector<double> c, double lo, double hi, double resolution, std::vector<double>& edges) {
+double gap_cut(const std::vector<double>& c, double lo, double hi, double resolution, double threshold,
+               std::vector<double>& edges) {
     const double side = hi - lo;
     if (c.size() < 2 || !(side > 0.0) || !std::isfinite(side)) return 0.0;
-    std::sort(c.begin(), c.end());
     std::array<double, 2> gap{lo, c.front()};
     for (std::size_t k = 1; k <= c.size(); ++k) {
         const double a = c[k - 1], b = k == c.size() ? hi : c[k];
@@ -529,7 +528,7 @@ double gap_cut(std::vector<double> c, double lo, double hi, double resolution, s
     }
     const double share = (gap[1] - gap[0]) / side;
     const double margin = (gap[1] - gap[0]) / 8.0;
-    if (!(share > kPilotGapShare) || !(margin >= resolution)) return 0.0;
+    if (!(share > threshold) || !(margin >= resolution)) return 0.0;
     edges = {lo};
     if (gap[0] > lo) edges.push_back(gap[0] + margin);
     if (gap[1] < hi) edges.push_back(gap[1] - margin);
@@ -552,18 +551,20 @@ PilotCut pilot_cut(const Binning& binning, const ParamRect& r, const std::vector
     }
     um /= static_cast<double>(points.size());
     vm /= static_cast<double>(points.size());
+    const double threshold = within ? kPilotGapShare : pilot_gap_share(points.size());
     for (int axis = 0; axis < binning.parameter_dimension(); ++axis) {
         const double lo = axis == 0 ? r.u0 : r.v0, hi = axis == 0 ? r.u1 : r.v1;
         std::vector<double> c;
         c.reserve(points.size());
         for (const auto& p : points) c.push_back(std::clamp(p[static_cast<std::size_t>(axis)], lo, hi));
+        std::sort(c.begin(), c.end());  // both rules read the coordinates in order
         std::vector<double> edges;
         // A wide gap first (a cluster at a piece's edge, or two apart: the
         // gap's share as the share the cut removes), then a dense run.
         const double step = binning.float_resolution(axis, um, vm);
         const double resolution = std::isfinite(step) ? step : 0.0;
-        const double gap = gap_cut(c, lo, hi, resolution, edges);
-        const double kept = gap > 0.0 ? 1.0 - gap : cluster_cut(std::move(c), lo, hi, resolution, edges);
+        const double gap = gap_cut(c, lo, hi, resolution, threshold, edges);
+        const double kept = gap > 0.0 ? 1.0 - gap : cluster_cut(c, lo, hi, resolution, edges);
         if (kept < best) {
             best = kept;
             cut.axis = axis;
@@ -625,6 +626,12 @@ GuidedIntegral integrate_around(const Binning& binning, const ParamRect& cell,
     return walk_cell(binning, pdf, options, [&](RegionRule& rr, bool one_d, std::vector<Region>& heap, GuidedIntegral& sum) {
         guided(rr, cell, {points.begin(), points.end()}, 0, one_d, options, heap, sum);
     });
+}
+
+double pilot_gap_share(std::size_t n) {
+    if (n == 0) return 1.0;
+    const double k = static_cast<double>(n);
+    return std::max(kPilotGapShare, -std::expm1(std::log(kPilotGapChance / (k + 1.0)) / k));
 }
 
 bool needs_pilot_partition(const Binning& binning, const ParamRect& cell, std::span<const std::array<double, 2>> points) {

@@ -156,6 +156,20 @@ inline constexpr double kPilotClusterDensity = 16.0;
 /// quarter: the widest gap between 64 points spread evenly is ~ln(64)/64 =
 /// 6.5% of the side (a quarter has probability ~1e-6 there).
 inline constexpr double kPilotGapShare = 0.25;
+/// A whole cell is cut at a gap only where its n pilot points, spread
+/// evenly, would leave so wide a gap with at most this chance: the share s
+/// of a side with (n + 1) (1 - s)^n = kPilotGapChance (the union bound over
+/// the n + 1 spacings), or kPilotGapShare if that is wider. 1e-6: the
+/// chance the quarter was chosen for at 64 points (s = 0.245 there), now
+/// held at every n. A cell of 16 points (a quarter of the mean, in the tail
+/// of a lobe) left a quarter of a side empty by chance in one cell of six,
+/// and each such cut cost a cell's cubature twice over (cosine_hemisphere:
+/// 54 of 1024 cells cut, none of them changed); with 16 points it now takes
+/// 65% of the side. Pieces of a cell already cut keep kPilotGapShare: there
+/// a cluster was found, and the cuts narrow towards it.
+inline constexpr double kPilotGapChance = 1e-6;
+/// The gap share that cuts a whole cell of n pilot points (kPilotGapChance).
+double pilot_gap_share(std::size_t n);
 /// A cell with fewer pilot points than this is not cut, nor is a run of
 /// fewer a cluster: too few to tell one from a tail's stragglers, whose cuts
 /// only cost evaluations (a smaller run, under ~13% of a cell of ~64 pilot
