@@ -426,5 +426,62 @@ TEST(PilotRefinement, APilotThatMissesTheSpotChangesNothing) {
     EXPECT_EQ(q2.total, first.total);
 }
 
+// The gap rule's chance (chi2/quadrature.h, kPilotGapChance): a whole cell
+// whose n pilot points are spread evenly is not cut at a gap, at any n, while
+// a quarter of a side left empty (the rule before, at every n) happens by
+// chance in one cell of six at n = 16. The wrong twin of the same cells: the
+// points of a density whose mass keeps to one end of the cell (a spot at the
+// edge and its tail, 2 of 64 points apart from the rest, as glass of eta
+// 1.001 refracting a grazing wo) are cut.
+std::vector<std::array<double, 2>> even_spread(Pcg32& rng, std::size_t n, double v0 = 0.0, double v1 = 1.0) {
+    std::vector<std::array<double, 2>> points(n);
+    for (auto& p : points) p = {rng.next_double(), v0 + (v1 - v0) * rng.next_double()};
+    return points;
+}
+
+TEST(PilotGap, AnEvenSpreadIsNotCutAtAnyCountWhereAQuarterGapWasCommonOnSeveralSeeds) {
+    const Binning b(Domain::unit_square(), BinResolution{1, 1});
+    const ParamRect cell = b.cell_rect(0);
+    for (uint64_t seed : {1, 2, 3, 4, 5}) {
+        Pcg32 rng(seed, 11);
+        for (std::size_t n : {8, 16, 32, 64, 200}) {
+            std::size_t cut = 0, quarter = 0;
+            for (int k = 0; k < 400; ++k) {
+                auto points = even_spread(rng, n);
+                cut += needs_pilot_partition(b, cell, points);
+                for (int axis = 0; axis < 2; ++axis) {
+                    std::vector<double> c{0.0, 1.0};
+                    for (const auto& p : points) c.push_back(p[static_cast<std::size_t>(axis)]);
+                    std::sort(c.begin(), c.end());
+                    double widest = 0.0;
+                    for (std::size_t i = 1; i < c.size(); ++i) widest = std::max(widest, c[i] - c[i - 1]);
+                    if (widest > kPilotGapShare) { ++quarter; break; }
+                }
+            }
+            EXPECT_EQ(cut, 0u) << "seed " << seed << ", " << n << " points";
+            if (n == 16) {
+                EXPECT_GT(quarter, 40u) << "seed " << seed << ": the hardness (a quarter gap by chance)";
+            }
+        }
+    }
+    EXPECT_EQ(pilot_gap_share(64), kPilotGapShare);
+    EXPECT_NEAR(pilot_gap_share(16), 0.647, 1e-3);
+}
+
+TEST(PilotGap, PointsKeptToOneEndOfTheCellAreCutOnSeveralSeeds) {
+    const Binning b(Domain::unit_square(), BinResolution{1, 1});
+    const ParamRect cell = b.cell_rect(0);
+    for (uint64_t seed : {1, 2, 3, 4, 5}) {
+        Pcg32 rng(seed, 12);
+        // 16 points in the lowest 30% of v: a gap of 70%, past 64.7%.
+        EXPECT_TRUE(needs_pilot_partition(b, cell, even_spread(rng, 16, 0.0, 0.3))) << "seed " << seed;
+        // 62 points in the top 70% and 2 in a spot at the lower edge.
+        auto points = even_spread(rng, 62, 0.7, 1.0);
+        points.push_back({rng.next_double(), 0.01});
+        points.push_back({rng.next_double(), 0.0101});
+        EXPECT_TRUE(needs_pilot_partition(b, cell, points)) << "seed " << seed;
+    }
+}
+
 }  // namespace
 }  // namespace warpcheck::chi2
