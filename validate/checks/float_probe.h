@@ -98,8 +98,8 @@ inline std::size_t edge_band_stride(uint64_t samples) {
 /// that close to an edge (a ring 1e-4 wide: 5e-3 of them; a sphere light of
 /// angular radius 1e-4: about 4e-3), and the bound then uses the measured
 /// share. consistency probes for a zero pdf; sample_pdf,
-/// weight and light_radiance for a value that differs beyond
-/// kReturnedValueTolerance.
+/// weight and light_radiance for a value that jumps beyond kJumpTolerance;
+/// mis_weights for a jump of any strategy's own or MIS pdf.
 struct EdgeBand {
     uint64_t probed = 0;  ///< random samples probed
     uint64_t near = 0;    ///< of those, within kProbeUlps of a discontinuity

@@ -9,7 +9,12 @@
 // pdfs has weights that sum to 1 by construction: n/a, with that reason.
 //
 // Deterministic: each strategy samples the run's inputs (edge inputs
-// included) and every direction is judged.
+// included) and every direction is judged. A direction whose weights sum to
+// 1 only at a float neighbour lies on a silhouette that the two pdfs find a
+// float step apart; random ones are counted against the bound of the other
+// checks (float_probe.h), at the share of random directions measured within
+// kProbeUlps float steps of a jump of any strategy's pdf (EdgeBand): a light
+// a thousandth of a radian across has a hundred times the fixed rate there.
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -49,14 +54,17 @@ struct Example {
 };
 
 struct WeightStats {
-    uint64_t count = 0, random_count = 0, no_sample = 0, unweighted = 0, excused_edges = 0;
+    uint64_t count = 0, random_count = 0, no_sample = 0, no_sample_random = 0, unweighted = 0, excused_edges = 0;
     Tally<Example> wrong, excused_random;
     double max_excess = 0.0;
+    EdgeBand band;  ///< random directions probed for a jump of a pdf nearby
 
     void merge(const WeightStats& o) {
         count += o.count;
         random_count += o.random_count;
         no_sample += o.no_sample;
+        no_sample_random += o.no_sample_random;
+        band.merge(o.band);
         unweighted += o.unweighted;
         excused_edges += o.excused_edges;
         wrong.merge(o.wrong);
@@ -108,8 +116,25 @@ bool sums_to_one_nearby(const MisCase& mis, const WarpOutput& wi, double tol) {
     return false;
 }
 
+/// Whether a strategy's own or MIS pdf jumps (kJumpTolerance of the larger
+/// value) within kProbeUlps spacings of wi i along a coordinate (axis_probes):
+/// wi lies that close to a silhouette, where rounding can carry it across.
+bool near_jump(const MisCase& mis, const Pdfs& at, std::size_t i, const WarpOutput& wi) {
+    const std::vector<WarpOutput> n = axis_probes(mis.domain(), wi);
+    if (n.empty()) return false;
+    const Pdfs p = evaluate(mis, n);
+    const auto jumps = [](double a, double b) {
+        return !(std::abs(a - b) <= kJumpTolerance * std::max(std::abs(a), std::abs(b)));
+    };
+    for (std::size_t t = 0; t < mis.strategy_count(); ++t)
+        for (std::size_t k = 0; k < n.size(); ++k)
+            if (jumps(p.own[t][k], at.own[t][i]) || jumps(p.mis[t][k], at.mis[t][i])) return true;
+    return false;
+}
+
 WeightStats compute(const MisCase& mis, const CheckContext& ctx) {
     const double tol = tolerance(mis);
+    const std::size_t stride = edge_band_stride(ctx.options().samples);
     auto parts = map_input_chunks<WeightStats>(ctx, InputKind::Uniform3D, ctx.options().samples, true,
                                                [&](std::size_t chunk, std::span<const WarpInput> inputs) {
         WeightStats s;
@@ -124,9 +149,11 @@ WeightStats compute(const MisCase& mis, const CheckContext& ctx) {
                 ++s.count;
                 if (!rec[i].sampled() || !std::isfinite(wi[i][0] + wi[i][1] + wi[i][2])) {
                     ++s.no_sample;
+                    s.no_sample_random += chunk > 0 ? 1 : 0;
                     continue;
                 }
                 const double sum = weight_sum(mis, p, i);
+                if (chunk > 0 && i % stride == 0 && std::isfinite(sum)) s.band.add(near_jump(mis, p, i, wi[i]));
                 if (sum == 0.0) {
                     ++s.unweighted;  // no own pdf is positive here: sample_pdf's finding, not a weight's
                     continue;
@@ -177,7 +204,7 @@ public:
     CheckResult run(const WarpCase& warp, const CheckContext& ctx) const override {
         const MisCase& mis = *as_mis(warp);
         const WeightStats s = compute(mis, ctx);
-        const uint64_t bound = rounded_across_edge_bound(s.random_count);
+        const uint64_t bound = rounded_across_edge_bound(s.random_count - s.no_sample_random, s.band);
         const double tol = tolerance(mis);
         CheckResult r;
         r.samples = s.count;
@@ -189,6 +216,8 @@ public:
                      {"agree_at_neighbour_edge_inputs", static_cast<double>(s.excused_edges)},
                      {"agree_at_neighbour_random", static_cast<double>(s.excused_random.count)},
                      {"agree_at_neighbour_bound", static_cast<double>(bound)},
+                     {"edge_band_probed", static_cast<double>(s.band.probed)},
+                     {"edge_band_near", static_cast<double>(s.band.near)},
                      {"tolerance", tol}};
         std::vector<std::string> notes;
         if (s.unweighted > 0)
