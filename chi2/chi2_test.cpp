@@ -412,4 +412,13 @@ Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const Sample
     return out;
 }
 
+LocalResidual largest_band_residual(const Chi2Outcome& o, uint64_t samples, const ParallelFor& parallel_for) {
+    std::vector<double> lower(o.expected.size()), upper(o.expected.size());
+    for (std::size_t i = 0; i < lower.size(); ++i) {
+        lower[i] = std::max(0.0, o.expected[i] - o.band[i]);
+        upper[i] = o.expected[i] + o.band[i];
+    }
+    return largest_cell_residual(o.histogram.counts, o.expected, lower, upper, samples, parallel_for);
+}
+
 }  // namespace warpcheck::chi2

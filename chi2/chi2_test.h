@@ -18,6 +18,7 @@
 
 #include "chi2/binning.h"
 #include "chi2/domain.h"
+#include "chi2/local_residual.h"
 #include "chi2/parallel.h"
 #include "chi2/pearson.h"
 #include "chi2/quadrature.h"
@@ -187,5 +188,10 @@ using SampleHistogram = std::function<Histogram(std::span<const unsigned char> z
 /// The full test with the histogram built by `histogram`.
 Chi2Outcome run_chi2_test(const Binning& binning, uint64_t samples, const SampleHistogram& histogram,
                           const BatchPdf& pdf, const Chi2Options& options, const ParallelFor& parallel_for = serial_for);
+
+/// The largest cell residual (chi2/local_residual.h) of an outcome against
+/// the same bands as its Pearson statistic: each cell's expectation within
+/// [expected - band, expected + band], floored at 0.
+LocalResidual largest_band_residual(const Chi2Outcome& o, uint64_t samples, const ParallelFor& parallel_for = serial_for);
 
 }  // namespace warpcheck::chi2

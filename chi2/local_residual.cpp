@@ -38,6 +38,11 @@ LocalResidual largest_cell_residual(std::span<const uint64_t> counts, std::span<
     LocalResidual out;
     if (n == 0) return out;
     const std::size_t cells = std::min({counts.size(), expected.size(), lower.size(), upper.size()});
+    // The end of the band nearest to the count (the count itself inside it).
+    const auto nearest_of = [&](std::size_t c) {
+        const double o = static_cast<double>(counts[c]);
+        return o < lower[c] ? lower[c] : o > upper[c] ? upper[c] : o;
+    };
     // The exact binomial tails (an incomplete beta each, in long double) per
     // block of cells on the executor; the smallest is picked in cell order.
     constexpr std::size_t kBlock = 64;
@@ -45,17 +50,16 @@ LocalResidual largest_cell_residual(std::span<const uint64_t> counts, std::span<
     parallel_for((cells + kBlock - 1) / kBlock, [&](std::size_t b) {
         for (std::size_t c = b * kBlock; c < std::min(cells, (b + 1) * kBlock); ++c) {
             if (!(expected[c] > 0.0)) continue;
-            const double o = static_cast<double>(counts[c]);
-            // The end of the band nearest to the count (the count itself inside it).
-            const double nearest = o < lower[c] ? lower[c] : o > upper[c] ? upper[c] : o;
-            cell_p[c] = nearest == o && lower[c] != upper[c] ? 1.0 : two_sided_binomial_p(counts[c], nearest, n);
+            const double nearest = nearest_of(c);
+            const bool inside = nearest == static_cast<double>(counts[c]) && lower[c] != upper[c];
+            cell_p[c] = inside ? 1.0 : two_sided_binomial_p(counts[c], nearest, n);
         }
     });
     for (std::size_t c = 0; c < cells; ++c) {
         if (!(expected[c] > 0.0)) continue;
         ++out.cells_tested;
         const double o = static_cast<double>(counts[c]);
-        const double nearest = o < lower[c] ? lower[c] : o > upper[c] ? upper[c] : o;
+        const double nearest = nearest_of(c);
         const double p = cell_p[c];
         if (out.cells_tested == 1 || p < out.cell_p_value) {
             out.cell = c;

@@ -220,16 +220,6 @@ void add_plots(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& 
     r.tables.push_back(worst_cells(binning, o));
 }
 
-/// The largest cell residual against the same bands as Pearson's statistic.
-chi2::LocalResidual local_residual(const chi2::Chi2Outcome& o, uint64_t samples, const CheckContext& ctx) {
-    std::vector<double> lower(o.expected.size()), upper(o.expected.size());
-    for (std::size_t i = 0; i < lower.size(); ++i) {
-        lower[i] = std::max(0.0, o.expected[i] - o.band[i]);
-        upper[i] = o.expected[i] + o.band[i];
-    }
-    return chi2::largest_cell_residual(o.histogram.counts, o.expected, lower, upper, samples, ctx.executor());
-}
-
 class Chi2Check final : public Check {
 public:
     std::string name() const override { return "chi2"; }
@@ -264,7 +254,7 @@ public:
             cells.edges.empty() ? grid : chi2::Binning(warp.domain(), grid.resolution(), cells.edges);
         const chi2::Chi2Outcome outcome = compute(warp, ctx, binning, pilot);
         CheckResult r;
-        const chi2::LocalResidual local = local_residual(outcome, ctx.options().samples, ctx);
+        const chi2::LocalResidual local = chi2::largest_band_residual(outcome, ctx.options().samples, ctx.executor());
         add_figures(r, outcome, local, binning, ctx.options());
         add_pilot_refinement_figures(r.figures, outcome.pilot_refinement);
         r.figures.insert(r.figures.end(), {{"pilot_effective_cells", effective},

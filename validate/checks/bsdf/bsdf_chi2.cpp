@@ -153,17 +153,6 @@ chi2::CellIntegrals conditional(chi2::CellIntegrals q) {
     return q;
 }
 
-/// The largest cell residual against the same bands as Pearson's statistic
-/// (as the chi2 check).
-chi2::LocalResidual local_residual(const chi2::Chi2Outcome& o, uint64_t samples, const CheckContext& ctx) {
-    std::vector<double> lower(o.expected.size()), upper(o.expected.size());
-    for (std::size_t i = 0; i < lower.size(); ++i) {
-        lower[i] = std::max(0.0, o.expected[i] - o.band[i]);
-        upper[i] = o.expected[i] + o.band[i];
-    }
-    return chi2::largest_cell_residual(o.histogram.counts, o.expected, lower, upper, samples, ctx.executor());
-}
-
 struct Normalisation {
     double integral = 0.0, tolerance = 0.0, delta = 0.0;
     uint64_t trials = 0, landed = 0;
@@ -313,7 +302,7 @@ protected:
         const Normalisation n = normalisation(c.integrals, d, options.strict);
         chi2::Chi2Outcome o = chi2::evaluate_chi2(binning, d.hist, conditional(c.integrals), n.landed, options);
         o.reintegrated_cells = c.reintegrated_cells;
-        const chi2::LocalResidual local = local_residual(o, n.landed, ctx);
+        const chi2::LocalResidual local = chi2::largest_band_residual(o, n.landed, ctx.executor());
         CheckResult r;
         add_figures(r, o, local, n, d, ctx.options(), binning);
         add_pilot_refinement_figures(r.figures, c.pilot_refinement);
