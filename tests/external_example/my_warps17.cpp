@@ -336,6 +336,45 @@ void register_float_samplers(warpcheck::Registry& registry) {
     }
 }
 
+// A renderer's RGB diffuse in C++17 (albedo per channel, cosine-weighted wi
+// whichever channel is the hero): every BSDF check runs on each hero channel,
+// bsdf_spectral on the others' values at its samples. Its wrong twin's
+// sampled green value is 0.5% high, seen from the red hero's samples.
+struct DiffuseRgb17 {
+    std::array<float, 3> albedo;
+    float green_scale = 1.0f;
+    w17::SpectralBsdfSample<3> sample(const w17::Point& wo, float, const w17::Point2& u, int) const {
+        const w17::BsdfSample s = Diffuse17{1.0f, false}.sample(wo, u);
+        w17::SpectralBsdfSample<3> out;
+        if (!(s.pdf > 0)) return out;
+        out.wi = s.wi;
+        for (int c = 0; c < 3; ++c) out.f[c] = albedo[c] * kInvPi, out.pdf[c] = s.pdf;
+        out.f[1] *= green_scale;
+        return out;
+    }
+    std::array<float, 3> f(const w17::Point& wo, const w17::Point& wi) const {
+        const float cosine = wo[2] * wi[2] > 0 ? kInvPi : 0.0f;
+        return {albedo[0] * cosine, albedo[1] * cosine, albedo[2] * cosine};
+    }
+    std::array<float, 3> pdf(const w17::Point& wo, const w17::Point& wi) const {
+        const float p = static_cast<float>(Diffuse17{1.0f, false}.pdf(wo, wi));
+        return {p, p, p};
+    }
+};
+
+void register_spectral(warpcheck::Registry& registry) {
+    for (bool wrong : {false, true}) {
+        w17::BsdfInfo base;
+        base.family = wrong ? "rgb_cxx17_green_high" : "rgb_cxx17";
+        base.description = "a renderer's RGB diffuse, one case per hero channel, registered from C++17";
+        const std::vector<double> heroes = wrong ? std::vector<double>{0} : std::vector<double>{0, 1, 2};
+        w17::add_spectral_bsdf_grid(registry, base, {{"theta_o", {40}}, {"hero", heroes}},
+                                    [wrong](const w17::GridPoint&) {
+                                        return DiffuseRgb17{{0.7f, 0.5f, 0.3f}, wrong ? 1.005f : 1.0f};
+                                    });
+    }
+}
+
 // A renderer's sphere light in C++17, seen from the origin: uniform over the
 // cone that subtends the sphere, pdf(ref, wi) and L(ref, wi) from the ray's
 // intersection. Its wrong twin returns twice the radiance its own L() finds.
@@ -389,6 +428,21 @@ void register_lights(warpcheck::Registry& registry) {
     }
 }
 
+// The shading point of the MIS cases: the diffuse BSDF seen from wo at 40
+// degrees, and a light's description seen from the origin with the normal +z.
+w17::BsdfInfo shading_bsdf() {
+    w17::BsdfInfo bsdf;
+    bsdf.family = "diffuse_cxx17";
+    bsdf.wo = w17::bsdf_direction(40.0, 180.0);
+    return bsdf;
+}
+w17::LightInfo seen_from_origin(const char* family) {
+    w17::LightInfo at;
+    at.family = family;
+    at.normal = {0, 0, 1};
+    return at;
+}
+
 // Direct lighting as the renderer combines it: the diffuse BSDF and the
 // sphere light at the origin, power heuristic. The wrong twin's MIS code
 // evaluates the light's pdf per area of the sphere's silhouette disk, 1 /
@@ -399,18 +453,26 @@ void register_mis(warpcheck::Registry& registry) {
         w17::MisInfo info;
         info.family = wrong ? "direct_cxx17_area_pdf" : "direct_cxx17";
         info.description = "a diffuse BSDF and a sphere light combined by MIS, registered from C++17";
-        w17::BsdfInfo bsdf;
-        bsdf.family = "diffuse_cxx17";
-        bsdf.wo = w17::bsdf_direction(40.0, 180.0);
-        w17::LightInfo at;
-        at.family = "sphere_light_cxx17";
-        at.normal = {0, 0, 1};
         std::function<double(const w17::Point&, const w17::Point&)> area_pdf;
         if (wrong)
             area_pdf = [light](const w17::Point& ref, const w17::Point& wi) {
                 return light.hits(ref, wi) ? 1 / (kPi * light.r * light.r) : 0.0;
             };
-        w17::add_mis(registry, info, bsdf, Diffuse17{0.6f, false}, at, light, area_pdf);
+        w17::add_mis(registry, info, shading_bsdf(), Diffuse17{0.6f, false}, seen_from_origin("sphere_light_cxx17"),
+                     light, area_pdf);
+    }
+    // Two sphere lights, one MIS sum: the wrong twin's second light has the
+    // first one's pdf in the sum (a light index mixed up in the MIS code).
+    const SphereLight17 second{{-2.0f, 1.0f, 3.0f}, 0.5f, 4.0f};
+    for (bool wrong : {false, true}) {
+        w17::MisInfo info;
+        info.family = wrong ? "direct_two_lights_cxx17_pdf_swapped" : "direct_two_lights_cxx17";
+        info.description = "a diffuse BSDF and two sphere lights combined by MIS, registered from C++17";
+        std::function<double(const w17::Point&, const w17::Point&)> swapped;
+        if (wrong) swapped = [light](const w17::Point& ref, const w17::Point& wi) { return light.pdf(ref, wi); };
+        w17::add_mis(registry, info, shading_bsdf(), Diffuse17{0.6f, false},
+                     {w17::mis_light(seen_from_origin("sphere_light_cxx17"), light),
+                      w17::mis_light(seen_from_origin("small_sphere_light_cxx17"), second, swapped)});
     }
 }
 
@@ -423,6 +485,7 @@ void warpcheck_register(warpcheck::Registry& registry) {
     register_weighted_grid(registry);
     register_float_samplers(registry);
     register_bsdfs(registry);
+    register_spectral(registry);
     register_lights(registry);
     register_mis(registry);
     // The wrong twins: known flaws, run by name (or with --include-flawed).
@@ -430,6 +493,7 @@ void warpcheck_register(warpcheck::Registry& registry) {
          {"cosine_cxx17_no_inverse_half_pdf", "cosine_cxx17_returned_pdf_wrong", "table_cxx17_no_pdf_wrong",
           "choice_cxx17_pmf_swapped", "choice_cxx17_remap_not_rescaled", "phong_cxx17_wrong[n=20]",
           "unit_float_cxx17_swapped", "one_to_two_cxx17_swapped", "sphere_light_cxx17_double_radiance",
-          "direct_cxx17_area_pdf"})
+          "direct_cxx17_area_pdf", "rgb_cxx17_green_high[theta_o=40,hero=0]",
+          "direct_two_lights_cxx17_pdf_swapped"})
         w17::mark_known_flaw(registry, twin, "", "a wrong twin: run_example.sh checks that it fails");
 }

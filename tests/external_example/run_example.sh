@@ -121,6 +121,13 @@ expect_fail "diffuse_cxx17_weight_no_cos[theta_o=70]" bsdf_weight
 expect_fail "noisy_diffuse_cxx17_biased[theta_o=30]" bsdf_expectation
 expect_fail sphere_light_cxx17_double_radiance light_radiance "differs from L(ref, wi)"
 expect_row pass mis_estimator direct_cxx17
+# A spectral BSDF from C++17 (add_spectral_bsdf_grid), each hero channel; two lights in one MIS sum.
+for hero in 0 1 2; do
+  for check in bsdf_chi2 bsdf_weight bsdf_spectral; do expect_row pass "$check" "rgb_cxx17[theta_o=40,hero=$hero]"; done
+done
+for check in sample_pdf mis_estimator; do expect_row pass "$check" direct_two_lights_cxx17; done
+expect_fail "rgb_cxx17_green_high[theta_o=40,hero=0]" bsdf_spectral "in channel 1"
+expect_fail direct_two_lights_cxx17_pdf_swapped mis_weights "small_sphere_light_cxx17: pdf 0, in the MIS sum"
 # Parameters at their extremes, from C++17 (w17::add_bsdf_grid with ranges):
 # the correct family comes out clean; the planted NaN is found and shrunk to R = 0.
 "$program" --fuzz --filter diffuse_grid_cxx17 | tee "$work/fuzz.txt"

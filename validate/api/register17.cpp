@@ -4,7 +4,9 @@
 // made by make_warp_case takes (the same signature, validation and sweeps).
 #include "validate/api/register17.h"
 
+#include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "validate/api/bsdf_case.h"
 #include "validate/api/case_grid.h"
@@ -24,6 +26,9 @@ chi2::Domain to_domain(const Domain& d) {
         case Domain::Kind::Box: return chi2::Domain::box(d.a, d.b, d.c, d.d);
         case Domain::Kind::UnitDisk: return chi2::Domain::unit_disk();
         case Domain::Kind::SphericalCap: return chi2::Domain::spherical_cap(d.c);
+        case Domain::Kind::Triangle:
+            return chi2::Domain::triangle({d.vertices[0], d.vertices[1]}, {d.vertices[2], d.vertices[3]},
+                                          {d.vertices[4], d.vertices[5]});
     }
     throw std::invalid_argument("register17: unknown domain kind");
 }
@@ -48,6 +53,19 @@ std::vector<Parameter> to_params(const std::vector<std::pair<std::string, double
     return out;
 }
 
+chi2::BinResolution to_resolution(const BinResolution& r) {
+    return {.first = r.first, .second = r.second, .half_line_scale = r.half_line_scale, .line_center = r.line_center};
+}
+
+/// The case description of a BSDF, light or MIS case: its names and cells.
+template <typename Info>
+WarpCaseInfo named(const Info& in, const BinResolution& resolution = {}) {
+    return {.family = in.family,
+            .params = to_params(in.params),
+            .description = in.description,
+            .chi2_resolution = to_resolution(resolution)};
+}
+
 WarpCaseInfo to_info(const CaseInfo& in) {
     WarpCaseInfo info;
     info.family = in.family;
@@ -62,6 +80,7 @@ WarpCaseInfo to_info(const CaseInfo& in) {
                                                                : warpcheck::Inversion::Measure;
     info.support_measure = in.support_measure;
     info.categories = in.categories;
+    info.chi2_resolution = to_resolution(in.chi2_resolution);
     return info;
 }
 
@@ -162,6 +181,51 @@ BsdfClaims to_claims(const BsdfInfo& in) {
 
 Point to_point(Vector3f v) { return {v.x, v.y, v.z}; }
 
+/// A spectral BSDF of erased parts with N channels, as make_spectral_bsdf_case takes it.
+template <std::size_t N>
+struct ErasedSpectralObject {
+    std::shared_ptr<const detail::ErasedSpectralBsdf> parts;
+    BsdfFlags lobes;
+
+    SpectralSample<N> sample(Vector3f wo, float uc, Point2f u, int hero) const {
+        SpectralSample<N> out;
+        const BsdfSample s = parts->sample(to_point(wo), uc, {u.x, u.y}, hero, out.f.data(), out.pdf.data());
+        const ::warpcheck::BsdfSample lobe = to_sample(s);
+        out.wi = lobe.wi;
+        out.flags = lobe.flags;
+        out.eta = s.eta;
+        return out;
+    }
+    std::array<float, N> f(Vector3f wo, Vector3f wi) const {
+        std::array<float, N> out{};
+        parts->f(to_point(wo), to_point(wi), out.data());
+        return out;
+    }
+    std::array<float, N> pdf(Vector3f wo, Vector3f wi) const {
+        std::array<float, N> out{};
+        parts->pdf(to_point(wo), to_point(wi), out.data());
+        return out;
+    }
+    BsdfFlags flags() const { return lobes; }
+};
+
+constexpr std::size_t kMaxChannels = 16;
+
+/// make_spectral_bsdf_case of the erased parts, with their channel count as a
+/// type: N from 1 up to kMaxChannels, tried in turn.
+template <std::size_t N = 1>
+std::unique_ptr<WarpCase> spectral_case(WarpCaseInfo info, const BsdfClaims& claims,
+                                        std::shared_ptr<const detail::ErasedSpectralBsdf> parts, int hero) {
+    if constexpr (N > kMaxChannels) {
+        throw std::invalid_argument("add_spectral_bsdf: " + info.family + " has " + std::to_string(parts->channels) +
+                                    " channels; at most " + std::to_string(kMaxChannels) + " are supported");
+    } else {
+        if (parts->channels != N) return spectral_case<N + 1>(std::move(info), claims, std::move(parts), hero);
+        const BsdfFlags lobes = claims.lobes;
+        return make_spectral_bsdf_case(std::move(info), claims, ErasedSpectralObject<N>{std::move(parts), lobes}, hero);
+    }
+}
+
 }  // namespace
 
 double GridPoint::operator[](const std::string& name) const {
@@ -234,7 +298,7 @@ Point grid_wo(const GridPoint& point) {
 }
 
 void add_erased_bsdf(Registry& registry, const BsdfInfo& info, BsdfSampleFn sample, BsdfEvalFn f, BsdfEvalFn pdf) {
-    WarpCaseInfo converted{.family = info.family, .params = to_params(info.params), .description = info.description};
+    WarpCaseInfo converted = named(info, info.chi2_resolution);
     registry.add_case(make_bsdf_case(
         std::move(converted), to_claims(info),
         bsdf_of([sample = std::move(sample)](Vector3f wo, float uc, Point2f u) {
@@ -259,16 +323,15 @@ struct ErasedLight {
 
 void add_erased_light(Registry& registry, const LightInfo& info, LightSampleFn sample, LightEvalFn pdf,
                       LightEvalFn radiance) {
-    WarpCaseInfo converted{.family = info.family, .params = to_params(info.params), .description = info.description};
+    WarpCaseInfo converted = named(info, info.chi2_resolution);
     const LightClaims claims{.ref = {info.ref[0], info.ref[1], info.ref[2]},
                              .normal = {info.normal[0], info.normal[1], info.normal[2]}};
     registry.add_case(make_light_case(std::move(converted), claims,
                                       ErasedLight{std::move(sample), std::move(pdf), std::move(radiance)}));
 }
 
-void add_erased_mis(Registry& registry, const MisInfo& info, const BsdfInfo& bsdf, const LightInfo& light,
-                    ErasedMis parts) {
-    WarpCaseInfo bsdf_case{.family = bsdf.family, .params = to_params(bsdf.params), .description = bsdf.description};
+void add_erased_mis(Registry& registry, const MisInfo& info, const BsdfInfo& bsdf, ErasedMis parts) {
+    WarpCaseInfo bsdf_case = named(bsdf, bsdf.chi2_resolution);
     auto b = make_bsdf_case(
         std::move(bsdf_case), to_claims(bsdf),
         bsdf_of([sample = parts.bsdf_sample](Vector3f wo, float uc, Point2f u) {
@@ -276,22 +339,33 @@ void add_erased_mis(Registry& registry, const MisInfo& info, const BsdfInfo& bsd
         })
             .with_f([f = parts.bsdf_f](Vector3f wo, Vector3f wi) { return f(to_point(wo), to_point(wi)); })
             .with_pdf([pdf = parts.bsdf_pdf](Vector3f wo, Vector3f wi) { return pdf(to_point(wo), to_point(wi)); }));
-    WarpCaseInfo light_case{.family = light.family, .params = to_params(light.params), .description = light.description};
-    const LightClaims claims{.ref = {light.ref[0], light.ref[1], light.ref[2]},
-                             .normal = {light.normal[0], light.normal[1], light.normal[2]}};
-    auto l = make_light_case(std::move(light_case), claims,
-                             ErasedLight{parts.light_sample, parts.light_pdf, parts.light_radiance});
     MisClaims mis{.heuristic = info.power_heuristic ? MisHeuristic::Power : MisHeuristic::Balance};
     if (parts.bsdf_mis_pdf)
         mis.pdfs.bsdf = [pdf = parts.bsdf_mis_pdf](Vector3f wo, Vector3f wi) {
             return static_cast<float>(pdf(to_point(wo), to_point(wi)));
         };
-    if (parts.light_mis_pdf)
-        mis.pdfs.lights.push_back([pdf = parts.light_mis_pdf](Vector3f ref, Vector3f wi) {
-            return static_cast<float>(pdf(to_point(ref), to_point(wi)));
-        });
-    WarpCaseInfo converted{.family = info.family, .params = to_params(info.params), .description = info.description};
-    registry.add_case(make_mis_case(std::move(converted), std::move(mis), std::move(b), std::move(l)));
+    std::vector<std::unique_ptr<WarpCase>> lights;
+    for (MisLight& light : parts.lights) {
+        WarpCaseInfo light_case = named(light.info, light.info.chi2_resolution);
+        const LightClaims claims{.ref = {light.info.ref[0], light.info.ref[1], light.info.ref[2]},
+                                 .normal = {light.info.normal[0], light.info.normal[1], light.info.normal[2]}};
+        lights.push_back(make_light_case(std::move(light_case), claims,
+                                         ErasedLight{light.sample, light.pdf, light.radiance}));
+        std::function<float(Vector3f, Vector3f)> mis_pdf;  // empty: the light's own pdf
+        if (light.mis_pdf)
+            mis_pdf = [pdf = std::move(light.mis_pdf)](Vector3f ref, Vector3f wi) {
+                return static_cast<float>(pdf(to_point(ref), to_point(wi)));
+            };
+        mis.pdfs.lights.push_back(std::move(mis_pdf));
+    }
+    WarpCaseInfo converted = named(info, info.chi2_resolution);
+    registry.add_case(make_mis_case(std::move(converted), std::move(mis), std::move(b), std::move(lights)));
+}
+
+void add_erased_spectral_bsdf(Registry& registry, const BsdfInfo& info, ErasedSpectralBsdf bsdf, int hero) {
+    WarpCaseInfo converted = named(info, info.chi2_resolution);
+    registry.add_case(spectral_case(std::move(converted), to_claims(info),
+                                    std::make_shared<const ErasedSpectralBsdf>(std::move(bsdf)), hero));
 }
 
 }  // namespace detail

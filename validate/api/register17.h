@@ -71,9 +71,12 @@ struct Domain {
         Box,            ///< [a, b] x [c, d], area
         UnitDisk,       ///< area
         SphericalCap,   ///< directions with z >= c (sphere: c = -1, hemisphere: 0), solid angle
+        Triangle,       ///< the triangle of `vertices`, area
     };
     Kind kind = Kind::Interval;
     double a = 0.0, b = 1.0, c = 0.0, d = 1.0;
+    /// Triangle: its vertices (x0, y0, x1, y1, x2, y2).
+    std::array<double, 6> vertices{};
 
     static Domain interval(double lo, double hi) { return {Kind::Interval, lo, hi, 0.0, 0.0}; }
     static Domain half_line(double lo) { return {Kind::HalfLine, lo, 0.0, 0.0, 0.0}; }
@@ -85,6 +88,22 @@ struct Domain {
     static Domain spherical_cap(double z_min) { return {Kind::SphericalCap, 0.0, 0.0, z_min, 0.0}; }
     static Domain sphere() { return spherical_cap(-1.0); }
     static Domain hemisphere() { return spherical_cap(0.0); }
+    /// The triangle with vertices p, q, r (e.g. a light's triangle or half of a quad).
+    static Domain triangle(const std::array<double, 2>& p, const std::array<double, 2>& q,
+                           const std::array<double, 2>& r) {
+        Domain t{Kind::Triangle, 0.0, 0.0, 0.0, 0.0};
+        t.vertices = {p[0], p[1], q[0], q[1], r[0], r[1]};
+        return t;
+    }
+};
+
+/// How many cells the chi-square checks use (WarpCaseInfo::chi2_resolution,
+/// chi2::BinResolution, says what each field means); zeros take the defaults.
+struct BinResolution {
+    int first = 0;
+    int second = 0;
+    double half_line_scale = 0.0;
+    double line_center = 0.0;
 };
 
 /// A monotone 1D view of the warp for the tabulated check (validate/api/warp_case.h,
@@ -116,6 +135,7 @@ struct CaseInfo {
     Inversion inversion = Inversion::Measure;
     double support_measure = 0.0;  ///< where the density is positive, if less than the domain
     std::size_t categories = 0;    ///< discrete cases: how many indices sample chooses among
+    BinResolution chi2_resolution{};  ///< the chi-square checks' cells (zeros: the defaults)
 };
 
 /// What a float sampler claims about its order (external.h, Monotone).
@@ -184,6 +204,21 @@ struct BsdfInfo {
     float eta = 1.0f;            ///< index below the surface over above
     bool phase_function = false; ///< wi on the whole sphere, weight p / pdf (no cosine)
     bool stochastic = false;     ///< f an estimate, the sample's pdf proportional, pdf() for MIS (a layered BSDF)
+    BinResolution chi2_resolution{};  ///< bsdf_chi2's cells (zeros: the defaults)
+};
+
+/// A spectral BSDF's sample with N channels (SpectralSample of sampling/bsdf.h):
+/// RGB, or N wavelengths of which the hero drew wi. f and pdf per channel (a
+/// secondary wavelength the sample terminates, as a dispersive refraction
+/// does: pdf 0 in that channel), the lobe as BsdfSample's, and the hero's eta.
+template <std::size_t N>
+struct SpectralBsdfSample {
+    Point wi{};
+    std::array<float, N> f{};
+    std::array<float, N> pdf{};
+    bool transmission = false;
+    bool delta = false;
+    float eta = 1.0f;
 };
 
 /// A light's sample seen from a reference point, as a renderer returns it
@@ -206,6 +241,7 @@ struct LightInfo {
     std::string description;
     Point ref{};
     Point normal{};
+    BinResolution chi2_resolution{};  ///< the chi-square check's cells (zeros: the defaults)
 };
 
 /// An MIS case (MisCase in validate/api/light_case.h): its name, and the
@@ -215,6 +251,17 @@ struct MisInfo {
     std::vector<std::pair<std::string, double>> params;
     std::string description;
     bool power_heuristic = true;
+    BinResolution chi2_resolution{};  ///< the chi-square check's cells (zeros: the defaults)
+};
+
+/// One light of an MIS case of several lights (add_mis with a vector): made
+/// by mis_light from a light object as add_light takes it, seen from
+/// info.ref, with the pdf the MIS sum evaluates at the other strategies'
+/// samples where it is not the light's own (empty: the same).
+struct MisLight {
+    LightInfo info;
+    std::function<LightSample(const Point& ref, const Point2& u)> sample;
+    std::function<double(const Point& ref, const Point& wi)> pdf, radiance, mis_pdf;
 };
 
 namespace detail {
@@ -275,15 +322,24 @@ using LightEvalFn = std::function<double(const Point& ref, const Point& wi)>;
 void add_erased_light(Registry& registry, const LightInfo& info, LightSampleFn sample, LightEvalFn pdf,
                       LightEvalFn radiance);
 
-/// A BSDF's and a light's parts, and the pdfs the MIS sum evaluates (empty: their own).
+/// A BSDF's parts and its lights, and the pdfs the MIS sum evaluates (empty: their own).
 struct ErasedMis {
     BsdfSampleFn bsdf_sample;
     BsdfEvalFn bsdf_f, bsdf_pdf, bsdf_mis_pdf;
-    LightSampleFn light_sample;
-    LightEvalFn light_pdf, light_radiance, light_mis_pdf;
+    std::vector<MisLight> lights;
 };
-void add_erased_mis(Registry& registry, const MisInfo& info, const BsdfInfo& bsdf, const LightInfo& light,
-                    ErasedMis parts);
+void add_erased_mis(Registry& registry, const MisInfo& info, const BsdfInfo& bsdf, ErasedMis parts);
+
+/// A spectral BSDF's parts over plain arrays of `channels` floats: sample
+/// returns wi, the lobe and eta (its f and pdf unused) and writes every
+/// channel's f and pdf; f and pdf write every channel's value at (wo, wi).
+struct ErasedSpectralBsdf {
+    std::size_t channels = 0;
+    std::function<BsdfSample(const Point& wo, float uc, const Point2& u, int hero, float* f, float* pdf)> sample;
+    std::function<void(const Point& wo, const Point& wi, float* out)> f, pdf;
+};
+/// Registers the case of one hero channel (validate/api/register17.cpp); at most 16 channels.
+void add_erased_spectral_bsdf(Registry& registry, const BsdfInfo& info, ErasedSpectralBsdf bsdf, int hero);
 
 /// What sample returns, when it is a point or an index: itself, and nothing with it.
 template <typename T, Returns R>
@@ -445,6 +501,48 @@ template <typename B, typename = void>
 struct HasF : std::false_type {};
 template <typename B>
 struct HasF<B, std::void_t<decltype(&B::f)>> : std::true_type {};
+template <typename B, typename = void>
+struct HasEtaOf : std::false_type {};
+template <typename B>
+struct HasEtaOf<B, std::void_t<decltype(std::declval<const B&>().eta(0))>> : std::true_type {};
+
+/// A BSDF object's sample, with or without the lobe's uc.
+template <typename B>
+BsdfSampleFn erase_bsdf_sample(std::shared_ptr<const B> b) {
+    return [b](const Point& wo, float uc, const Point2& u) {
+        if constexpr (SamplesWithUc<B>::value) {
+            return BsdfSample(b->sample(wo, uc, u));
+        } else {
+            (void)uc;
+            return BsdfSample(b->sample(wo, u));
+        }
+    };
+}
+
+/// The number of channels of a spectral BSDF object: the size of the array its f returns.
+template <typename B>
+constexpr std::size_t channels_of() {
+    using Values = std::decay_t<decltype(std::declval<const B&>().f(std::declval<const Point&>(),
+                                                                      std::declval<const Point&>()))>;
+    return std::tuple_size<Values>::value;
+}
+
+/// add_bsdf_grid's loop: `add` registers one point's case (its info, the point).
+template <typename Add>
+void add_grid_of_bsdfs(Registry& registry, const BsdfInfo& base, const std::vector<GridAxis>& axes, Add add) {
+    const auto add_point = [base, add](Registry& r, const std::vector<std::pair<std::string, double>>& point) {
+        BsdfInfo info = base;
+        info.params.insert(info.params.end(), point.begin(), point.end());
+        const GridPoint p(point);
+        info.wo = grid_wo(p);
+        add(r, info, p);
+    };
+    CaseInfo names;
+    names.family = base.family;
+    names.params = base.params;
+    for (const GridPoint& point : grid_points(names, axes)) add_point(registry, point.params());
+    add_family(registry, base.family, base.params, base.description, axes, add_point);
+}
 
 }  // namespace detail
 
@@ -520,14 +618,7 @@ void add_case_grid(Registry& registry, const CaseInfo& base, const std::vector<G
 template <typename B>
 void add_bsdf(Registry& registry, const BsdfInfo& info, B bsdf) {
     const auto b = std::make_shared<const B>(std::move(bsdf));
-    detail::BsdfSampleFn sample = [b](const Point& wo, float uc, const Point2& u) {
-        if constexpr (detail::SamplesWithUc<B>::value) {
-            return BsdfSample(b->sample(wo, uc, u));
-        } else {
-            (void)uc;
-            return BsdfSample(b->sample(wo, u));
-        }
-    };
+    detail::BsdfSampleFn sample = detail::erase_bsdf_sample(b);
     detail::BsdfEvalFn f = [b](const Point& wo, const Point& wi) {
         if constexpr (detail::HasF<B>::value) return static_cast<double>(b->f(wo, wi));
         else return static_cast<double>(b->p(wo, wi));
@@ -544,18 +635,62 @@ void add_bsdf(Registry& registry, const BsdfInfo& info, B bsdf) {
 template <typename Maker>
 void add_bsdf_grid(Registry& registry, const BsdfInfo& base, const std::vector<GridAxis>& axes, Maker make) {
     const auto shared = std::make_shared<Maker>(std::move(make));
-    const auto add_point = [base, shared](Registry& r, const std::vector<std::pair<std::string, double>>& point) {
-        BsdfInfo info = base;
-        info.params.insert(info.params.end(), point.begin(), point.end());
-        const GridPoint p(point);
-        info.wo = detail::grid_wo(p);
+    detail::add_grid_of_bsdfs(registry, base, axes, [shared](Registry& r, const BsdfInfo& info, const GridPoint& p) {
         add_bsdf(r, info, (*shared)(p));
+    });
+}
+
+/// Adds the case of one channel of a spectral BSDF (make_spectral_bsdf_case
+/// of validate/api/bsdf_case.h): `hero` in [0, N) is the channel it samples
+/// with (name it: add hero to info.params, or use add_spectral_bsdf_grid).
+/// The object has const members sample(const Point& wo, float uc, const
+/// Point2& u, int hero) -> SpectralBsdfSample<N>, f(wo, wi) and pdf(wo, wi)
+/// -> std::array<float, N> (every channel's, N <= 16), and where it
+/// transmits with an index per channel, eta(int channel) (info.eta then
+/// takes the hero's). Every BSDF check runs on the hero channel, and
+/// bsdf_spectral holds the other channels' values at its samples to f() and
+/// pdf(). A hero outside [0, N) is a std::invalid_argument.
+template <typename B>
+void add_spectral_bsdf(Registry& registry, BsdfInfo info, B bsdf, int hero) {
+    constexpr std::size_t kN = detail::channels_of<B>();
+    static_assert(kN >= 1 && kN <= 16, "add_spectral_bsdf: f must return std::array<float, N> with 1 <= N <= 16");
+    if constexpr (detail::HasEtaOf<B>::value) {
+        if (hero >= 0 && hero < static_cast<int>(kN)) info.eta = static_cast<float>(bsdf.eta(hero));
+    }
+    const auto b = std::make_shared<const B>(std::move(bsdf));
+    detail::ErasedSpectralBsdf e;
+    e.channels = kN;
+    e.sample = [b](const Point& wo, float uc, const Point2& u, int h, float* f, float* pdf) {
+        const SpectralBsdfSample<kN> s = b->sample(wo, uc, u, h);
+        for (std::size_t c = 0; c < kN; ++c) f[c] = s.f[c], pdf[c] = s.pdf[c];
+        BsdfSample out;
+        out.wi = s.wi;
+        out.transmission = s.transmission;
+        out.delta = s.delta;
+        out.eta = s.eta;
+        return out;
     };
-    CaseInfo names;
-    names.family = base.family;
-    names.params = base.params;
-    for (const GridPoint& point : detail::grid_points(names, axes)) add_point(registry, point.params());
-    detail::add_family(registry, base.family, base.params, base.description, axes, add_point);
+    e.f = [b](const Point& wo, const Point& wi, float* out) {
+        const std::array<float, kN> v = b->f(wo, wi);
+        for (std::size_t c = 0; c < kN; ++c) out[c] = v[c];
+    };
+    e.pdf = [b](const Point& wo, const Point& wi, float* out) {
+        const std::array<float, kN> v = b->pdf(wo, wi);
+        for (std::size_t c = 0; c < kN; ++c) out[c] = v[c];
+    };
+    detail::add_erased_spectral_bsdf(registry, info, std::move(e), hero);
+}
+
+/// add_spectral_bsdf for every point of the product of the axes, as
+/// add_bsdf_grid: one axis must be "hero" (the channel each case samples
+/// with: its values 0 .. N - 1, or the ones to check), make(point) returns
+/// the spectral BSDF object.
+template <typename Maker>
+void add_spectral_bsdf_grid(Registry& registry, const BsdfInfo& base, const std::vector<GridAxis>& axes, Maker make) {
+    const auto shared = std::make_shared<Maker>(std::move(make));
+    detail::add_grid_of_bsdfs(registry, base, axes, [shared](Registry& r, const BsdfInfo& info, const GridPoint& p) {
+        add_spectral_bsdf(r, info, (*shared)(p), static_cast<int>(p["hero"]));
+    });
 }
 
 /// Adds a light case (validate/api/light_case.h) that the warp checks (chi2,
@@ -574,6 +709,39 @@ void add_light(Registry& registry, const LightInfo& info, Lt light) {
     detail::add_erased_light(registry, info, std::move(sample), std::move(pdf), std::move(radiance));
 }
 
+/// One light of an MIS case (MisLight), from a light object as add_light
+/// takes it, seen from info.ref.
+template <typename Lt>
+MisLight mis_light(const LightInfo& info, Lt light,
+                   std::function<double(const Point& ref, const Point& wi)> mis_pdf = nullptr) {
+    const auto l = std::make_shared<const Lt>(std::move(light));
+    MisLight m;
+    m.info = info;
+    m.sample = [l](const Point& ref, const Point2& u) { return LightSample(l->sample(ref, u)); };
+    m.pdf = [l](const Point& ref, const Point& wi) { return static_cast<double>(l->pdf(ref, wi)); };
+    m.radiance = [l](const Point& ref, const Point& wi) { return static_cast<double>(l->L(ref, wi)); };
+    m.mis_pdf = std::move(mis_pdf);
+    return m;
+}
+
+/// Adds an MIS case of a BSDF (as add_bsdf takes it, seen from bsdf_info.wo)
+/// and one or more lights (mis_light), all seen from one shading point (the
+/// lights' info.ref the same, normal (0, 0, 1), the BSDF's): strategy 0 the
+/// BSDF, 1.. the lights in order (make_mis_case of validate/api/light_case.h).
+/// bsdf_mis_pdf as below.
+template <typename B>
+void add_mis(Registry& registry, const MisInfo& info, const BsdfInfo& bsdf_info, B bsdf, std::vector<MisLight> lights,
+             std::function<double(const Point& wo, const Point& wi)> bsdf_mis_pdf = nullptr) {
+    const auto b = std::make_shared<const B>(std::move(bsdf));
+    detail::ErasedMis parts;
+    parts.bsdf_sample = detail::erase_bsdf_sample(b);
+    parts.bsdf_f = [b](const Point& wo, const Point& wi) { return static_cast<double>(b->f(wo, wi)); };
+    parts.bsdf_pdf = [b](const Point& wo, const Point& wi) { return static_cast<double>(b->pdf(wo, wi)); };
+    parts.bsdf_mis_pdf = std::move(bsdf_mis_pdf);
+    parts.lights = std::move(lights);
+    detail::add_erased_mis(registry, info, bsdf_info, std::move(parts));
+}
+
 /// Adds an MIS case of a BSDF (as add_bsdf takes it, seen from bsdf_info.wo)
 /// and a light (as add_light takes it, seen from light_info.ref with the
 /// normal (0, 0, 1), the BSDF's): the MIS checks (mis_weights, mis_estimator)
@@ -585,25 +753,8 @@ template <typename B, typename Lt>
 void add_mis(Registry& registry, const MisInfo& info, const BsdfInfo& bsdf_info, B bsdf, const LightInfo& light_info,
              Lt light, std::function<double(const Point& ref, const Point& wi)> light_mis_pdf = nullptr,
              std::function<double(const Point& wo, const Point& wi)> bsdf_mis_pdf = nullptr) {
-    const auto b = std::make_shared<const B>(std::move(bsdf));
-    const auto l = std::make_shared<const Lt>(std::move(light));
-    detail::ErasedMis parts;
-    parts.bsdf_sample = [b](const Point& wo, float uc, const Point2& u) {
-        if constexpr (detail::SamplesWithUc<B>::value) {
-            return BsdfSample(b->sample(wo, uc, u));
-        } else {
-            (void)uc;
-            return BsdfSample(b->sample(wo, u));
-        }
-    };
-    parts.bsdf_f = [b](const Point& wo, const Point& wi) { return static_cast<double>(b->f(wo, wi)); };
-    parts.bsdf_pdf = [b](const Point& wo, const Point& wi) { return static_cast<double>(b->pdf(wo, wi)); };
-    parts.bsdf_mis_pdf = std::move(bsdf_mis_pdf);
-    parts.light_sample = [l](const Point& ref, const Point2& u) { return LightSample(l->sample(ref, u)); };
-    parts.light_pdf = [l](const Point& ref, const Point& wi) { return static_cast<double>(l->pdf(ref, wi)); };
-    parts.light_radiance = [l](const Point& ref, const Point& wi) { return static_cast<double>(l->L(ref, wi)); };
-    parts.light_mis_pdf = std::move(light_mis_pdf);
-    detail::add_erased_mis(registry, info, bsdf_info, light_info, std::move(parts));
+    add_mis(registry, info, bsdf_info, std::move(bsdf), {mis_light(light_info, std::move(light), std::move(light_mis_pdf))},
+            std::move(bsdf_mis_pdf));
 }
 
 /// The outgoing direction at theta degrees from the normal and azimuth phi degrees.
