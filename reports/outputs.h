@@ -17,7 +17,7 @@ struct ReportError : std::runtime_error {
 
 /// Self-contained HTML (inline SVG plots, no external resources).
 void write_html_report(const RunResult& run, const std::string& path);
-/// JSON in the documented schema (see reports/README or the schema file), with a version field.
+/// JSON in the documented schema (see reports/README.md or the schema file), with a version field.
 void write_json_report(const RunResult& run, const std::string& path);
 /// JUnit XML: one testcase per (case, check) row.
 void write_junit_report(const RunResult& run, const std::string& path);

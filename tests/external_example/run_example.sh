@@ -19,7 +19,7 @@ installed=$(find "$work/prefix/include/warpcheck" -name '*.h' | wc -l)
 [ "$installed" -le 30 ] || { echo "$installed installed headers, more than 30"; exit 1; }
 for private in validate/cli/cli.h validate/run/worker_supervisor.h validate/run/runner.h validate/run/job.h \
   validate/run/thread_pool.h validate/checks/checks.h validate/checks/check.h validate/gtest/job_tests.h \
-  reports/json_report.h reports/result.h; do
+  reports/render.h reports/result.h; do
   [ ! -e "$work/prefix/include/warpcheck/$private" ] || { echo "private header $private installed"; exit 1; }
 done
 echo "$installed installed headers"

@@ -1,6 +1,6 @@
 // hard_warps_fpr: the false-failure rate of the catalogue of correct-but-hard
 // warps over seeds, with its exact (Clopper-Pearson) 95% interval, measured
-// as warpcheck_fpr measures the built-in warps (validate/fpr.h). The wrong
+// as warpcheck_fpr measures the built-in warps (validate/trust/fpr.h). The wrong
 // twins (known flaws) are left out.
 //     hard_warps_fpr --runs 20 --first-seed 1 --alpha 0.01
 #include <validate/api/external.h>

@@ -3,7 +3,7 @@
 // Its parts are pbrt-v4's (sampling/bsdf.h): sample(wo, uc, u) -> BsdfSample
 // (wi, f, pdf, flags, eta), f(wo, wi) and pdf(wo, wi); a phase function's are
 // sample(wo, u), p(wo, wi) and pdf(wo, wi). Each is a claim that a BSDF check
-// tests (validate/bsdf/bsdf_checks.h); only those checks take BSDF cases.
+// tests (validate/checks/bsdf/bsdf_checks.h); only those checks take BSDF cases.
 //
 // The domain is the whole sphere of wi, reflection and transmission together,
 // whatever the lobes; the input is (uc, u.x, u.y) in [0,1)^3 (InputKind::Uniform3D,

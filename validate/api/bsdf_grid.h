@@ -1,5 +1,5 @@
 // BSDFs over a grid of outgoing directions (and parameters): wo from a grid
-// point's theta_o and phi_o axes, in degrees (validate/case_grid.h makes the
+// point's theta_o and phi_o axes, in degrees (validate/api/case_grid.h makes the
 // grid: stable names such as rough_conductor[alpha=0.3,theta_o=60]).
 #pragma once
 

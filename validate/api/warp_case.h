@@ -42,7 +42,7 @@ enum class InputKind {
     Uniform2D,  ///< a point of [0,1)^2
     Bits32,     ///< 32 raw random bits
     Bits64,     ///< 64 raw random bits
-    /// A point of [0,1)^3: a BSDF's (uc, u) (validate/bsdf/bsdf_case.h), uc in u[0].
+    /// A point of [0,1)^3: a BSDF's (uc, u) (validate/api/bsdf_case.h), uc in u[0].
     Uniform3D,
 };
 
@@ -70,7 +70,7 @@ enum class SampleReturns {
     Index,              ///< an integer: a discrete choice among WarpCaseInfo::categories
     IndexAndRemappedU,  ///< DiscreteSample: the index and the input remapped to [0,1) for reuse
     /// A BSDF's or phase function's sample (wi, f, pdf, flags, eta): a BsdfCase
-    /// (validate/bsdf/bsdf_case.h), which only the BSDF checks take.
+    /// (validate/api/bsdf_case.h), which only the BSDF checks take.
     Bsdf,
 };
 

@@ -188,7 +188,7 @@ public:
     /// that a shard of the run, or one job of it, is judged at the level of
     /// the whole run (a job that errors, or finds nothing to test, still counts).
     virtual bool statistical() const { return false; }
-    /// Whether the check is about BSDFs and phase functions (validate/bsdf/):
+    /// Whether the check is about BSDFs and phase functions (validate/checks/bsdf/):
     /// the runner gives BSDF cases only to such checks, and every other case
     /// only to the others.
     virtual bool about_bsdfs() const { return false; }

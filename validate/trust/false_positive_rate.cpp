@@ -1,5 +1,5 @@
 // warpcheck_fpr: measures how often the default suite fails on the built-in
-// warps (validate/fpr.h says how, and how a program measures its own warps).
+// warps (validate/trust/fpr.h says how, and how a program measures its own warps).
 #include "validate/trust/fpr.h"
 
 int main(int argc, char** argv) {

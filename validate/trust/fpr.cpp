@@ -1,4 +1,4 @@
-// warpcheck_fpr's body (validate/fpr.h): measures how often the default suite
+// warpcheck_fpr's body (validate/trust/fpr.h): measures how often the default suite
 // fails on correct warps, for the built-in warps (warpcheck_fpr) or a
 // program's own (e.g. tests/hard/hard_warps_fpr).
 //

@@ -16,7 +16,7 @@
 #include <variant>
 #include <vector>
 
-#include "validate/api/case_kind.h"
+#include "validate/run/case_kind.h"
 #include "validate/api/register17.h"
 #include "validate/api/registry.h"
 

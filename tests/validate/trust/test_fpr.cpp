@@ -1,4 +1,4 @@
-// validate/fpr.h: the false-positive-rate tool over a program's own cases.
+// validate/trust/fpr.h: the false-positive-rate tool over a program's own cases.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The checks of BSDF and phase-function cases (validate/bsdf/bsdf_case.h).
+// The checks of BSDF and phase-function cases (validate/api/bsdf_case.h).
 // register_builtin_checks adds them; each takes BSDF cases only.
 #pragma once
 
