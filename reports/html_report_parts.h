@@ -1,8 +1,7 @@
 // The parts of the HTML report (reports/html_report.cpp), each in its own file:
 //  - html_report_assets.cpp: the style sheet and the script;
-//  - html_report_judged.cpp: what each check judges, read from its figures:
-//    the quantities against their limits, the legend of each check's p-value,
-//    and the limits and points the report draws into a check's plots;
+//  - html_report_judged.cpp: the legend of each check's p-value, a row's
+//    closeness to its limit, an unbinned row's judged tests;
 //  - html_report_row.cpp: the order of the rows (failures, then the weakest)
 //    and the details of one row.
 // Internal to reports/: nothing here is installed as an interface.
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "reports/result.h"
+#include "reports/result_tables.h"
 #include "reports/svg_plot.h"
 
 namespace warpcheck::html {
@@ -23,20 +23,6 @@ namespace warpcheck::html {
 /// The page's style sheet and its script (search, filters, unpacking).
 std::string_view style_sheet();
 std::string_view script();
-
-/// One quantity a check judged, against its limit: a line of a row's
-/// "Judged" table. NaN is never within its limit.
-struct JudgedLine {
-    std::string quantity;  ///< e.g. "Pearson X² = 968.6 on 1023 dof: p-value"
-    std::string value;     ///< e.g. "0.887"
-    std::string limit;     ///< e.g. "≥ 5.83e-05 (0.8 × level)"; "counted" for a figure that is reported only
-    enum class State { Within, Beyond, Reported } state = State::Within;
-};
-
-/// What `r` was judged on, from its p-value, level and figures: the check's
-/// own rules where this file knows the check, then every `*_over_tolerance`
-/// figure and every figure `X` with an `X_tolerance` (as the terminal's margin).
-std::vector<JudgedLine> judged_lines(const CheckResult& r);
 
 /// How a check's verdict is formed: what it judges, and what its p-value is
 /// and is compared with (empty for a check without a p-value). Empty `judged`
@@ -48,8 +34,8 @@ struct CheckLegend {
 CheckLegend check_legend(std::string_view check);
 
 /// The share of a chi-square check's level that its largest cell residual
-/// gets (chi2/local_residual.h, kLocalLevelShare); Pearson's statistic has the
-/// rest. The report uses it only where a row's p-value agrees with it.
+/// gets (chi2/local_residual.h, kLocalLevelShare), for the cell level the
+/// residual heatmap marks.
 inline constexpr double kChi2LocalShare = 0.2;
 
 /// The cell a chi-square row's evidence rings as its largest residual, and
@@ -63,11 +49,6 @@ struct RingedCell {
     double residual = 0.0;
 };
 std::optional<RingedCell> ringed_cell(const CheckResult& r);
-
-/// The judged test of each marginal of an unbinned row, from the check's table
-/// of tests (columns "marginal", "test", "judged"): (marginal label, short
-/// test name: "ad", "kuiper", "ks").
-std::vector<std::pair<std::string, std::string>> judged_unbinned_tests(const CheckResult& r);
 
 /// What the report draws into plot `index` of `r`: the limit its judged
 /// quantity is compared with, the points that failed or decide the statistic.

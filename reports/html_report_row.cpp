@@ -82,13 +82,14 @@ void append_facts(std::string& html, const CheckResult& r) {
 }
 
 void append_judged(std::string& html, const CheckResult& r) {
-    const std::vector<JudgedLine> lines = judged_lines(r);
+    const std::vector<JudgedQuantity>& lines = r.judged;  // the check's own judgement
     if (lines.empty()) return;
     html += "<h4>Judged</h4><table class=\"judged\"><thead><tr><th>quantity</th><th>value</th><th>limit</th><th></th></tr>"
             "</thead><tbody>";
-    for (const JudgedLine& l : lines) {
-        const char* cls = l.state == JudgedLine::State::Beyond ? " class=\"beyond\"" : l.state == JudgedLine::State::Reported ? " class=\"reported\"" : "";
-        const char* mark = l.state == JudgedLine::State::Beyond ? "\u2717" : l.state == JudgedLine::State::Within ? "\u2713" : "";
+    using State = JudgedQuantity::State;
+    for (const JudgedQuantity& l : lines) {
+        const char* cls = l.state == State::Beyond ? " class=\"beyond\"" : l.state == State::Reported ? " class=\"reported\"" : "";
+        const char* mark = l.state == State::Beyond ? "\u2717" : l.state == State::Within ? "\u2713" : "";
         html += fmt::format("<tr{}><td>{}</td><td class=\"val\">{}</td><td>{}</td><td>{}</td></tr>", cls, escaped(l.quantity),
                             escaped(l.value), escaped(l.limit), mark);
     }

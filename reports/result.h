@@ -242,6 +242,36 @@ void fields(V& v, T& p) {
     v.entry(p.phase, p.seconds);
 }
 
+/// One quantity a check judged, against its limit: a line of a row's
+/// "Judged" table in the reports, written by the check's own rules
+/// (validate/checks/judged.h) once the run's level is settled. NaN is never
+/// within its limit.
+struct JudgedQuantity {
+    std::string quantity;  ///< e.g. "Pearson X² = 968.6 on 1023 dof: p-value"
+    std::string value;     ///< e.g. "0.887"
+    std::string limit;     ///< e.g. "≥ 5.83e-05 (0.8 × level)"; "counted" for a figure that is reported only
+    enum class State {
+        Within,    ///< within its limit
+        Beyond,    ///< beyond it: the row fails
+        Reported,  ///< reported beside the verdict, not judged
+    };
+    State state = State::Within;
+};
+
+template <>
+struct EnumNames<JudgedQuantity::State> {
+    static constexpr std::string_view noun = "judged state";
+    static constexpr std::array<std::string_view, 3> names{"within", "beyond", "reported"};
+};
+
+template <class V, Model<JudgedQuantity> T>
+void fields(V& v, T& j) {
+    v("quantity", j.quantity);
+    v("value", j.value);
+    v("limit", j.limit);
+    v("state", j.state);
+}
+
 /// The outcome of one check on one warp case: one row of the pass/fail table.
 struct CheckResult {
     std::string case_name;   ///< e.g. "uniform_cone[cos_theta_max=0.3]"
@@ -263,6 +293,9 @@ struct CheckResult {
     /// multiple-test-corrected level (a NaN p-value fails).
     std::optional<double> p_value;
     std::optional<double> level;  ///< the per-test significance level applied, once known
+    /// What the verdict was formed from: each judged quantity against its
+    /// limit, by the check's rules (JudgedQuantity). Empty on errors and n/a rows.
+    std::vector<JudgedQuantity> judged{};
 
     std::vector<Plot> plots;
     std::vector<Table> tables;
@@ -299,6 +332,7 @@ void fields(V& v, T& r) {
     v("weak", r.weak);
     v("p_value", r.p_value);
     v("level", r.level);
+    v("judged", r.judged);
     v.named_numbers("figures", r.figures);
     v("samples", r.samples);
     v("seconds", r.seconds);

@@ -6,7 +6,9 @@
 #  (b) every wrong twin: each check its mark names ("wrong twin, caught by
 #      CHECK[,CHECK]: ..." in `hard_warps --list`) is a FAIL row (an ERROR
 #      does not count: it says the check could not run); "every check": every
-#      row that is not n/a is a FAIL.
+#      row that is not n/a is a FAIL;
+#  (c) every row's verdict agrees with the lines its check judged
+#      (tests/judged/judged_property.py).
 # The first seed runs every check; later seeds leave out the exhaustive sweep,
 # which does not depend on the seed. Prints each violation with the row's
 # message and its rerun command, then a summary; exits 1 if there was any.
@@ -95,6 +97,9 @@ for seed in "${seeds[@]}"; do
   grep -E '^[0-9]+ checks: ' "$table"
   check_correct_rows "$table"
   check_twin_rows "$table"
+  # (c) every row's verdict is what its check's judged lines say (tests/judged/).
+  python3 "$(dirname "$0")/../judged/judged_property.py" "$work/seed$seed.json" ||
+    violation "seed $seed: rows whose verdict disagrees with their judged lines (above)"
 done
 
 twins=$(wc -l < "$work/twins.tsv")

@@ -148,42 +148,5 @@ TEST(SvgPlot, ErrorBarsAreDrawnWithCapsAndWidenTheAxis) {
     EXPECT_EQ(count_of(render_svg(p), "h6"), 3u);
 }
 
-TEST(JudgedLines, BsdfChi2SplitsItsPValueIntoPearsonTheLargestResidualAndTheLandingShare) {
-    CheckResult r;
-    r.check_name = "bsdf_chi2";
-    r.verdict = Verdict::Pass;
-    r.level = 1e-4;
-    r.p_value = std::min({1.0, 0.5 / 0.7, 0.3 / 0.2, 0.01 / 0.1});
-    r.figures = {{"statistic", 1000}, {"dof", 1023}, {"pearson_p_value", 0.5}, {"local_p_value", 0.3},
-                 {"local_max_residual", 3.1}, {"landing_p_value", 0.01}, {"continuous_samples", 917000},
-                 {"samples", 1000000}, {"delta_samples", 0}, {"pdf_integral", 0.917}, {"integral_tolerance", 1e-6},
-                 {"delta_claimed", 0}};
-    const auto lines = html::judged_lines(r);
-    ASSERT_GE(lines.size(), 5u);
-    EXPECT_EQ(lines[0].limit, "\u2265 7.00e-05 (0.7 \u00d7 level)");
-    EXPECT_THAT(lines[2].quantity, HasSubstr("share of draws that landed (917\u202f000 of 1\u202f000\u202f000)"));
-    EXPECT_EQ(lines[2].limit, "\u2265 1.00e-05 (0.1 \u00d7 level)");
-    EXPECT_EQ(lines[3].quantity, "p-value: min(Pearson / 0.7, residual / 0.2, landing / 0.1), at most 1");
-    EXPECT_EQ(lines[4].quantity, "pdf(wo, .) integrated over the sphere");
-    EXPECT_EQ(lines[4].state, html::JudgedLine::State::Within);
-    for (Figure& f : r.figures)
-        if (f.name == "pdf_integral") f.value = 1.01;
-    EXPECT_EQ(html::judged_lines(r)[4].state, html::JudgedLine::State::Beyond);
-}
-
-TEST(JudgedLines, BsdfAlbedoHoldsTheEnergyAlbedoToOne) {
-    CheckResult r = sample_bsdf_albedo(0.3, 85, 0.831, 0.8314, 5.2e-4);
-    const auto energy = [&] {
-        for (const auto& l : html::judged_lines(r))
-            if (l.quantity == "energy albedo") return l;
-        return html::JudgedLine{};
-    };
-    EXPECT_EQ(energy().limit, "\u2264 1 + 1e-06");
-    EXPECT_EQ(energy().state, html::JudgedLine::State::Within);
-    for (Figure& f : r.figures)
-        if (f.name == "energy_albedo") f.value = std::nan("");
-    EXPECT_EQ(energy().state, html::JudgedLine::State::Beyond);  // NaN is never within
-}
-
 }  // namespace
 }  // namespace warpcheck

@@ -98,20 +98,6 @@ CheckResult unbinned_row() {
     return r;
 }
 
-std::vector<std::string> quantities(const std::vector<html::JudgedLine>& lines) {
-    std::vector<std::string> out;
-    for (const auto& l : lines) out.push_back(l.quantity);
-    return out;
-}
-
-const html::JudgedLine* line_starting(const std::vector<html::JudgedLine>& lines, std::string_view start) {
-    for (const auto& l : lines)
-        if (l.quantity.starts_with(start)) return &l;
-    return nullptr;
-}
-// A pointer into a temporary vector would dangle (AddressSanitizer caught it).
-const html::JudgedLine* line_starting(std::vector<html::JudgedLine>&& lines, std::string_view start) = delete;
-
 // ---- order ------------------------------------------------------------------
 
 RunResult families_run() {
@@ -203,110 +189,21 @@ TEST(HtmlReport, TheSearchReadsTheMessageOfRowsThatAreNotOpen) {
     EXPECT_THAT(html, HasSubstr("data-verdict=\"fail\" aria-pressed=\"false\">failed 1</button>"));
 }
 
-// ---- the Judged table ---------------------------------------------------------
-
-TEST(JudgedLines, Chi2SplitsItsPValueIntoPearsonAndTheLargestResidual) {
-    const auto lines = html::judged_lines(chi2_row(0.887, 0.144));
-    const auto* pearson = line_starting(lines, "Pearson X\u00b2 = 968.6 on 1023 dof");
-    const auto* local = line_starting(lines, "largest cell residual -3.73 (cell 713)");
-    const auto* combined = line_starting(lines, "p-value: min(Pearson / 0.8, residual / 0.2)");
-    ASSERT_TRUE(pearson && local && combined);
-    EXPECT_EQ(pearson->value, "0.887");
-    EXPECT_EQ(pearson->limit, "\u2265 5.82e-05 (0.8 \u00d7 level)");
-    EXPECT_EQ(local->limit, "\u2265 1.46e-05 (0.2 \u00d7 level)");
-    EXPECT_EQ(combined->value, "0.72");
-    EXPECT_EQ(combined->state, html::JudgedLine::State::Within);
-    const auto* integral = line_starting(lines, "integral of the density");
-    ASSERT_TRUE(integral);
-    EXPECT_EQ(integral->limit, "|x \u2212 1| \u2264 9.5e-07");
-}
-
-TEST(JudgedLines, ALargeResidualFailsItsShareWhilePearsonPasses) {
-    const auto lines = html::judged_lines(chi2_row(0.5, 1e-7));
-    EXPECT_EQ(line_starting(lines, "Pearson")->state, html::JudgedLine::State::Within);
-    EXPECT_EQ(line_starting(lines, "largest cell residual")->state, html::JudgedLine::State::Beyond);
-    EXPECT_EQ(line_starting(lines, "p-value: min")->state, html::JudgedLine::State::Beyond);
-}
-
-TEST(JudgedLines, APValueOfAnotherRuleIsShownWholeAndNaNIsNeverWithin) {
-    CheckResult r = chi2_row(0.887, 0.144);
-    r.p_value = 0.3;  // not min(P / 0.8, L / 0.2): this file does not know the rule, so it does not split it
-    const auto other_rule = html::judged_lines(r);
-    EXPECT_EQ(line_starting(other_rule, "Pearson"), nullptr);
-    r.p_value = std::numeric_limits<double>::quiet_NaN();
-    const auto lines = html::judged_lines(r);
-    const auto* combined = line_starting(lines, "p-value");
-    ASSERT_TRUE(combined);
-    EXPECT_EQ(combined->value, "NaN");
-    EXPECT_EQ(combined->state, html::JudgedLine::State::Beyond);
-}
-
-TEST(JudgedLines, UnbinnedJudgesEachMarginalAtItsSidakShareOfTheLevel) {
-    const auto lines = html::judged_lines(unbinned_row());
-    EXPECT_THAT(quantities(lines), ElementsAre("phi: Kuiper V = 0.0012, p-value", "cos theta: Anderson\u2013Darling A\u00b2 = 6.65, p-value",
-                                               "p-value: smallest judged p, \u0160id\u00e1k-corrected over the judged tests"));
-    EXPECT_EQ(lines[0].limit, "\u2265 3.64e-05 (level, \u0160id\u00e1k over 2)");
-    EXPECT_EQ(lines[1].value, "0.01");
-}
-
-TEST(JudgedLines, ToleranceRulesCountsAndExcusesOfARoundTrip) {
-    const auto lines = html::judged_lines(roundtrip_row("a", 2e-5, Verdict::Fail));
-    const auto* error = line_starting(lines, "largest |invert(sample(u)) \u2212 u|");
-    ASSERT_TRUE(error);
-    EXPECT_EQ(error->limit, "\u2264 1e-05");
-    EXPECT_EQ(error->state, html::JudgedLine::State::Beyond);
-    EXPECT_EQ(line_starting(lines, "inputs beyond the tolerance")->state, html::JudgedLine::State::Beyond);
-    const auto* excused = line_starting(lines, "resolution-limited");
-    ASSERT_TRUE(excused);
-    EXPECT_EQ(excused->limit, "counted");
-    EXPECT_EQ(excused->state, html::JudgedLine::State::Reported);
-}
-
-TEST(JudgedLines, ConsistencyBoundsTheZeroPdfsOfFloatRoundingByTheirPoissonBound) {
-    CheckResult r = row("triangle", "consistency", Verdict::Pass);
-    r.figures = {{"zero_pdf", 0}, {"zero_pdf_rounded_random", 12}, {"zero_pdf_rounded_edge_inputs", 3}, {"zero_pdf_rounded_bound", 44}};
-    const auto lines = html::judged_lines(r);
-    const auto* rounded = line_starting(lines, "random samples with pdf 0 beside a positive pdf");
-    ASSERT_TRUE(rounded);
-    EXPECT_EQ(rounded->limit, "\u2264 44");
-    EXPECT_EQ(rounded->state, html::JudgedLine::State::Within);
-    r.figures[1].value = 45;  // one past the bound: the check fails, and so does the line
-    const auto beyond = html::judged_lines(r);
-    EXPECT_EQ(line_starting(beyond, "random samples with pdf 0")->state, html::JudgedLine::State::Beyond);
-    EXPECT_EQ(line_starting(beyond, "edge inputs with pdf 0")->state, html::JudgedLine::State::Reported);
-}
-
-TEST(JudgedLines, BinadeSharesTheLevelOverTheTestsItMade) {
-    CheckResult r = p_row("unit_double", "binade", std::min(1.0, 3 * 1e-5));
-    r.figures = {{"mass_p_value", 0.4}, {"parity_p_value", 0.2}, {"resolution_p_value", 1e-5}};
-    auto lines = html::judged_lines(r);
-    const auto* digits = line_starting(lines, "binary digits");
-    ASSERT_TRUE(digits);
-    EXPECT_EQ(digits->limit, "\u2265 2.43e-05 (level / 3)");
-    EXPECT_EQ(digits->state, html::JudgedLine::State::Beyond);
-    r.figures[2].value = std::numeric_limits<double>::quiet_NaN();  // the digits not tested: two tests share the level
-    r.p_value = 0.4;
-    lines = html::judged_lines(r);
-    EXPECT_EQ(line_starting(lines, "binary digits"), nullptr);
-    EXPECT_EQ(line_starting(lines, "mass per binade")->limit, "\u2265 3.64e-05 (level / 2)");
-}
-
-TEST(JudgedLines, UnknownChecksGetTheGenericToleranceRules) {
-    CheckResult r = row("x", "someday", Verdict::Pass);
-    r.figures = {{"max_x_error_over_tolerance", 1.2}, {"integral", 1.01}, {"integral_tolerance", 0.001}, {"other", 5}};
-    const auto lines = html::judged_lines(r);
-    EXPECT_THAT(quantities(lines), ElementsAre("max_x_error_over_tolerance", "integral"));
-    EXPECT_EQ(lines[0].state, html::JudgedLine::State::Beyond);
-    EXPECT_EQ(lines[1].state, html::JudgedLine::State::Beyond);  // |1.01 - 1| > 0.001
-}
+// ---- the Judged table (the lines are the checks': tests/validate/checks/test_judged.cpp) ----
 
 TEST(HtmlReport, EveryRowHasItsJudgedTableAndTheLegendExplainsEachPValue) {
     RunResult run;
     run.info = sample_info();
-    run.results = {chi2_row(1e-9, 0.5), unbinned_row()};
+    run.results = {chi2_row(1e-9, 0.5), unbinned_row(), roundtrip_row("a", 1e-7)};
+    using State = JudgedQuantity::State;
+    run.results[0].judged = {{"Pearson X\u00b2 = 968.6 on 1023 dof: p-value", "1.00e-09", "\u2265 5.82e-05", State::Beyond},
+                             {"cells pooled", "3", "counted", State::Reported}};
+    run.results[1].judged = {{"p-value", "0.0199", "\u2265 7.28e-05", State::Within}};
     const std::string html = unpacked_html(render_html(run));
+    // A table for each row with lines, drawn as the check wrote them; none for the row without.
     EXPECT_EQ(count_of(html, "<table class=\"judged\">"), 2u);
     EXPECT_THAT(html, ContainsRegex("<tr class=\"beyond\"><td>Pearson X\u00b2 = 968.6 on 1023 dof: p-value</td><td class=\"val\">1.00e-09</td>"));
+    EXPECT_THAT(html, HasSubstr("<tr class=\"reported\"><td>cells pooled</td>"));
     EXPECT_THAT(html, HasSubstr("min(p_X\u00b2 / 0.8, p_cell / 0.2)"));
     EXPECT_THAT(html, HasSubstr("The summary&#39;s p is Pearson&#39;s alone."));
     EXPECT_THAT(html, HasSubstr("1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged tests"));
@@ -353,7 +250,7 @@ TEST(PlotAnnotations, Chi2MapRingsTheLargestResidualAndMarksWhereOneCellAloneFai
 
 // Once per-cell p-values underflow to 0, every cell at 0 ties and the check
 // names the first of them (-43.35 here, where the table lists -109 first):
-// the ring and the Judged line go to the largest |residual|.
+// the ring goes to the largest |residual| (the Judged line names the check's own cell).
 TEST(PlotAnnotations, Chi2RingsTheTrulyLargestResidualWhenPValuesUnderflow) {
     CheckResult r = chi2_row(0.0, 0.0);
     for (Figure& f : r.figures) {
@@ -371,8 +268,6 @@ TEST(PlotAnnotations, Chi2RingsTheTrulyLargestResidualWhenPValuesUnderflow) {
     EXPECT_EQ(options.cells[0].row, 713 / 32);
     EXPECT_EQ(options.cells[0].col, 713 % 32);
     EXPECT_EQ(options.cells[0].label, "largest |r|: -109.00");
-    const std::vector<html::JudgedLine> lines = html::judged_lines(r);
-    EXPECT_TRUE(line_starting(lines, "largest cell residual -109.00 (cell 713)"));
     // A p-value that did not underflow decides the cell itself: the check's stays.
     for (Figure& f : r.figures)
         if (f.name == "local_p_value") f.value = 1e-300;

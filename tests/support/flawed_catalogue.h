@@ -41,6 +41,21 @@ inline std::string failures_of(const RunResult& r) {
 
 /// Holds each entry of `catalogue`, registered in its order as the only
 /// cases of `registry`, to its rule in the run `r`.
+/// A row's verdict agrees with the judgement its check wrote (CheckResult::
+/// judged): a pass has no line beyond its limit, a failure at least one (the
+/// rule that failed it). Errors and n/a rows judged nothing.
+inline void expect_verdict_agrees_with_its_lines(const CheckResult& c) {
+    if (c.verdict != Verdict::Pass && c.verdict != Verdict::Fail) return;
+    std::string beyond;
+    for (const JudgedQuantity& j : c.judged)
+        if (j.state == JudgedQuantity::State::Beyond) beyond += " [" + j.quantity + " " + j.value + " " + j.limit + "]";
+    if (c.verdict == Verdict::Pass)
+        EXPECT_EQ(beyond, "") << c.check_name << " " << c.case_name << " passed with lines beyond their limits";
+    else
+        EXPECT_NE(beyond, "") << c.check_name << " " << c.case_name << " failed with no line beyond its limit: "
+                              << c.message;
+}
+
 inline void expect_each_caught(const Registry& registry, const std::vector<FlawedBsdf>& catalogue,
                                const RunResult& r) {
     ASSERT_EQ(registry.cases().size(), catalogue.size());
@@ -63,6 +78,7 @@ inline void expect_each_caught(const Registry& registry, const std::vector<Flawe
         }
         EXPECT_TRUE(caught) << name << " (" << flawed.flaw << ") not caught by " << flawed.caught_by;
     }
+    for (const CheckResult& c : r.results) expect_verdict_agrees_with_its_lines(c);
 }
 
 }  // namespace warpcheck::testing

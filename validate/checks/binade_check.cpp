@@ -384,6 +384,17 @@ void add_evidence(CheckResult& r, const std::vector<Cell>& cells, double n) {
 class BinadeCheck final : public Check {
 public:
     std::string name() const override { return "binade"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"outside", "samples outside [a, b)", FigureRule::Zero}},
+                .p_values =
+                    [](const CheckResult& r, double level, std::vector<JudgedQuantity>& out) {
+                        shared_p_lines(r, level, out,
+                                       {{"mass_p_value", "mass per binade: Pearson p-value"},
+                                        {"parity_p_value", "significand parity: Pearson p-value"},
+                                        {"resolution_p_value", "binary digits of (x \u2212 a) / (b \u2212 a): p-value"}});
+                    },
+                .p_value = "p-value: the smallest test's, times the number of tests, at most 1"};
+    }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "64-bit float samplers: chi-square of the mass per binade, of the significand parity within "

@@ -55,6 +55,9 @@ struct UnbinnedSource {
 /// The unbinned check's run on the outputs the source draws, tested against
 /// the marginal CDFs of warp.pdf normalised by their integral.
 CheckResult run_unbinned(const WarpCase& warp, const CheckContext& ctx, const UnbinnedSource& source);
+/// What the unbinned check judges (its rows' judged lines): each judged
+/// test's p-value at the Sidak level over the judged tests.
+JudgedRules unbinned_judged_rules();
 /// "sample_pdf": the pdf that sample returns (PdfSample) equals pdf(x) at every sample.
 std::unique_ptr<Check> make_sample_pdf_check();
 /// "weight": the weight that sample returns (WeightedSample) equals eval(x) / pdf(x) at every sample.

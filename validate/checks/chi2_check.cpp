@@ -220,9 +220,35 @@ void add_plots(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::Binning& 
     r.tables.push_back(worst_cells(binning, o));
 }
 
+/// The two tests the row's p-value combines, each at its share of the level
+/// (as run_chi2_on_cells weighs them: weighted_min_p).
+void chi2_p_lines(const CheckResult& r, double level, std::vector<JudgedQuantity>& out) {
+    const auto pearson = r.figure("p_value"), local = r.figure("local_p_value");
+    if (!pearson || !local) return;
+    const double share = chi2::kLocalLevelShare;
+    out.push_back(p_line(fmt::format("Pearson X\u00b2 = {:.4g} on {} dof: p-value", r.figure("statistic").value_or(NAN),
+                                     judged_number(r.figure("dof").value_or(NAN))),
+                         *pearson, (1.0 - share) * level, fmt::format(" ({:.3g} \u00d7 level)", 1.0 - share)));
+    out.push_back(p_line(fmt::format("largest cell residual {:+.2f} (cell {}): p-value over the cells",
+                                     r.figure("local_max_residual").value_or(NAN),
+                                     judged_number(r.figure("local_cell").value_or(NAN))),
+                         *local, share * level, fmt::format(" ({:.3g} \u00d7 level)", share)));
+}
+
 class Chi2Check final : public Check {
 public:
     std::string name() const override { return "chi2"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"integral", "integral of the density over the domain", FigureRule::WithinOfOne,
+                             "integral_tolerance"},
+                            {"outside", "samples outside the domain", FigureRule::Zero},
+                            {"nan", "samples with NaN coordinates", FigureRule::Zero},
+                            {"zero_expected_hits", "samples in cells of expected count 0", FigureRule::Zero},
+                            {"pooled_cells", "cells pooled (expected count below 5)", FigureRule::Counted}},
+                .p_values = chi2_p_lines,
+                .p_value = fmt::format("p-value: min(Pearson / {:.3g}, residual / {:.3g}), at most 1",
+                                       1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare)};
+    }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "Pearson chi-square test of the samples against the pdf integrated over cells (pooled, Sidak-corrected)";

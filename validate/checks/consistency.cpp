@@ -324,6 +324,14 @@ void judge_and_explain(CheckResult& r, const ConsistencyStats& s, const WarpCase
     if (!examples.rows.empty()) r.tables.push_back(std::move(examples));
 }
 
+/// Under --strict (figure "strict"), no sample may have pdf 0 beside a positive pdf.
+void strict_rounding_line(const CheckResult& r, std::vector<JudgedQuantity>& out) {
+    if (r.figure("strict").value_or(0.0) == 0.0) return;
+    const double all = r.figure("zero_pdf_rounded_random").value_or(0.0) + r.figure("zero_pdf_rounded_edge_inputs").value_or(0.0);
+    out.push_back({"samples with pdf 0 beside a positive pdf (--strict allows none)", judged_number(all), "= 0",
+                   all == 0.0 ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond});
+}
+
 void add_figures(CheckResult& r, const ConsistencyStats& s) {
     r.samples = s.count;
     r.figures = {{"samples", static_cast<double>(s.count)},
@@ -334,6 +342,7 @@ void add_figures(CheckResult& r, const ConsistencyStats& s) {
                  {"zero_pdf", static_cast<double>(s.zero_pdf.count)},
                  {"zero_pdf_on_boundary", static_cast<double>(s.boundary_zero)},
                  {"zero_pdf_on_boundary_random", static_cast<double>(s.boundary_random.count)},
+                 {"zero_pdf_on_boundary_bound", static_cast<double>(boundary_bound(s))},
                  {"min_pdf", s.min_pdf},
                  {"max_pdf", s.max_pdf},
                  {"zero_pdf_rounded_random", static_cast<double>(s.rounded_random.count)},
@@ -347,6 +356,18 @@ void add_figures(CheckResult& r, const ConsistencyStats& s) {
 class ConsistencyCheck final : public Check {
 public:
     std::string name() const override { return "consistency"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"non_finite_samples", "samples with NaN or infinite coordinates", FigureRule::Zero},
+                 {"outside_domain", "samples outside the domain", FigureRule::Zero},
+                 {"non_finite_or_negative_pdf", "samples with a NaN, infinite or negative pdf", FigureRule::Zero},
+                 {"zero_pdf", "samples with pdf 0 inside the domain", FigureRule::Zero},
+                 {"zero_pdf_on_boundary", "samples with pdf 0 on the boundary", FigureRule::Counted},
+                 {"zero_pdf_on_boundary_random", "of them, random samples (float rounding onto the boundary)",
+                  FigureRule::AtMost, "zero_pdf_on_boundary_bound"},
+                 {"zero_pdf_rounded_random", "random samples with pdf 0 beside a positive pdf (float rounding)", FigureRule::AtMost, "zero_pdf_rounded_bound"},
+                 {"zero_pdf_rounded_edge_inputs", "edge inputs with pdf 0 beside a positive pdf", FigureRule::Counted}},
+                .bounds = strict_rounding_line};
+    }
     std::string description() const override {
         return "every sample lies in the domain and has a finite, positive pdf (edge inputs included)";
     }
@@ -359,6 +380,7 @@ public:
         if (stats.count == 0 && stats.declined > 0) return nothing_sampled(stats.declined);
         CheckResult r;
         add_figures(r, stats);
+        if (ctx.options().strict) r.figures.push_back({"strict", 1.0});  // the rounding allowance withheld
         judge_and_explain(r, stats, warp, ctx.options().strict);
         return r;
     }

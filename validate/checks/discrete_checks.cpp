@@ -52,6 +52,10 @@ bool is_discrete_case(const WarpCase& warp) { return warp.is_discrete() && warp.
 class PmfCheck final : public Check {
 public:
     std::string name() const override { return "pmf"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"sum", "sum of the pmf", FigureRule::WithinOfOne, "tolerance"},
+                 {"invalid", "NaN, infinite or negative entries", FigureRule::Zero}}};
+    }
     std::string description() const override {
         return "discrete cases: the pmf is finite, non-negative and sums to 1 over the categories";
     }
@@ -155,6 +159,10 @@ Plot counts_plot(const std::vector<double>& observed, const std::vector<double>&
 class DiscreteChi2Check final : public Check {
 public:
     std::string name() const override { return "discrete_chi2"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"outside", "samples that are not a category", FigureRule::Zero},
+                 {"zero_pmf_chosen", "categories of pmf 0 chosen", FigureRule::Zero}}};
+    }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "discrete cases: indices are categories, none of pmf 0 is chosen, and the counts fit the pmf "
@@ -315,6 +323,16 @@ Plot remapped_histogram(const std::vector<double>& sorted_u, const std::string& 
 class RemappedUCheck final : public Check {
 public:
     std::string name() const override { return "remapped_u"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"outside", "remapped u outside [0, 1)", FigureRule::Zero}},
+                .p_values =
+                    [](const CheckResult& r, double level, std::vector<JudgedQuantity>& out) {
+                        shared_p_lines(r, level, out,
+                                       {{"ks_p_value", "remapped u: KS p-value"},
+                                        {"conditional_p_value", "u within each category: Pearson p-value"}});
+                    },
+                .p_value = "p-value: the smallest test's, times the number of tests, at most 1"};
+    }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "discrete cases returning a remapped u: it lies in [0,1) and is uniform, overall (KS), within each "

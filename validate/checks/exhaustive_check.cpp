@@ -333,6 +333,13 @@ CheckResult judge(const SweepSummary& s, const Sweep& sw) {
 class ExhaustiveCheck final : public Check {
 public:
     std::string name() const override { return "exhaustive"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"outside_inputs", "inputs whose output is outside [a, b)", FigureRule::Zero},
+                 {"mass_outside_reach", "ideal mass outside the outputs' reach", FigureRule::AtMost, "reach_allowance"},
+                 {"non_monotone_steps", "steps down (fail if the sampler claims to be monotone)", FigureRule::Counted},
+                 {"max_float_bias", "largest float bias factor (fails only beyond --max-float-bias)", FigureRule::Counted},
+                 {"unreached_above_one_input", "floats never produced whose ideal exceeds one input", FigureRule::Counted}}};
+    }
     bool uses_seed() const override { return false; }  // every input, no random stream
     std::string description() const override {
         return "every input of a float sampler (all 2^32 for 32 bits; t = k 2^-24 for lerps), exact counts per "

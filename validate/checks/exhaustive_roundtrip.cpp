@@ -243,6 +243,17 @@ CheckResult judge(const ChunkStats& t, double tol, bool strict) {
 class ExhaustiveRoundtripCheck final : public Check {
 public:
     std::string name() const override { return "exhaustive_roundtrip"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"max_error", "largest |invert(sample(u)) \u2212 u|", FigureRule::AtMost, "tolerance"},
+                 {"roundtrip_failures", "floats beyond the tolerance", FigureRule::Zero},
+                 {"bad_pdf", "samples with a pdf that is not finite and positive", FigureRule::Zero},
+                 {"max_step_back_ulps", "largest step back of sample(u), ulps", FigureRule::AtMost, "wobble_tolerance_ulps"},
+                 {"outside_input_domain", "inverses outside [0, 1)", FigureRule::Zero},
+                 {"rounded_to_one", "u rounded to 1 (excused; fails under --strict)", FigureRule::Counted}},
+                .bounds = [](const CheckResult& r, std::vector<JudgedQuantity>& out) {
+                    strict_zero_line(r, "rounded_to_one", "u rounded to 1", out);
+                }};
+    }
     bool uses_seed() const override { return false; }  // every input, no random stream
     std::string description() const override {
         return "1D warps, every float u of [0,1): invert(sample(u)) vs u, monotone sample, finite positive pdf "

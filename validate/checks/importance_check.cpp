@@ -132,6 +132,12 @@ class ImportanceCheck final : public Check {
 public:
     explicit ImportanceCheck(Estimator which) : which_(which) {}
     std::string name() const override { return which_ == Estimator::Weight ? "weight_mean" : "inverse_pdf_mean"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"invalid_samples",
+                             which_ == Estimator::Weight ? "samples with a non-finite weight" : "samples with a non-finite 1/pdf",
+                             FigureRule::Zero}},
+                .p_value = "p-value: the t-test's"};
+    }
     bool statistical() const override { return true; }
     std::string description() const override {
         return which_ == Estimator::Weight

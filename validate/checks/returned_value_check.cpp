@@ -245,6 +245,10 @@ class ReturnedValueCheck final : public Check {
 public:
     explicit ReturnedValueCheck(What what) : what_(what) {}
     std::string name() const override { return what_ == What::Pdf ? "sample_pdf" : "weight"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"max_relative_difference", "largest relative difference", FigureRule::AtMost, "tolerance"},
+                 {"mismatches", "samples beyond the tolerance", FigureRule::Zero}}};
+    }
     std::string description() const override {
         return what_ == What::Pdf ? "the pdf that sample returns equals pdf(x) at every sample (float-rounding tolerance)"
                                   : "the weight that sample returns equals eval(x) / pdf(x) at every sample "

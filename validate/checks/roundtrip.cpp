@@ -715,6 +715,19 @@ void add_evidence(CheckResult& r, const Stats& s, const Rule& rule) {
 class RoundtripCheck final : public Check {
 public:
     std::string name() const override { return "roundtrip"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"max_error", "largest |invert(sample(u)) \u2212 u| not excused", FigureRule::AtMost, "tolerance"},
+                 {"failures", "inputs beyond the tolerance, not excused", FigureRule::Zero},
+                 {"outside_input_domain", "inverses outside [0, 1)", FigureRule::Zero},
+                 {"other_preimage_random_inputs", "random inputs with another preimage", FigureRule::AtMost, "other_preimage_bound"},
+                 {"float_pole_random_inputs", "random inputs at a float pole", FigureRule::AtMost, "float_pole_bound"},
+                 {"resolution_limited", "resolution-limited inputs (excused)", FigureRule::Counted},
+                 {"degenerate", "degenerate inputs (excused)", FigureRule::Counted},
+                 {"rounded_to_one", "u rounded to 1 (excused; fails under --strict)", FigureRule::Counted}},
+                .bounds = [](const CheckResult& r, std::vector<JudgedQuantity>& out) {
+                    strict_zero_line(r, "rounded_to_one", "u rounded to 1", out);
+                }};
+    }
     std::string description() const override {
         return "invert(sample(u)) == u over a seeded stream plus edge inputs (exact for raw-bit inputs)";
     }

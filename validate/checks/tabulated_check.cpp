@@ -631,6 +631,15 @@ void explain_claim(CheckResult& r, const MonotonicityProbe& p, const std::string
 class TabulatedCheck final : public Check {
 public:
     std::string name() const override { return "tabulated"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"density_nan_values", "points where the density is NaN", FigureRule::Zero},
+                 {"x_failures", "samples beyond the x tolerance", FigureRule::Zero},
+                 {"pdf_failures", "pdfs beyond the pdf tolerance", FigureRule::Zero},
+                 {"tail_failures", "tail samples beyond the table's reach", FigureRule::Zero},
+                 {"nan_samples", "NaN samples", FigureRule::Zero},
+                 {"nan_pdfs", "NaN pdfs", FigureRule::Zero},
+                 {"mass_outside_reach", "mass outside the warp's reach", FigureRule::AtMost, "mass_outside_reach_tolerance"}}};
+    }
     std::string description() const override {
         return "sample(u) and pdf against the inversion method on a 65536-bucket table of the density "
                "(1D warps and monotone 1D marginals)";

@@ -48,6 +48,7 @@
 #include "chi2/unbinned.h"
 #include "validate/api/light_case.h"
 #include "validate/checks/cell_power.h"
+#include "reports/result_tables.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/direction_length.h"
 #include "validate/checks/evidence.h"
@@ -902,9 +903,35 @@ void add_evidence(CheckResult& r, const Computed& c, const std::string& case_nam
     r.tables.push_back(std::move(t));
 }
 
+std::string long_test_name(std::string_view short_name) {
+    if (short_name == "ad") return "Anderson\u2013Darling A\u00b2";
+    if (short_name == "kuiper") return "Kuiper V";
+    if (short_name == "ks") return "Kolmogorov\u2013Smirnov D";
+    return std::string(short_name);
+}
+
+/// Each judged test's p-value at the Sidak level over the judged tests.
+void unbinned_p_lines(const CheckResult& r, double level, std::vector<JudgedQuantity>& out) {
+    const auto judged = judged_unbinned_tests(r);
+    const double k = r.figure("tests").value_or(static_cast<double>(judged.size()));
+    if (judged.empty() || !(k >= 1.0)) return;
+    const double per_test = -std::expm1(std::log1p(-level) / k);  // Sidak: 1 - (1 - level)^(1/k)
+    for (const auto& [marginal, test] : judged) {
+        std::string name;
+        for (char ch : marginal) name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+        name += "_" + test;
+        const auto p = r.figure(name + "_p_value");
+        if (!p) continue;
+        out.push_back(p_line(fmt::format("{}: {} = {:.4g}, p-value", marginal, long_test_name(test),
+                                         r.figure(name + "_statistic").value_or(NAN)),
+                             *p, per_test, fmt::format(" (level, \u0160id\u00e1k over {})", judged_number(k))));
+    }
+}
+
 class UnbinnedCheck final : public Check {
 public:
     std::string name() const override { return "unbinned"; }
+    JudgedRules judged_rules() const override { return unbinned_judged_rules(); }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "KS, Kuiper and Anderson-Darling tests of each marginal against its CDF from the pdf, allowing for "
@@ -960,5 +987,11 @@ CheckResult run_unbinned(const WarpCase& warp, const CheckContext& ctx, const Un
 }
 
 std::unique_ptr<Check> make_unbinned_check() { return std::make_unique<UnbinnedCheck>(); }
+
+JudgedRules unbinned_judged_rules() {
+    return {.figures = {{"nan_samples", "samples with NaN coordinates (any fails)", FigureRule::Zero}},
+            .p_values = unbinned_p_lines,
+            .p_value = "p-value: smallest judged p, \u0160id\u00e1k-corrected over the judged tests"};
+}
 
 }  // namespace warpcheck

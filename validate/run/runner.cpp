@@ -335,6 +335,7 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
                                         options.max_float_bias);
     }
     apply_multiple_test_correction(run, options.alpha, options.family_tests.value_or(statistical_tests(jobs)));
+    for (std::size_t i = 0; i < jobs.size(); ++i) record_judgement(run.results[i], jobs[i].check->judged_rules());
     run.info.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return run;
 }

@@ -14,6 +14,7 @@
 #include "chi2/power.h"
 #include "validate/checks/evidence.h"
 #include "validate/checks/formatting.h"
+#include "validate/checks/judged.h"
 #include "validate/checks/line_resolution.h"
 #include "validate/checks/power_level.h"
 #include "validate/run/runner.h"
@@ -211,6 +212,7 @@ RunResult run_of_rows(std::vector<CheckResult> rows, const RunOptions& options, 
     }
     run.results = std::move(rows);
     apply_multiple_test_correction(run, options.alpha);
+    for (CheckResult& r : run.results) record_judgement(r, {});  // their rules: the p-value and tolerances
     return run;
 }
 

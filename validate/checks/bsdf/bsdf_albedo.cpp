@@ -276,9 +276,20 @@ std::vector<FamilyPoint> albedo_points(const BsdfCase& bsdf, const Outcome& o) {
     return {std::move(albedo), std::move(difference)};
 }
 
+/// The energy albedo against 1, where the albedo is known.
+void energy_bound_line(const CheckResult& r, std::vector<JudgedQuantity>& out) {
+    const auto energy = r.figure("energy_albedo"), bound = r.figure("energy_tolerance");
+    if (!energy || !bound || r.figure("albedo_known").value_or(1.0) == 0.0) return;
+    out.push_back({"energy albedo", fmt::format("{:.9g}", *energy), "\u2264 1 + " + judged_number(*bound),
+                   *energy <= 1.0 + *bound ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond});
+}
+
 class BsdfAlbedoCheck final : public BsdfCheck {
 public:
     std::string name() const override { return "bsdf_albedo"; }
+    JudgedRules judged_rules() const override {
+        return {.p_value = "p-value: the t-test's", .bounds = energy_bound_line};
+    }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "BSDF: the mean weight against the directional albedo (t-test, Sidak-corrected), and the energy "

@@ -266,9 +266,53 @@ Table draw_table(const Draws& d, const Normalisation& n) {
     return t;
 }
 
+/// The three tests the row's p-value combines, each at its share of the
+/// level: Pearson's, the largest residual's, the landing share's.
+void bsdf_chi2_p_lines(const CheckResult& r, double level, std::vector<JudgedQuantity>& out) {
+    const auto pearson = r.figure("pearson_p_value"), local = r.figure("local_p_value"),
+               landing = r.figure("landing_p_value");
+    if (!pearson || !local || !landing) return;
+    const double pearson_share = 1.0 - chi2::kLocalLevelShare - kLandingLevelShare;
+    const auto note = [](double share) { return fmt::format(" ({:.3g} \u00d7 level)", share); };
+    out.push_back(p_line(fmt::format("Pearson X\u00b2 = {:.4g} on {} dof: p-value", r.figure("statistic").value_or(NAN),
+                                     judged_number(r.figure("dof").value_or(NAN))),
+                         *pearson, pearson_share * level, note(pearson_share)));
+    out.push_back(p_line(fmt::format("largest cell residual {:+.2f}: p-value over the cells",
+                                     r.figure("local_max_residual").value_or(NAN)),
+                         *local, chi2::kLocalLevelShare * level, note(chi2::kLocalLevelShare)));
+    out.push_back(p_line(fmt::format("share of draws that landed ({} of {}): binomial p-value",
+                                     judged_number(r.figure("continuous_samples").value_or(NAN)),
+                                     judged_number(r.figure("samples").value_or(NAN) -
+                                                   r.figure("delta_samples").value_or(0.0))),
+                         *landing, kLandingLevelShare * level, note(kLandingLevelShare)));
+}
+
+/// pdf(wo, .)'s integral against what the continuous lobes hold.
+void bsdf_chi2_bound_lines(const CheckResult& r, std::vector<JudgedQuantity>& out) {
+    const auto integral = r.figure("pdf_integral"), tolerance = r.figure("integral_tolerance"),
+               delta = r.figure("delta_claimed");
+    if (!integral || !tolerance || !delta) return;
+    const double room = 1.0 - *delta + *tolerance;
+    out.push_back({"pdf(wo, .) integrated over the sphere", fmt::format("{:.9g}", *integral),
+                   fmt::format("\u2264 1 \u2212 {} (delta lobes) + {}", judged_number(*delta), judged_number(*tolerance)),
+                   *integral <= room ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond});
+}
+
 class BsdfChi2Check final : public BsdfCheck {
 public:
     std::string name() const override { return "bsdf_chi2"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"outside", "continuous samples off the sphere", FigureRule::Zero},
+                            {"nan", "continuous samples with NaN coordinates", FigureRule::Zero},
+                            {"zero_expected_hits", "continuous samples in cells where pdf(wo, .) integrates to 0",
+                             FigureRule::Zero},
+                            {"reintegrated_cells", "cells integrated again around samples", FigureRule::Counted}},
+                .p_values = bsdf_chi2_p_lines,
+                .p_value = fmt::format("p-value: min(Pearson / {:.3g}, residual / {:.3g}, landing / {:.3g}), at most 1",
+                                       1.0 - chi2::kLocalLevelShare - kLandingLevelShare, chi2::kLocalLevelShare,
+                                       kLandingLevelShare),
+                .bounds = bsdf_chi2_bound_lines};
+    }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "BSDF: chi-square of the continuous lobes' wi over the sphere against pdf(wo, .), and the pdf's "

@@ -206,6 +206,11 @@ void add_figures(CheckResult& r, const DeltaStats& s, const std::array<LobeTest,
 class BsdfDeltaCheck final : public BsdfCheck {
 public:
     std::string name() const override { return "bsdf_delta"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"off_direction", "delta samples off their mirror or Snell direction", FigureRule::Zero},
+                            {"wrong_eta", "delta samples whose eta is not the case's", FigureRule::Zero}},
+                .p_value = "p-value: the smallest lobe's, \u0160id\u00e1k-corrected over the lobes tested"};
+    }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "BSDF: each delta lobe's share of draws against its claimed probability (binomial, Sidak-corrected), "

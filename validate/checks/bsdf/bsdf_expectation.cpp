@@ -510,6 +510,20 @@ void judge(CheckResult& r, const DrawTally& t, const Outcome& o) {
 class BsdfExpectationCheck final : public BsdfCheck {
 public:
     std::string name() const override { return "bsdf_expectation"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"bad_weights", "draws whose weight is not finite or negative", FigureRule::Zero},
+                            {"bad_directions", "draws whose wi is not a unit vector", FigureRule::Zero},
+                            {"off_side_samples", "continuous draws on a side the lobes do not claim", FigureRule::Zero},
+                            {"mis_pdf_zero_samples", "continuous draws where pdf(wo, wi) is not positive",
+                             FigureRule::Zero},
+                            {"cells_pooled", "cells pooled into the remainder (pilots promised too few terms)",
+                             FigureRule::Counted},
+                            {"cells_retested", "comparisons retested against a 16 times larger reference",
+                             FigureRule::Counted},
+                            {"cells_excused", "cells excused (their remainder too sparse to judge)", FigureRule::Counted}},
+                .p_value = "p-value: the smallest of the cells', remainder's, total's and energy's, "
+                           "\u0160id\u00e1k-corrected"};
+    }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "stochastic BSDF: sampled weights per cell of the sphere against the integral of its estimated f "

@@ -251,6 +251,12 @@ Table reciprocity_worst_table(const ReciprocityStats& s) {
 class BsdfReciprocityCheck final : public BsdfCheck {
 public:
     std::string name() const override { return "bsdf_reciprocity"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"max_relative_error", "largest relative error |f(wo, wi) s \u2212 f(wi, wo)|, not excused", FigureRule::AtMost, "tolerance"},
+                 {"violations", "pairs beyond the tolerance", FigureRule::Zero},
+                 {"excused_pairs", "pairs at f's float resolution (excused)", FigureRule::Counted},
+                 {"grid_excused_pairs", "of them, on the evenly spread grid", FigureRule::AtMost, "grid_excused_pairs_bound"}}};
+    }
     std::string description() const override {
         return "BSDF: f(wo, wi) = f(wi, wo), with the eta^2 rule across an interface, where the case claims "
                "reciprocity (float-rounding tolerance)";

@@ -174,6 +174,15 @@ void judge(CheckResult& r, const Tally& t, int channels, int hero) {
 class BsdfSpectralCheck final : public BsdfCheck {
 public:
     std::string name() const override { return "bsdf_spectral"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"bad_values", "channel values not finite or negative", FigureRule::Zero},
+                 {"f_mismatches", "secondary channels' f beyond the tolerance", FigureRule::Zero},
+                 {"pdf_mismatches", "secondary channels' pdf beyond the tolerance", FigureRule::Zero},
+                 {"hero_mismatches", "hero samples unlike the spectral sample's hero channel", FigureRule::Zero},
+                 {"max_f_relative_difference", "largest relative difference of a secondary f", FigureRule::Counted},
+                 {"terminated", "secondary channels terminated (pdf 0)", FigureRule::Counted},
+                 {"compared_without_ratio", "secondary values compared without a ratio (a hero value of 0)", FigureRule::Counted}}};
+    }
     std::string description() const override {
         return "spectral BSDF: each sample's secondary channels' f and pdf against f() and pdf() there (0: "
                "terminated)";

@@ -61,6 +61,7 @@ chi2::CellIntegrals pdf_integral(const BsdfCase& bsdf, const CheckContext& ctx) 
 class BsdfUnbinnedCheck final : public BsdfCheck {
 public:
     std::string name() const override { return "bsdf_unbinned"; }
+    JudgedRules judged_rules() const override { return unbinned_judged_rules(); }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "BSDF: Kuiper and Anderson-Darling tests of the continuous lobes' phi_i and cos theta_i against their "

@@ -307,6 +307,20 @@ Table worst_table(const Stats& s) {
 class BsdfWeightCheck final : public BsdfCheck {
 public:
     std::string name() const override { return "bsdf_weight"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"max_relative_difference", "largest relative weight difference, not excused", FigureRule::AtMost, "tolerance"},
+                 {"max_unit_error", "largest ||wi| \u2212 1|", FigureRule::AtMost, "unit_tolerance"},
+                 {"weight_mismatches", "samples whose weight differs beyond the tolerance", FigureRule::Zero},
+                 {"not_unit", "samples whose wi is not a unit vector", FigureRule::Zero},
+                 {"wrong_side", "samples on the wrong side for their flags", FigureRule::Zero},
+                 {"zero_pdf", "continuous samples where pdf(wo, wi) is 0", FigureRule::Zero},
+                 {"zero_f", "continuous samples where f(wo, wi) is 0", FigureRule::Zero},
+                 {"bad_delta", "delta samples with a weight not finite and positive", FigureRule::Zero},
+                 {"wrong_eta", "continuous transmissions whose eta is not the case's", FigureRule::Zero},
+                 {"excused", "samples at the float resolution of f and pdf (excused)", FigureRule::Counted},
+                 {"excused_random", "of them, from random inputs", FigureRule::AtMost, "excused_random_limit"},
+                 {"excused_outside_support", "of them, where f or pdf at wi is 0 (a neighbour's is not)", FigureRule::Counted}}};
+    }
     std::string description() const override {
         return "BSDF: every sample's weight f |cos| / pdf against f() and pdf() at its wi; wi a unit vector on "
                "its flags' side; none where pdf or f is 0; a transmission's eta as claimed (float-rounding tolerance)";

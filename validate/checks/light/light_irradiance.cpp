@@ -84,6 +84,7 @@ SphereIntegral integrate(const LightCase& light, const CheckContext& ctx) {
 class LightIrradianceCheck final : public Check {
 public:
     std::string name() const override { return "light_irradiance"; }
+    JudgedRules judged_rules() const override { return {.p_value = "p-value: the t-test's"}; }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "light: the mean of L |cos| / pdf against the integral of L(ref, w) |cos| over the sphere (t-test, "

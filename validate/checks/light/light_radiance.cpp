@@ -227,6 +227,17 @@ void judge(CheckResult& r, const RadianceStats& s) {
 class LightRadianceCheck final : public Check {
 public:
     std::string name() const override { return "light_radiance"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"invalid", "samples with a non-finite or negative L, or L(ref, wi) not finite", FigureRule::Zero},
+                            {"misses", "samples where the light's own intersection finds no light", FigureRule::Zero},
+                            {"mismatches", "samples whose L differs from L(ref, wi) beyond the tolerance", FigureRule::Zero},
+                            {"agree_at_neighbour_random", "random samples that agree only at a float neighbour",
+                             FigureRule::AtMost, "agree_at_neighbour_bound"},
+                            {"agree_at_neighbour_edge_inputs", "edge inputs that agree only at a float neighbour",
+                             FigureRule::Counted},
+                            {"behind_surface", "samples behind the reference surface", FigureRule::Counted},
+                            {"no_sample", "inputs the light declined", FigureRule::Counted}}};
+    }
     std::string description() const override {
         return "light: every sample's L equals the light's own L(ref, wi) > 0 (misses named; samples behind the "
                "surface counted)";

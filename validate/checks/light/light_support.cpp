@@ -162,9 +162,26 @@ std::string describe_probe(const ProbeExample& e) {
     return fmt::format("w {}: L(ref, w) {:.6g}, pdf(ref, w) {:.6g}", format_output(e.w, 3), e.L, e.pdf);
 }
 
+/// Where no probe found light, the pilot's samples must have: else nothing lit was seen at all.
+void found_light_line(const CheckResult& r, std::vector<JudgedQuantity>& out) {
+    const auto lit = r.figure("lit_probes"), pilot = r.figure("lit_pilot_samples");
+    if (!lit || !pilot) return;
+    out.push_back({"probes that found light (or, with none, the pilot's samples that did)",
+                   judged_number(*lit > 0.0 ? *lit : *pilot), "> 0",
+                   *lit > 0.0 || *pilot > 0.0 ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond});
+}
+
 class LightSupportCheck final : public Check {
 public:
     std::string name() const override { return "light_support"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"lit_without_pdf", "lit directions with pdf 0", FigureRule::Zero},
+                            {"pdf_without_light", "directions that miss the light with pdf > 0", FigureRule::Zero},
+                            {"invalid", "probes with a non-finite pdf or L", FigureRule::Zero},
+                            {"excused_at_boundary", "probes that disagree within a float step of a boundary",
+                             FigureRule::AtMost, "excused_limit"}},
+                .bounds = found_light_line};
+    }
     std::string description() const override {
         return "light: pdf(ref, w) > 0 exactly where the light's own L(ref, w) > 0, probed over the sphere and "
                "around the sampled cap";

@@ -113,6 +113,7 @@ SphereIntegral integrate(const MisCase& mis, const CheckContext& ctx) {
 class MisEstimatorCheck final : public Check {
 public:
     std::string name() const override { return "mis_estimator"; }
+    JudgedRules judged_rules() const override { return {.p_value = "p-value: the t-test's"}; }
     bool statistical() const override { return true; }
     std::string description() const override {
         return "MIS: the mean of the weighted sum over strategies of f L |cos| / pdf against the integral of "

@@ -190,6 +190,16 @@ std::string describe(const MisCase& mis, const Example& e) {
 class MisWeightsCheck final : public Check {
 public:
     std::string name() const override { return "mis_weights"; }
+    JudgedRules judged_rules() const override {
+        return {.figures = {{"wrong_sums", "sampled directions whose weights do not sum to 1, nor at a float neighbour",
+                             FigureRule::Zero},
+                            {"agree_at_neighbour_random", "random directions that sum to 1 only at a float neighbour",
+                             FigureRule::AtMost, "agree_at_neighbour_bound"},
+                            {"agree_at_neighbour_edge_inputs", "edge inputs that sum to 1 only at a float neighbour",
+                             FigureRule::Counted},
+                            {"max_excess", "largest |sum of weights \u2212 1|", FigureRule::Counted},
+                            {"no_sample", "inputs a strategy declined", FigureRule::Counted}}};
+    }
     std::string description() const override {
         return "MIS: at every sampled direction the strategies' weights (each one's own pdf beside the others' "
                "pdfs as the MIS sum evaluates them) sum to 1";
