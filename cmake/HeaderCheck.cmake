@@ -28,5 +28,9 @@ function(warpcheck_check_headers folder)
     # One header per translation unit is the point: never batched into a unity source.
     set_target_properties(header_check_${target} PROPERTIES UNITY_BUILD OFF)
     target_link_libraries(header_check_${target} PRIVATE ${arg_UNPARSED_ARGUMENTS} warpcheck_options)
+    # Whether a header compiles on its own does not depend on optimisation, and
+    # its inline code is checked optimised where a source uses it: -O0 saves a
+    # quarter of each of these ~140 compiles (1.26 s -> 0.95 s for bsdf_checks.h).
+    target_compile_options(header_check_${target} PRIVATE -O0)
   endif()
 endfunction()
