@@ -155,7 +155,7 @@ struct Pcg32Lanes {
 #ifdef __AVX512F__
         // GCC does not see the rotation in the shifts below on vectors. Both
         // branches give the same bits; the function is always inlined, so the
-        // two definitions never meet (the ctest lane_avx512_object_is_isolated
+        // two definitions never meet (the ctest lane_objects_are_isolated
         // checks that the AVX-512 object defines nothing shared). (The
         // maskz form: the plain one starts from an undefined vector, which GCC
         // 12 warns about.)

@@ -22,7 +22,8 @@
 // float or lanes of floats alike (sqrt, safe_sqrt, sin_from_cos, sin_cos, pow,
 // abs, max_zero, select). pdf and invert stay plain functions of float.
 //
-// The lane instantiation is compiled for AVX-512 in a function of its own,
+// The lane instantiation is compiled for AVX-512 in a function of its own
+// (and for AVX2 without FMA in another, run by processors without AVX-512),
 // with the warp inlined into it, and with contraction off: the renderer's
 // build may contract a * b + c into one rounding (GCC in GNU mode, Clang by
 // default), which its scalar build on the baseline target cannot, and the two
@@ -53,7 +54,7 @@
 
 // GCC notes the ABI of lane vectors passed by value wherever a function that
 // takes them is built for the baseline target: the warp's lane instantiation
-// is, besides its inlined copy in the AVX-512 function below, and GCC reports
+// is, besides its inlined copies in the AVX-512 and AVX2 functions below, and GCC reports
 // that at the end of the file, beyond any push and pop. No vector crosses a
 // call there (everything is inlined), so the note is off for a file that
 // includes this header.
@@ -72,7 +73,7 @@ concept FloatTemplateSample = requires(const W& w, lanes::F32 v) {
 
 /// The z of a point that has one, else 0.
 template <typename P, typename F>
-F z_of(const P& p, F zero) {
+[[gnu::always_inline]] inline F z_of(const P& p, F zero) {
     if constexpr (requires { p.z; }) return p.z;
     else return zero;
 }
@@ -82,20 +83,24 @@ F z_of(const P& p, F zero) {
 
 // How the lane instantiation is built (see the top of this file): for AVX-512
 // with contraction off (GCC contracts after inlining, under the function's own
-// setting); Clang contracts where the warp is written, so there for AVX2
+// setting), and a second time for AVX2 without FMA for processors without
+// AVX-512; Clang contracts where the warp is written, so there once, for AVX2
 // without FMA, which has nothing to contract into.
 #if defined(__clang__)
 #define WARPCHECK_LANE_INSTANTIATION [[gnu::target("avx2,no-fma"), gnu::flatten]]
+#define WARPCHECK_LANE_INSTANTIATION_AVX2 WARPCHECK_LANE_INSTANTIATION
 #else
 #define WARPCHECK_LANE_INSTANTIATION [[gnu::target("arch=x86-64-v4"), gnu::optimize("fp-contract=off"), gnu::flatten]]
+#define WARPCHECK_LANE_INSTANTIATION_AVX2 \
+    [[gnu::target("arch=x86-64-v3,no-fma"), gnu::optimize("fp-contract=off"), gnu::flatten]]
 #endif
 
 /// The lane instantiation of W's sample over planar arrays, eight at a time
-/// (the last n % 8 by the scalar instantiation), with the warp inlined.
+/// (the last n % 8 by the scalar instantiation), inlined into each target's
+/// function below.
 template <typename W>
-WARPCHECK_LANE_INSTANTIATION void sample_planar_lanes(const W& warp, const float* u0,
-                                                                                const float* u1, float* x, float* y,
-                                                                                float* z, std::size_t n) {
+[[gnu::always_inline]] inline void sample_planar_lane_loop(const W& warp, const float* u0, const float* u1, float* x,
+                                                           float* y, float* z, std::size_t n) {
     constexpr std::size_t kWidth = lanes::kWidth;
     std::size_t i = 0;
     for (; i + kWidth <= n; i += kWidth) {
@@ -114,16 +119,49 @@ WARPCHECK_LANE_INSTANTIATION void sample_planar_lanes(const W& warp, const float
     }
 }
 
-/// Whether this processor runs the lane instantiation (AVX-512 F, CD, BW,
-/// DQ, VL, as validate/lanes/lane_sampling.h asks).
-inline bool processor_runs_lanes() {
-    static const bool has = [] {
+/// The lane instantiation built for AVX-512 (Clang: AVX2 without FMA).
+template <typename W>
+WARPCHECK_LANE_INSTANTIATION void sample_planar_lanes_wide(const W& warp, const float* u0, const float* u1, float* x,
+                                                           float* y, float* z, std::size_t n) {
+    sample_planar_lane_loop(warp, u0, u1, x, y, z, n);
+}
+
+/// The lane instantiation built for AVX2 without FMA.
+template <typename W>
+WARPCHECK_LANE_INSTANTIATION_AVX2 void sample_planar_lanes_avx2(const W& warp, const float* u0, const float* u1,
+                                                                float* x, float* y, float* z, std::size_t n) {
+    sample_planar_lane_loop(warp, u0, u1, x, y, z, n);
+}
+
+/// Which lane instantiation this processor runs: 2 for the AVX-512 one (AVX-512
+/// F, CD, BW, DQ, VL, as validate/lanes/lane_sampling.h asks; under Clang, AVX2),
+/// 1 for the AVX2 one (x86-64-v3), 0 for none.
+inline int processor_lane_instantiation() {
+    static const int level = [] {
         __builtin_cpu_init();
-        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
-               __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
-               __builtin_cpu_supports("avx512vl");
+#if defined(__clang__)
+        return __builtin_cpu_supports("avx2") ? 2 : 0;
+#else
+        if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+            __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+            __builtin_cpu_supports("avx512vl"))
+            return 2;
+        return __builtin_cpu_supports("x86-64-v3") ? 1 : 0;
+#endif
     }();
-    return has;
+    return level;
+}
+
+/// Whether this processor runs a lane instantiation.
+inline bool processor_runs_lanes() { return processor_lane_instantiation() != 0; }
+
+/// The lane instantiation of W's sample over planar arrays, the one this
+/// processor runs (processor_runs_lanes() must be true).
+template <typename W>
+void sample_planar_lanes(const W& warp, const float* u0, const float* u1, float* x, float* y, float* z,
+                         std::size_t n) {
+    if (processor_lane_instantiation() == 2) return sample_planar_lanes_wide(warp, u0, u1, x, y, z, n);
+    sample_planar_lanes_avx2(warp, u0, u1, x, y, z, n);
 }
 #endif
 
@@ -136,7 +174,7 @@ std::string lane_mismatch(const W& warp) {
     (void)warp;
     return "the lane instantiation is built for x86-64 only";
 #else
-    if (!processor_runs_lanes()) return "this processor has no AVX-512";
+    if (!processor_runs_lanes()) return "this processor has neither AVX-512 nor AVX2";
     std::vector<float> edges = {0.0f, 0.25f, 0.75f, 0x1.fffffep-1f};
     for (int k = 1; k <= 40; ++k) edges.push_back(std::ldexp(1.0f, -k));
     std::vector<float> u0, u1;

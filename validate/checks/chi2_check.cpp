@@ -73,10 +73,10 @@ chi2::Chi2Outcome compute(const WarpCase& warp, const CheckContext& ctx, const c
         warp.pdf(x, density);
     };
     // The same histogram, 24 samples at a time (validate/lanes/lane_sampling.h), where
-    // the processor has AVX-512: by the warp's lane form, or else by its own
+    // the processor has AVX-512 or AVX2: by the warp's lane form, or else by its own
     // sample between the lanes' draws and binning. Elsewhere the scalar chunks
-    // below, which beat the lanes' portable build (28-31 against 20-24 M samples/s per core here).
-    if (kind == InputKind::Uniform2D && binning.lane_plan() && avx512_available()) {
+    // below, which beat the lanes' portable build (28-31 against 20-24 M samples/s per core).
+    if (kind == InputKind::Uniform2D && binning.lane_plan() && vector_lane_path_available()) {
         const LaneSampler sampler = warp.info().lanes ? *warp.info().lanes : planar_lane_sampler(warp);
         const chi2::SampleHistogram lanes = [&](std::span<const unsigned char> zero) {
             const auto chunk_rng = [&](uint64_t chunk) {

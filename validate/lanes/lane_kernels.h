@@ -1,13 +1,13 @@
 // The lockstep loop of the vectorised chi-square path, instantiated once per
-// built-in lane form in two translation units: lane_sampling.cpp (portable,
-// the baseline target) and lane_sampling_avx512.cpp (the whole file built for
-// x86-64-v4). The lane helpers must be compiled for the target they run on:
-// inlined from a baseline build they arrive already split into 128-bit pieces.
+// built-in lane form in three translation units: lane_sampling.cpp (portable,
+// the baseline target), lane_sampling_avx2.cpp (x86-64-v3) and
+// lane_sampling_avx512.cpp (x86-64-v4), each whole file built for its target.
+// The lane helpers must be compiled for the target they run on: inlined from a baseline build they arrive already split into 128-bit pieces.
 // Everything here is always_inline and nothing calls out of it but libm's
 // powf (lanes::pow: a library function, not an inline one; no std::vector),
-// so the AVX-512 file emits no shared inline function that the linker could
-// pick for a caller on another processor; the ctest
-// lane_avx512_object_is_isolated checks that.
+// so neither the AVX-512 nor the AVX2 file emits a shared inline function that
+// the linker could pick for a caller on another processor; the ctest
+// lane_objects_are_isolated checks that.
 #pragma once
 
 #include <cstdint>
@@ -165,10 +165,12 @@ WARPCHECK_LANE void run_planar_group(const void* warp, const LaneGroup& g) {
 
 // The group functions of warps without a lane form (run_planar_group), on each path.
 void planar_avx512(const void* warp, const LaneGroup& g);
+void planar_avx2(const void* warp, const LaneGroup& g);
 void planar_portable(const void* warp, const LaneGroup& g);
 
 #define WARPCHECK_DECLARE_GROUP_FNS(name, Kernel) \
     void name##_avx512(const void* kernel, const LaneGroup& g); \
+    void name##_avx2(const void* kernel, const LaneGroup& g); \
     void name##_portable(const void* kernel, const LaneGroup& g);
 WARPCHECK_LANE_FORMS(WARPCHECK_DECLARE_GROUP_FNS)
 #undef WARPCHECK_DECLARE_GROUP_FNS

@@ -35,14 +35,15 @@ void sample_planar(const void* warp, const float* u0, const float* u1, float* x,
 }  // namespace lane_kernels
 
 LaneSampler planar_lane_sampler(const WarpCase& warp) {
-    return {&warp, &lane_kernels::planar_avx512, &lane_kernels::planar_portable};
+    return {&warp, &lane_kernels::planar_avx512, &lane_kernels::planar_avx2, &lane_kernels::planar_portable};
 }
 
 namespace builtin_lanes {
 #define WARPCHECK_DEFINE_SAMPLER(name, Kernel)                                                      \
     const LaneSampler& name() {                                                                    \
         static constexpr lanes::Kernel kernel{};                                                    \
-        static const LaneSampler sampler{&kernel, &lane_kernels::name##_avx512, &lane_kernels::name##_portable}; \
+        static const LaneSampler sampler{&kernel, &lane_kernels::name##_avx512, &lane_kernels::name##_avx2, \
+                                         &lane_kernels::name##_portable};                          \
         return sampler;                                                                            \
     }
 WARPCHECK_PLAIN_LANE_FORMS(WARPCHECK_DEFINE_SAMPLER)
@@ -53,7 +54,8 @@ namespace {
 /// The sampler of a lane form with parameters, one per distinct kernel (its
 /// parameters), kept for the life of the process: cases point to it.
 template <typename Kernel>
-const LaneSampler& parameterised(const Kernel& kernel, LaneSampler::GroupFn avx512, LaneSampler::GroupFn portable) {
+const LaneSampler& parameterised(const Kernel& kernel, LaneSampler::GroupFn avx512, LaneSampler::GroupFn avx2,
+                                 LaneSampler::GroupFn portable) {
     struct Entry {
         Kernel kernel;
         LaneSampler sampler;
@@ -64,30 +66,30 @@ const LaneSampler& parameterised(const Kernel& kernel, LaneSampler::GroupFn avx5
     for (const Entry& e : entries)
         if (e.kernel == kernel) return e.sampler;
     Entry& e = entries.emplace_back(Entry{kernel, {}});
-    e.sampler = {&e.kernel, avx512, portable};
+    e.sampler = {&e.kernel, avx512, avx2, portable};
     return e.sampler;
 }
 
 }  // namespace
 
 const LaneSampler& uniform_cone(float cos_theta_max) {
-    return parameterised(lanes::UniformConeLanes{cos_theta_max}, &lane_kernels::uniform_cone_avx512,
+    return parameterised(lanes::UniformConeLanes{cos_theta_max}, &lane_kernels::uniform_cone_avx512, &lane_kernels::uniform_cone_avx2,
                          &lane_kernels::uniform_cone_portable);
 }
 
 const LaneSampler& cosine_power_hemisphere(float exponent) {
-    return parameterised(lanes::CosinePowerHemisphereLanes{exponent}, &lane_kernels::cosine_power_hemisphere_avx512,
+    return parameterised(lanes::CosinePowerHemisphereLanes{exponent}, &lane_kernels::cosine_power_hemisphere_avx512, &lane_kernels::cosine_power_hemisphere_avx2,
                          &lane_kernels::cosine_power_hemisphere_portable);
 }
 
 const LaneSampler& trowbridge_reitz_normals(float alpha_x, float alpha_y) {
     return parameterised(lanes::TrowbridgeReitzNormalsLanes{alpha_x, alpha_y},
-                         &lane_kernels::trowbridge_reitz_normals_avx512,
+                         &lane_kernels::trowbridge_reitz_normals_avx512, &lane_kernels::trowbridge_reitz_normals_avx2,
                          &lane_kernels::trowbridge_reitz_normals_portable);
 }
 
 const LaneSampler& trowbridge_reitz_visible(const TrowbridgeReitzVisibleNormals& warp) {
-    return parameterised(lanes::TrowbridgeReitzVisibleNormalsLanes(warp), &lane_kernels::trowbridge_reitz_visible_avx512,
+    return parameterised(lanes::TrowbridgeReitzVisibleNormalsLanes(warp), &lane_kernels::trowbridge_reitz_visible_avx512, &lane_kernels::trowbridge_reitz_visible_avx2,
                          &lane_kernels::trowbridge_reitz_visible_portable);
 }
 }  // namespace builtin_lanes
@@ -106,12 +108,30 @@ bool avx512_available() {
 #endif
 }
 
-LanePath auto_lane_path() { return avx512_available() ? LanePath::Avx512 : LanePath::Portable; }
+bool avx2_available() {
+#if !defined(__x86_64__)
+    return false;
+#else
+    static const bool available = [] {
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("x86-64-v3");
+    }();
+    return available;
+#endif
+}
+
+LanePath auto_lane_path() {
+    if (avx512_available()) return LanePath::Avx512;
+    return avx2_available() ? LanePath::Avx2 : LanePath::Portable;
+}
+
+bool vector_lane_path_available() { return auto_lane_path() != LanePath::Portable; }
 
 const char* lane_path_name(LanePath path) {
     switch (path) {
         case LanePath::Auto: return lane_path_name(auto_lane_path());
         case LanePath::Avx512: return "avx512";
+        case LanePath::Avx2: return "avx2";
         case LanePath::Portable: return "portable";
     }
     return "?";
@@ -129,7 +149,11 @@ chi2::Histogram lane_histogram(const chi2::Binning& binning, uint64_t samples, s
     if (path == LanePath::Auto) path = auto_lane_path();
     if (path == LanePath::Avx512 && !avx512_available())
         throw std::runtime_error("lane_histogram: this processor has no AVX-512");
-    const LaneSampler::GroupFn run = path == LanePath::Avx512 ? sampler.avx512 : sampler.portable;
+    if (path == LanePath::Avx2 && !avx2_available())
+        throw std::runtime_error("lane_histogram: this processor has no AVX2 (x86-64-v3)");
+    const LaneSampler::GroupFn run = path == LanePath::Avx512 ? sampler.avx512
+                                     : path == LanePath::Avx2 ? sampler.avx2
+                                                              : sampler.portable;
 
     const std::size_t cells = binning.cell_count();
     // Without zero cells (the usual case) the lanes skip the per-sample lookup.

@@ -10,10 +10,13 @@
 // histogram is the one the scalar path builds, count for count, for any
 // thread count and on either code path:
 //   - AVX-512 (x86-64-v4), which the chi-square check uses where the processor
-//     has it (elsewhere it keeps its scalar chunk path, the faster there);
+//     has it;
+//   - AVX2 (x86-64-v3 without FMA), which it uses where the processor has
+//     AVX2 and not AVX-512 (elsewhere it keeps its scalar chunk path, the
+//     faster there);
 //   - portable: the same source compiled for the baseline target, which the
 //     tests hold to the same bits (LanePath::Portable).
-// tests/validate/lanes/test_lane_sampling.cpp holds both paths to the scalar one.
+// tests/validate/lanes/test_lane_sampling.cpp holds every path to the scalar one.
 #pragma once
 
 #include <cstdint>
@@ -46,11 +49,12 @@ struct LaneGroup {
     std::size_t* unclassified_count = nullptr;
 };
 
-/// A warp's lane form, compiled for both paths. Built by lane_sampler<Kernel>().
+/// A warp's lane form, compiled for each path.
 struct LaneSampler {
     using GroupFn = void (*)(const void* kernel, const LaneGroup& group);
     const void* kernel = nullptr;
     GroupFn avx512 = nullptr;
+    GroupFn avx2 = nullptr;
     GroupFn portable = nullptr;
 };
 
@@ -74,18 +78,23 @@ const LaneSampler& trowbridge_reitz_visible(const TrowbridgeReitzVisibleNormals&
 /// to `warp`, which must outlive it.
 LaneSampler planar_lane_sampler(const WarpCase& warp);
 
-enum class LanePath { Auto, Avx512, Portable };
+enum class LanePath { Auto, Avx512, Avx2, Portable };
 
 /// Whether this processor runs the AVX-512 path (AVX-512 F, CD, BW, DQ, VL).
 bool avx512_available();
-/// The path Auto picks here.
+/// Whether this processor runs the AVX2 path (x86-64-v3: AVX2, BMI1/2, F16C, LZCNT, MOVBE).
+bool avx2_available();
+/// The path Auto picks here: AVX-512, else AVX2, else portable.
 LanePath auto_lane_path();
+/// Whether Auto picks a vector path here (AVX-512 or AVX2), which the
+/// chi-square check prefers to its scalar chunks; the portable build is slower.
+bool vector_lane_path_available();
 const char* lane_path_name(LanePath path);
 
 /// The histogram of `samples` samples of a 2D warp, drawn in chunks of
 /// chunk_size, chunk c from chunk_rng(c), exactly as chi2::sample_histogram
 /// with draw_inputs and WarpCase::sample would build it. `binning` must have a
-/// lane_plan(). Path Avx512 on a processor without it throws std::runtime_error.
+/// lane_plan(). Path Avx512 or Avx2 on a processor without it throws std::runtime_error.
 chi2::Histogram lane_histogram(const chi2::Binning& binning, uint64_t samples, std::size_t chunk_size,
                                const std::function<Pcg32(uint64_t chunk)>& chunk_rng, const LaneSampler& sampler,
                                std::span<const unsigned char> zero_cells, const chi2::ParallelFor& parallel_for,

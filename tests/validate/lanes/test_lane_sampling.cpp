@@ -1,6 +1,6 @@
 // The vectorised chi-square path (validate/lanes/lane_sampling.h) against the scalar
-// one: for every built-in case with a lane form, on both code paths (AVX-512
-// where the processor has it, and the portable build), the histogram equals
+// one: for every built-in case with a lane form, on every code path (AVX-512
+// and AVX2 where the processor has them, and the portable build), the histogram equals
 // the one chi2::sample_histogram builds from draw_inputs and WarpCase::sample,
 // field by field, including a partial last chunk and group, samples moved out
 // of zero-expected cells, and any thread count. The chi-square check's result
@@ -41,6 +41,7 @@ const char* const kLaneCases[] = {"uniform_disk_polar",
 
 std::vector<LanePath> paths() {
     std::vector<LanePath> p = {LanePath::Portable};
+    if (avx2_available()) p.push_back(LanePath::Avx2);
     if (avx512_available()) p.push_back(LanePath::Avx512);
     return p;
 }
@@ -192,6 +193,12 @@ TEST(LaneSampling, RefusesWhatItCannotDo) {
         const chi2::Binning hemi(chi2::Domain::hemisphere());
         EXPECT_THROW(lane_histogram(hemi, 10, 4096, rng, builtin_lanes::cosine_hemisphere(), {}, chi2::serial_for,
                                     LanePath::Avx512),
+                     std::runtime_error);
+    }
+    if (!avx2_available()) {
+        const chi2::Binning hemi(chi2::Domain::hemisphere());
+        EXPECT_THROW(lane_histogram(hemi, 10, 4096, rng, builtin_lanes::cosine_hemisphere(), {}, chi2::serial_for,
+                                    LanePath::Avx2),
                      std::runtime_error);
     }
 }
