@@ -187,9 +187,20 @@ std::string exit_culprit(const ActiveRun& run) {
     return "exit() was called from a thread that runs no check; the checks running were:" + running;
 }
 
+// glibc pops each exit handler once, whichever thread calls exit(): when two
+// threads call it together (a warp's loop on two pool threads), the second
+// finds the handler gone and ends the process with the warp's status while the
+// first still writes the report. So the handler is registered kExitHandlerCopies
+// times; the first thread in reports, and every later one (up to that many at
+// once, more than a run has threads) waits in its copy for the report's _exit(1).
+constexpr int kExitHandlerCopies = 64;
+std::atomic<bool> g_exit_reported{false};
+
 extern "C" void report_exit_during_run() {
     const ActiveRun* run = g_active_run.load();
     if (!run) return;
+    if (g_exit_reported.exchange(true))
+        for (;;) ::pause();  // another thread writes the report and ends the process
     const std::string text = fmt::format("validate: {}\nThe in-process run (--no-isolation) is abandoned and no "
                                          "report is written; without --no-isolation that check is one ERROR row.\n",
                                          exit_culprit(*run));
@@ -204,8 +215,10 @@ public:
         : run_{&jobs, &running} {
         static std::once_flag registered;
         std::call_once(registered, [] {
-            std::atexit(report_exit_during_run);
-            std::at_quick_exit(report_exit_during_run);
+            for (int i = 0; i < kExitHandlerCopies; ++i) {
+                std::atexit(report_exit_during_run);
+                std::at_quick_exit(report_exit_during_run);
+            }
         });
         g_active_run = &run_;
     }

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -362,6 +363,28 @@ TEST(InProcessRun, AWarpsExitIsReportedWithStatus1) {
     expect_exit_reported([] { std::thread([] { std::exit(0); }).join(); },
                          "validate: exit\\(\\) was called from a thread that runs no check; the checks running "
                          "were:\n  roundtrip exits_in_process\n");
+}
+
+// Many threads calling exit(0) at once: glibc runs each exit handler once, so
+// without a copy of the handler for each of them a second thread's exit ended
+// the process with status 0 while the first wrote the report (a CI failure).
+void exit_from_eight_threads_at_once() {
+    std::atomic<int> waiting{8};
+    std::vector<std::thread> threads;
+    for (int i = 0; i < 8; ++i)
+        threads.emplace_back([&waiting] {
+            waiting.fetch_sub(1);
+            while (waiting.load() > 0) {
+            }
+            std::exit(0);
+        });
+    for (std::thread& t : threads) t.join();
+}
+
+TEST(InProcessRun, ExitFromManyThreadsAtOnceIsStillReportedWithStatus1) {
+    for (int repeat = 0; repeat < 5; ++repeat)
+        expect_exit_reported(exit_from_eight_threads_at_once,
+                             "validate: exit\\(\\) was called from a thread that runs no check");
 }
 
 // A worker that sleeps is killed at 10x its CPU budget in wall time; one
