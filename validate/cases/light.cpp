@@ -11,6 +11,7 @@
 // The default grid keeps validate --all under a minute; WARPCHECK_LIGHT_GRID=full
 // in the environment adds the views that repeat a default one's difficulty
 // (the triangles facing the reference point, and seen from their backs).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -186,6 +187,43 @@ std::vector<float> image(int width, int height, F value) {
     return pixels;
 }
 
+constexpr const char* kEnvironmentMapDescription =
+    "equirectangular map of width x height pixels (rounded to whole pixels): a sky gradient above the horizon, "
+    "floor times as bright below it (0: black rows), and one pixel sun times the sky at (sun_u, sun_v) of the map";
+
+/// The map of the environment family at a point: each size rounded to whole
+/// pixels (the name keeps the drawn value, and makes the same map again).
+EnvironmentLight environment_map_at(const GridPoint& at) {
+    const int w = static_cast<int>(std::lround(std::max(1.0, at["width"])));
+    const int h = static_cast<int>(std::lround(std::max(1.0, at["height"])));
+    const int sun_i = std::min(w - 1, static_cast<int>(at["sun_u"] * w));
+    const int sun_j = std::min(h - 1, static_cast<int>(at["sun_v"] * h));
+    const double floor = at["floor"], sun = at["sun"];
+    return EnvironmentLight(w, h, image(w, h, [&](int i, int j) {
+        const double sky = 1.0 + 0.5 * std::cos(2.0 * std::numbers::pi * i / w);
+        if (i == sun_i && j == sun_j) return sun * sky;
+        return 2 * j + 1 < h ? sky : floor * sky;  // the row's centre above or below the horizon
+    }));
+}
+
+/// The environment family --fuzz draws from (issue 37): maps from the 1x1
+/// map to 256 x 128, a sun from as bright as the sky to 10^6 times (all but
+/// a single lit pixel) anywhere on the map, the poles' rows included (where
+/// sin(theta) gives a pixel its least solid angle), and the lower half from
+/// as bright as the sky to black rows. Its grid points are the built-in maps' shapes.
+void register_environment_family(Registry& registry) {
+    registry.add_family({{.family = "environment_map", .description = kEnvironmentMapDescription},
+                         {{"width", {32, 1}, {{1.0, 256.0}}},
+                          {"height", {16, 1}, {{1.0, 128.0}}},
+                          {"sun", {500}, {{1.0, 1e6}}},
+                          {"sun_u", {0.3}, {{0.0, 1.0}}},
+                          {"sun_v", {0.2}, {{0.0, 1.0}}},
+                          {"floor", {0.05}, {{0.0, 1.0}}}},
+                         [](WarpCaseInfo info, const GridPoint& at) {
+                             return make_light_case(std::move(info), kAtOrigin, environment_map_at(at));
+                         }});
+}
+
 void register_environment_lights(Registry& registry) {
     const auto env = [&](const char* family, const char* description, int w, int h, std::vector<float> pixels) {
         add_light(registry, family, description, {{"width", static_cast<double>(w)}, {"height", static_cast<double>(h)}},
@@ -201,6 +239,7 @@ void register_environment_lights(Registry& registry) {
     env("environment_one_pixel", "equirectangular map with a single lit pixel", 64, 32,
         image(64, 32, [](int i, int j) { return (i == 40 && j == 10) ? 1.0 : 0.0; }));
     env("environment_constant", "a one-pixel environment map: uniform over the sphere", 1, 1, {1.0f});
+    register_environment_family(registry);
 }
 
 }  // namespace
@@ -236,6 +275,22 @@ void register_light_sets(Registry& registry) {
                                                                l.triangle, l.disk));
     add_light(registry, "light_set_power", "a sphere, a triangle and a disk, each chosen by its power", {},
               LightSet<SphereLight, TriangleLight, DiskLight>(power_pmf(l), l.sphere, l.triangle, l.disk));
+    // The family --fuzz draws from (issue 37): the sphere chosen with
+    // probability p_sphere, the triangle with p_triangle of the rest, the
+    // disk with what is left, each between 1% and all but 1%. A light of
+    // probability 0 is unsampled where it shines (light_support fails it, as
+    // it should); and a share under ~1e-38 / pdf underflows the set's float
+    // pdf to 0, which is the same bug: neither is a correct set's range.
+    registry.add_family({{.family = "light_set", .description = "a sphere, a triangle and a disk chosen by a pmf"},
+                         {{"p_sphere", {1.0 / 3.0}, {{0.01, 0.98}}}, {"p_triangle", {0.5}, {{0.01, 0.99}}}},
+                         [](WarpCaseInfo info, const GridPoint& at) {
+                             const ThreeLights t = three_lights();
+                             const auto ps = static_cast<float>(at["p_sphere"]);
+                             const auto pt = (1.0f - ps) * static_cast<float>(at["p_triangle"]);
+                             return make_light_case(std::move(info), builtin_lights::kAtOrigin,
+                                                    LightSet<SphereLight, TriangleLight, DiskLight>(
+                                                        {ps, pt, 1.0f - ps - pt}, t.sphere, t.triangle, t.disk));
+                         }});
 }
 
 void register_light_cases(Registry& registry) {
