@@ -30,6 +30,10 @@ std::unique_ptr<Check> make_chi2_check();
 /// ctx.chunk_rng(c) by draw_inputs and warped by WarpCase::sample (the
 /// histogram the lane path of validate/lanes/lane_sampling.h must match).
 chi2::SampleChunk chi2_sample_chunks(const WarpCase& warp, const CheckContext& ctx);
+/// The chi-square check's vector path on this processor: "avx512" or "avx2"
+/// where the lanes run (validate/lanes/lane_sampling.h), else "scalar".
+const char* chi2_vector_path();
+
 /// "tabulated": for 1D warps and the monotone 1D views of a case (WarpCaseInfo::views),
 /// sample(u) and the density against the inversion method on a 65536-bucket
 /// PiecewiseConstant1D of the density, with bucket-derived tolerances.

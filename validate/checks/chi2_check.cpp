@@ -310,4 +310,8 @@ chi2::SampleChunk chi2_sample_chunks(const WarpCase& warp, const CheckContext& c
 
 std::unique_ptr<Check> make_chi2_check() { return std::make_unique<Chi2Check>(); }
 
+const char* chi2_vector_path() {
+    return vector_lane_path_available() ? lane_path_name(auto_lane_path()) : "scalar";
+}
+
 }  // namespace warpcheck

@@ -22,6 +22,7 @@
 #include "chi2/multiple_testing.h"
 #include "reports/terminal_table.h"
 #include "reports/text.h"
+#include "validate/checks/checks.h"
 #include "validate/run/thread_pool.h"
 #include "warpcheck/version.h"
 
@@ -113,13 +114,14 @@ void apply_multiple_test_correction(RunResult& run, double family_alpha, std::op
     }
 }
 
-namespace {
-
 std::string machine_description() {
     utsname u{};
     std::string text = uname(&u) == 0 ? fmt::format("{} {} {}", u.sysname, u.release, u.machine) : "unknown";
-    return text + fmt::format(", {} hardware threads", std::thread::hardware_concurrency());
+    return text + fmt::format(", {} hardware threads, chi-square lanes: {}", std::thread::hardware_concurrency(),
+                              chi2_vector_path());
 }
+
+namespace {
 
 std::string utc_now() {
     const std::time_t t = std::time(nullptr);

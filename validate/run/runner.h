@@ -62,6 +62,12 @@ std::vector<Job> shard_jobs(const std::vector<Job>& jobs, Shard shard);
 /// Šidák correction of a run of these jobs covers.
 int statistical_tests(const std::vector<Job>& jobs);
 
+/// The machine a run's timings come from, as its result records it
+/// (RunInfo::machine): kernel, processor architecture, hardware threads and
+/// the vector path of the chi-square lanes (AVX-512, AVX2 or scalar), which
+/// sets the speed of the chi2 rows.
+std::string machine_description();
+
 /// Runs the jobs and returns their results in job order. Exceptions from a check
 /// become Error results; the run goes on. With isolation, so do crashes, exits,
 /// runaway allocation and checks over their CPU time budget (validate/run/worker.h);

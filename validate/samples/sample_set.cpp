@@ -1,7 +1,5 @@
 #include "validate/samples/sample_set.h"
 
-#include <sys/utsname.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -148,12 +146,6 @@ CheckResult sample_chi2(const WarpCase& reference, std::span<const WarpOutput> s
     return r;
 }
 
-std::string machine() {
-    utsname u{};
-    const std::string text = uname(&u) == 0 ? fmt::format("{} {} {}", u.sysname, u.release, u.machine) : "unknown";
-    return text + fmt::format(", {} hardware threads", std::thread::hardware_concurrency());
-}
-
 }  // namespace
 
 std::vector<CheckResult> judge_sample_set(const WarpCase& reference, std::span<const WarpOutput> samples,
@@ -197,7 +189,7 @@ RunResult run_of_rows(std::vector<CheckResult> rows, const RunOptions& options, 
     run.info.samples = options.samples;
     run.info.strict = options.strict;
     run.info.compiler = WARPCHECK_COMPILER;
-    run.info.machine = machine();
+    run.info.machine = machine_description();
     const std::time_t t = std::time(nullptr);
     std::tm tm{};
     gmtime_r(&t, &tm);

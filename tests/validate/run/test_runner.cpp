@@ -13,6 +13,8 @@
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
 #include "validate/api/registry.h"
+#include "validate/lanes/lane_sampling.h"
+#include "validate/run/runner.h"
 #include "validate/run/thread_pool.h"
 
 namespace warpcheck {
@@ -47,6 +49,18 @@ TEST(Sidak, NaNAndLowPValuesFail) {
     EXPECT_NE(run.results[2].message.find("NaN"), std::string::npos);
     EXPECT_EQ(run.results[3].verdict, Verdict::Pass);
     EXPECT_FALSE(run.results[3].level.has_value());
+}
+
+// A run's timings are read beside the machine that made them: its description
+// names the chi-square lanes' vector path, the one this processor runs (an
+// AVX2 machine ran chi2 1.56x faster per core than the scalar chunks).
+TEST(Runner, TheMachineDescriptionNamesTheChiSquareVectorPath) {
+    const std::string path = chi2_vector_path();
+    EXPECT_TRUE(path == "avx512" || path == "avx2" || path == "scalar") << path;
+    EXPECT_EQ(path == "scalar", !vector_lane_path_available()) << path;
+    const std::string machine = machine_description();
+    EXPECT_NE(machine.find(", chi-square lanes: " + path), std::string::npos) << machine;
+    EXPECT_NE(machine.find("hardware threads"), std::string::npos) << machine;
 }
 
 TEST(Runner, ThrowingWarpIsAnErrorAndTheRunGoesOn) {
