@@ -13,9 +13,11 @@
 #include "sampling/bsdf_diffuse.h"
 #include "sampling/bsdf_phase.h"
 #include "sampling/light.h"
+#include "sampling/light_set.h"
 #include "validate/api/light_case.h"
 #include "validate/api/bsdf_grid.h"
 #include "validate/api/registry.h"
+#include "validate/cases/light_cases.h"
 #include "validate/run/fuzz.h"
 
 namespace warpcheck {
@@ -235,6 +237,63 @@ TEST(Fuzz, AnEnvironmentMapHalfATexelOffIsFoundByItsRadianceOnSeveralSeeds) {
         const FuzzFinding* f = finding(r, "light_radiance");
         ASSERT_NE(f, nullptr) << fuzz_report_text(r);
         EXPECT_NE(f->shrunk_case, "fuzz_environment_half_texel[sun=1]") << fuzz_report_text(r);
+    }
+}
+
+using ThreeLightSet = LightSet<SphereLight, TriangleLight, DiskLight>;
+
+/// The built-in light set (a sphere, a triangle and a disk chosen by the
+/// family's shares); the planted twin's pdf() weighs every light by 1/3
+/// whatever the shares its sampler chose by (the pmf a renderer's MIS code
+/// uses, left at uniform when sampling went by power): right at equal shares,
+/// the family's default, and wrong by the shares' distance from 1/3 elsewhere.
+struct UniformPdfSet {
+    ThreeLightSet set, uniform;
+    bool planted;
+    LightSample sample(Vector3f ref, Point2f u) const { return set.sample(ref, u); }
+    float pdf(Vector3f ref, Vector3f wi) const { return (planted ? uniform : set).pdf(ref, wi); }
+    float L(Vector3f ref, Vector3f wi) const { return set.L(ref, wi); }
+};
+
+CaseFamily light_set_family(const char* name, bool planted) {
+    return {{.family = name, .description = "three lights chosen by a pmf"},
+            {{"p_sphere", {1.0 / 3.0}, {{0.01, 0.98}}}, {"p_triangle", {0.5}, {{0.01, 0.99}}}},
+            [planted](WarpCaseInfo info, const GridPoint& at) {
+                const ThreeLights t = three_lights();
+                const auto ps = static_cast<float>(at["p_sphere"]);
+                const auto pt = (1.0f - ps) * static_cast<float>(at["p_triangle"]);
+                const float third = 1.0f / 3.0f;
+                return make_light_case(
+                    std::move(info), {.ref = {0, 0, 0}, .normal = {0, 0, 1}},
+                    UniformPdfSet{ThreeLightSet({ps, pt, 1.0f - ps - pt}, t.sphere, t.triangle, t.disk),
+                                  ThreeLightSet({third, third, third}, t.sphere, t.triangle, t.disk), planted});
+            }};
+}
+
+// A light set whose pdf() keeps the uniform pmf while its sampler chooses by
+// other shares is found by sample_pdf, away from the equal shares where the
+// two agree; its correct twin, the same set with the same pmf in both, is
+// clean on the same seeds.
+TEST(Fuzz, ALightSetWhosePdfKeepsTheUniformPmfIsFoundAwayFromEqualSharesOnSeveralSeeds) {
+    Registry registry;
+    register_builtin_checks(registry);
+    registry.add_family(light_set_family("fuzz_light_set", false));
+    registry.add_family(light_set_family("fuzz_light_set_uniform_pdf", true));
+    for (uint64_t seed : {1, 2, 3}) {
+        FuzzOptions o;
+        o.run.samples = 20'000;
+        o.run.seed = seed;
+        o.random_points = 8;
+        o.families = {"fuzz_light_set"};
+        const FuzzReport clean = run_fuzz(registry, o);
+        EXPECT_TRUE(clean.clean()) << fuzz_report_text(clean);
+        o.families = {"fuzz_light_set_uniform_pdf"};
+        const FuzzReport r = run_fuzz(registry, o);
+        const FuzzFinding* f = finding(r, "sample_pdf");
+        ASSERT_NE(f, nullptr) << fuzz_report_text(r);
+        EXPECT_NE(f->shrunk_case.find("fuzz_light_set_uniform_pdf["), std::string::npos) << fuzz_report_text(r);
+        EXPECT_EQ(f->shrunk_case.find("p_sphere=0.333"), std::string::npos)
+            << "shrunk to the equal shares, where the bug cannot show: " << fuzz_report_text(r);
     }
 }
 
