@@ -141,7 +141,9 @@ void append_checks(std::string& html, const RunResult& run) {
     for (const auto& c : checks) {
         const auto& n = counts[c];
         const auto cell = [](int v, bool bad) { return fmt::format("<td class=\"n{}\">{}</td>", v > 0 && bad ? " bad" : "", v); };
-        const html::CheckLegend legend = html::check_legend(c);
+        CheckLegend legend;  // from the run (RunInfo::legends): the check's own words
+        for (const CheckLegend& l : run.info.legends)
+            if (l.check == c) legend = l;
         html += fmt::format("<tr><td class=\"mono\">{}</td>{}{}{}{}<td class=\"what\">{}</td><td class=\"what\">{}</td></tr>\n",
                             escaped(c), cell(n[0], false), cell(n[1], true), cell(n[2], true), cell(n[3], false),
                             escaped(legend.judged), escaped(legend.p_value.empty() ? "\u2014" : legend.p_value));

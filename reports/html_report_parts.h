@@ -24,15 +24,6 @@ namespace warpcheck::html {
 std::string_view style_sheet();
 std::string_view script();
 
-/// How a check's verdict is formed: what it judges, and what its p-value is
-/// and is compared with (empty for a check without a p-value). Empty `judged`
-/// for a check this file does not know.
-struct CheckLegend {
-    std::string judged;
-    std::string p_value;
-};
-CheckLegend check_legend(std::string_view check);
-
 /// The share of a chi-square check's level that its largest cell residual
 /// gets (chi2/local_residual.h, kLocalLevelShare), for the cell level the
 /// residual heatmap marks.

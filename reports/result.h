@@ -354,6 +354,22 @@ inline std::string_view verdict_word(const CheckResult& r) {
     return r.verdict == Verdict::Pass && !r.weak.empty() ? std::string_view("weak") : to_string(r.verdict);
 }
 
+/// How a check judges, for the legend of a report: written by the check
+/// itself (Check::legend, validate/checks/check.h) and carried with the run,
+/// so that a report explains every check it shows without knowing its name.
+struct CheckLegend {
+    std::string check;    ///< the check's name, as its rows give it
+    std::string judged;   ///< what is judged, and what fails
+    std::string p_value;  ///< how its p-value is formed ("" for a check without one)
+};
+
+template <class V, Model<CheckLegend> T>
+void fields(V& v, T& l) {
+    v("check", l.check);
+    v("judged", l.judged);
+    v("p_value", l.p_value);
+}
+
 /// What a whole run was: settings, environment and totals.
 struct RunInfo {
     std::string tool_version;
@@ -385,6 +401,10 @@ struct RunInfo {
     /// verdicts and of the whole run's job list, the same in every shard of one
     /// run, which --merge checks (validate/run/run_digest.h). Empty where none was made.
     std::string digest;
+    /// The legend of each check that has a row, in the order the checks first
+    /// appear (absent from files written before legends travelled with the
+    /// run: read as none, and such a report shows no legend).
+    std::vector<CheckLegend> legends;
 };
 
 /// The JSON document writes tool_version as its tool.version, the rest as its "run".
@@ -411,6 +431,7 @@ void fields(V& v, T& i) {
         g("count", i.shard_count);
         g("jobs", i.run_jobs);
     });
+    v.optional_group("legends", !i.legends.empty(), [&](auto& g) { g("checks", i.legends); });
 }
 
 /// How many rows of each verdict a run has: the "totals" of the JSON document.

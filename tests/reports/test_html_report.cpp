@@ -194,6 +194,12 @@ TEST(HtmlReport, TheSearchReadsTheMessageOfRowsThatAreNotOpen) {
 TEST(HtmlReport, EveryRowHasItsJudgedTableAndTheLegendExplainsEachPValue) {
     RunResult run;
     run.info = sample_info();
+    // The legends as the checks state them (Check::legend), carried by the run.
+    run.info.legends = {{"chi2", "Pearson's X\u00b2 of the samples over cells.",
+                         "min(p_X\u00b2 / 0.8, p_cell / 0.2), weighted Bonferroni. The summary's p is Pearson's alone."},
+                        {"unbinned", "The empirical CDF of each marginal against the CDF of the pdf.",
+                         "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged tests."},
+                        {"roundtrip", "|invert(sample(u)) \u2212 u| against the case's tolerance.", ""}};
     run.results = {chi2_row(1e-9, 0.5), unbinned_row(), roundtrip_row("a", 1e-7)};
     using State = JudgedQuantity::State;
     run.results[0].judged = {{"Pearson X\u00b2 = 968.6 on 1023 dof: p-value", "1.00e-09", "\u2265 5.82e-05", State::Beyond},
@@ -207,6 +213,28 @@ TEST(HtmlReport, EveryRowHasItsJudgedTableAndTheLegendExplainsEachPValue) {
     EXPECT_THAT(html, HasSubstr("min(p_X\u00b2 / 0.8, p_cell / 0.2)"));
     EXPECT_THAT(html, HasSubstr("The summary&#39;s p is Pearson&#39;s alone."));
     EXPECT_THAT(html, HasSubstr("1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged tests"));
+    EXPECT_THAT(xml_problem(html), IsEmpty());
+}
+
+// The report names no check: a check it has never heard of (a renderer's own)
+// is explained by the legend its run carries, and a row whose run carries
+// none (a file written before legends travelled with runs) shows an empty one.
+TEST(HtmlReport, EachChecksLegendIsTheOneItsRunCarriesWhateverTheCheck) {
+    RunResult run;
+    run.info = sample_info();
+    CheckResult mine = roundtrip_row("a", 1e-7);
+    mine.check_name = "my_renderers_check";
+    CheckResult old = roundtrip_row("b", 1e-7);
+    old.check_name = "a_check_without_legend";
+    run.results = {mine, old};
+    run.info.legends = {{"my_renderers_check", "Whether my sampler's caustic paths agree, in my words.",
+                         "Fisher's method over the paths."}};
+    const std::string html = unpacked_html(render_html(run));
+    EXPECT_THAT(html, HasSubstr("<td class=\"what\">Whether my sampler&#39;s caustic paths agree, in my words.</td>"
+                                "<td class=\"what\">Fisher&#39;s method over the paths.</td>"));
+    EXPECT_THAT(html, HasSubstr("a_check_without_legend</td><td class=\"n\">1</td><td class=\"n\">0</td><td "
+                                "class=\"n\">0</td><td class=\"n\">0</td><td class=\"what\"></td><td "
+                                "class=\"what\">\u2014</td>"));
     EXPECT_THAT(xml_problem(html), IsEmpty());
 }
 

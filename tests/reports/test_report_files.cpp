@@ -162,6 +162,17 @@ TEST(JsonSchema, TheValidatorRejectsWhatTheSchemaForbids) {
     auto old_version = good;
     old_version["schema_version"] = 0;
     EXPECT_THAT(validator.validate(old_version), Not(IsEmpty()));
+    // The checks' legends, carried by the run (RunInfo::legends).
+    RunResult with_legends = sample_pass_and_fail();
+    with_legends.info.legends = {{"roundtrip", "what it judges", ""}, {"chi2", "what it judges", "how p is formed"}};
+    const auto legends = nlohmann::json::parse(render_json(with_legends));
+    ASSERT_EQ(legends["run"]["legends"]["checks"].size(), 2u);
+    EXPECT_EQ(legends["run"]["legends"]["checks"][1]["p_value"], "how p is formed");
+    EXPECT_THAT(validator.validate(legends), IsEmpty());
+    auto extra_legend = legends;
+    extra_legend["run"]["legends"]["checks"][0]["colour"] = "red";
+    EXPECT_THAT(validator.validate(extra_legend), Not(IsEmpty()));
+    EXPECT_FALSE(good["run"].contains("legends")) << "a run without legends writes none";
 }
 
 TEST(JsonReport, NonFiniteNumbersAndHostileTextSurvive) {

@@ -36,6 +36,7 @@ TEST(ResultModel, DescriptionsCoverEveryMember) {
     expect_every_member_described<PhaseTime>("PhaseTime");
     expect_every_member_described<CheckResult>("CheckResult");
     expect_every_member_described<RunInfo>("RunInfo");
+    expect_every_member_described<CheckLegend>("CheckLegend");
     expect_every_member_described<Totals>("Totals");
 }
 

@@ -396,6 +396,11 @@ public:
                 .p_value = "p-value: the smallest test's, times the number of tests, at most 1"};
     }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "Pearson's X\u00b2 of the mass per binade and of the significand parity within binades, and "
+                "where the interval allows, of each binary digit of (x \u2212 a) / (b \u2212 a).",
+                "min(1, k \u00d7 min p) over the k tests made (Bonferroni)."};
+    }
     std::string description() const override {
         return "64-bit float samplers: chi-square of the mass per binade, of the significand parity within "
                "binades and of the binary digits down to 2^-20 (at least 2^24 samples)";

@@ -168,6 +168,10 @@ public:
     virtual std::string name() const = 0;
     /// One line for --list.
     virtual std::string description() const = 0;
+    /// What the check judges and how its p-value is formed, for the legend of
+    /// every report (carried with the run: RunInfo::legends). The default is
+    /// the description, without a p-value rule.
+    virtual CheckLegend legend() const { return {name(), description(), ""}; }
     /// Whether the check runs on the case, and where it does not, whether the
     /// case lacks what the check tests (Applicability): stated once, here.
     virtual Applicability applicability(const WarpCase& warp) const = 0;

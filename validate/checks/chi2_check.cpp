@@ -250,6 +250,15 @@ public:
                                        1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare)};
     }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "Pearson's X\u00b2 of the samples over cells against the pdf integrated over each cell "
+                "(cells expected below 5 pooled), and the single cell least likely under the model; also fails on "
+                "samples outside the domain, NaN samples, samples where the density is 0, and an integral off 1 "
+                "beyond its tolerance.",
+                "min(p_X\u00b2 / 0.8, p_cell / 0.2), weighted Bonferroni: Pearson gets 80% of the level, the largest "
+                "residual (its exact binomial p, \u0160id\u00e1k over the cells) 20%. The summary's p is Pearson's "
+                "alone."};
+    }
     std::string description() const override {
         return "Pearson chi-square test of the samples against the pdf integrated over cells (pooled, Sidak-corrected)";
     }

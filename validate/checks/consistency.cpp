@@ -368,6 +368,12 @@ public:
                  {"zero_pdf_rounded_edge_inputs", "edge inputs with pdf 0 beside a positive pdf", FigureRule::Counted}},
                 .bounds = strict_rounding_line};
     }
+    CheckLegend legend() const override {
+        return {name(), "Every sample lies in the domain and has a finite, positive pdf: counts must be 0, but for a "
+                "pdf of 0 on the boundary, and one beside a positive pdf (float rounding at a support's edge) within "
+                "its Poisson bound.",
+                ""};
+    }
     std::string description() const override {
         return "every sample lies in the domain and has a finite, positive pdf (edge inputs included)";
     }

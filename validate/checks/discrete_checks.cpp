@@ -56,6 +56,10 @@ public:
         return {.figures = {{"sum", "sum of the pmf", FigureRule::WithinOfOne, "tolerance"},
                  {"invalid", "NaN, infinite or negative entries", FigureRule::Zero}}};
     }
+    CheckLegend legend() const override {
+        return {name(), "The pmf is finite, non-negative and sums to 1 within float rounding.",
+                ""};
+    }
     std::string description() const override {
         return "discrete cases: the pmf is finite, non-negative and sums to 1 over the categories";
     }
@@ -164,6 +168,10 @@ public:
                  {"zero_pmf_chosen", "categories of pmf 0 chosen", FigureRule::Zero}}};
     }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "Pearson's X\u00b2 of the category counts against the pmf; a category of pmf 0 chosen fails.",
+                "Pearson's p-value."};
+    }
     std::string description() const override {
         return "discrete cases: indices are categories, none of pmf 0 is chosen, and the counts fit the pmf "
                "(Pearson, pooled, Sidak-corrected)";
@@ -334,6 +342,10 @@ public:
                 .p_value = "p-value: the smallest test's, times the number of tests, at most 1"};
     }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "The remapped u: overall KS against uniform, and a X\u00b2 of u within each category.",
+                "min(p_KS / 0.5, p_X\u00b2 / 0.5) (weighted Bonferroni)."};
+    }
     std::string description() const override {
         return "discrete cases returning a remapped u: it lies in [0,1) and is uniform, overall (KS), within each "
                "category (chi-square) and down to 2^-20 (binary digits), Sidak-corrected";

@@ -341,6 +341,12 @@ public:
                  {"unreached_above_one_input", "floats never produced whose ideal exceeds one input", FigureRule::Counted}}};
     }
     bool uses_seed() const override { return false; }  // every input, no random stream
+    CheckLegend legend() const override {
+        return {name(), "Every input: outputs outside [a, b), steps down of a monotone sampler and a reach leaving "
+                "more mass out than one input's (monotone) or than independent draws leave at 1e-9 (hash) fail; the "
+                "bias of single floats is reported.",
+                ""};
+    }
     std::string description() const override {
         return "every input of a float sampler (all 2^32 for 32 bits; t = k 2^-24 for lerps), exact counts per "
                "output float against the uniform measure";

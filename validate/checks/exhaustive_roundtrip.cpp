@@ -255,6 +255,10 @@ public:
                 }};
     }
     bool uses_seed() const override { return false; }  // every input, no random stream
+    CheckLegend legend() const override {
+        return {name(), "Every float u of [0, 1): the round trip, a monotone sample(u), a finite positive pdf.",
+                ""};
+    }
     std::string description() const override {
         return "1D warps, every float u of [0,1): invert(sample(u)) vs u, monotone sample, finite positive pdf "
                "(--exhaustive)";

@@ -139,6 +139,14 @@ public:
                 .p_value = "p-value: the t-test's"};
     }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        if (name() == "weight_mean")
+            return {name(), "The mean weight eval/pdf against the integral of eval (quadrature).",
+                    "The t-test's two-sided p-value; where f's float noise reaches half its integral (no albedo "
+                    "known), the one-sided p-value of the mean energy weight against 1."};
+        return {name(), "The mean of 1/pdf against the domain's measure.",
+                "The t-test's two-sided p-value."};
+    }
     std::string description() const override {
         return which_ == Estimator::Weight
                    ? "the mean weight against the integral of eval over the domain (t-test, Sidak-corrected)"

@@ -249,6 +249,13 @@ public:
         return {.figures = {{"max_relative_difference", "largest relative difference", FigureRule::AtMost, "tolerance"},
                  {"mismatches", "samples beyond the tolerance", FigureRule::Zero}}};
     }
+    CheckLegend legend() const override {
+        if (name() == "sample_pdf")
+            return {name(), "The pdf that sample returns against pdf(x), within float rounding.",
+                    ""};
+        return {name(), "The weight that sample returns against eval(x) / pdf(x), within float rounding.",
+                ""};
+    }
     std::string description() const override {
         return what_ == What::Pdf ? "the pdf that sample returns equals pdf(x) at every sample (float-rounding tolerance)"
                                   : "the weight that sample returns equals eval(x) / pdf(x) at every sample "

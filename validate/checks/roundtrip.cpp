@@ -728,6 +728,11 @@ public:
                     strict_zero_line(r, "rounded_to_one", "u rounded to 1", out);
                 }};
     }
+    CheckLegend legend() const override {
+        return {name(), "|invert(sample(u)) \u2212 u| against the case's tolerance (float resolution); excused "
+                "classes (resolution-limited, degenerate, other preimage, rounded to 1) are counted and bounded.",
+                ""};
+    }
     std::string description() const override {
         return "invert(sample(u)) == u over a seeded stream plus edge inputs (exact for raw-bit inputs)";
     }

@@ -640,6 +640,11 @@ public:
                  {"nan_pdfs", "NaN pdfs", FigureRule::Zero},
                  {"mass_outside_reach", "mass outside the warp's reach", FigureRule::AtMost, "mass_outside_reach_tolerance"}}};
     }
+    CheckLegend legend() const override {
+        return {name(), "sample(u) and pdf against the inversion method on a 65536-bucket table of the density: each "
+                "error over its tolerance.",
+                ""};
+    }
     std::string description() const override {
         return "sample(u) and pdf against the inversion method on a 65536-bucket table of the density "
                "(1D warps and monotone 1D marginals)";

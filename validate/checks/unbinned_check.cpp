@@ -933,6 +933,14 @@ public:
     std::string name() const override { return "unbinned"; }
     JudgedRules judged_rules() const override { return unbinned_judged_rules(); }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "The empirical CDF of each marginal against the CDF of the pdf: Anderson\u2013Darling on "
+                "every marginal, and Kuiper too on an azimuth (KS is shown, not judged); where float resolution and "
+                "the CDF's error could shift the CDF, each sample is tested within its band (conservative p); a "
+                "marginal whose CDF is not accurate enough is left untested.",
+                "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged tests. The summary's \u201cmin "
+                "p\u201d is before the correction."};
+    }
     std::string description() const override {
         return "KS, Kuiper and Anderson-Darling tests of each marginal against its CDF from the pdf, allowing for "
                "float resolution and the CDF's error (Sidak over the tests)";

@@ -193,6 +193,24 @@ std::string rerun_program(const std::string& command, const std::string& fallbac
     return plain ? word : fallback;
 }
 
+/// A shard has the legends of its own rows' checks; the merged run has each
+/// check's once, in the order its rows first appear, as the unsharded run has.
+std::vector<CheckLegend> merged_legends(const std::vector<ShardFile>& shards, const std::vector<CheckResult>& rows) {
+    std::vector<CheckLegend> out;
+    for (const CheckResult& r : rows) {
+        if (std::any_of(out.begin(), out.end(), [&](const CheckLegend& l) { return l.check == r.check_name; }))
+            continue;
+        for (const ShardFile& s : shards) {
+            const auto& from = s.run.info.legends;
+            const auto it = std::find_if(from.begin(), from.end(), [&](const CheckLegend& l) { return l.check == r.check_name; });
+            if (it == from.end()) continue;
+            out.push_back(*it);
+            break;
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 std::vector<std::string> missing_shards(const std::vector<ShardFile>& shards) {
@@ -226,6 +244,7 @@ RunResult merge_shards(const std::vector<ShardFile>& shards, const std::string& 
         merged.info.abandoned_checks += s.run.info.abandoned_checks;
     }
     merged.results = interleave(shards, merged.info.run_jobs, merged.info.shard_count);
+    merged.info.legends = merged_legends(shards, merged.results);
     std::vector<JobName> jobs;
     for (const CheckResult& r : merged.results) jobs.push_back({r.case_name, r.check_name});
     if (run_digest(merged.info, jobs) != merged.info.digest)

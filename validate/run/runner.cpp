@@ -351,6 +351,11 @@ RunResult run_jobs(const std::vector<Job>& jobs, const RunOptions& options, cons
     }
     apply_multiple_test_correction(run, options.alpha, options.family_tests.value_or(statistical_tests(jobs)));
     for (std::size_t i = 0; i < jobs.size(); ++i) record_judgement(run.results[i], jobs[i].check->judged_rules());
+    // Each check's legend once, in the order its rows first appear: reports explain any check from these.
+    for (const Job& job : jobs)
+        if (std::none_of(run.info.legends.begin(), run.info.legends.end(),
+                         [&](const CheckLegend& l) { return l.check == job.check->name(); }))
+            run.info.legends.push_back(job.check->legend());
     run.info.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return run;
 }

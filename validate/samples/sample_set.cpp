@@ -180,6 +180,31 @@ std::vector<CheckResult> judge_sample_set(const WarpCase& reference, std::span<c
     return rows;
 }
 
+namespace {
+
+/// The legends of the rows this room makes (Check::legend for the checks of a
+/// run): what each judges and how its p-value is formed.
+CheckLegend sample_row_legend(const std::string& check) {
+    if (check == "samples_consistency")
+        return {check, "Every sample drawn elsewhere lies in the domain with a finite, positive pdf (a pdf of 0 "
+                       "exactly on the boundary is counted, not failed); no allowance for samples rounded across "
+                       "the edge of a smaller support.", ""};
+    if (check == "samples_chi2")
+        return {check, "Pearson's X\u00b2 of the samples drawn elsewhere over cells against the case's pdf "
+                       "integrated over each cell, as chi2 runs it.",
+                "Pearson's p-value with the largest cell's, as chi2 forms them."};
+    if (check == "ulps")
+        return {check, "The same inputs through two builds: every output coordinate's distance in floats (below "
+                       "the floor, in floats of the floor) within the ulps the two claim; NaN fails.", ""};
+    if (check == "two_sample")
+        return {check, "Two sets of independent draws from one distribution: X\u00b2 homogeneity on cells of the "
+                       "pooled samples and Anderson\u2013Darling two-sample on each of the domain's parameters.",
+                "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k tests."};
+    return {check, "", ""};
+}
+
+}  // namespace
+
 RunResult run_of_rows(std::vector<CheckResult> rows, const RunOptions& options, const std::string& command) {
     RunResult run;
     run.info.tool_version = WARPCHECK_VERSION;
@@ -198,6 +223,9 @@ RunResult run_of_rows(std::vector<CheckResult> rows, const RunOptions& options, 
     run.info.started_at = stamp;
     run.info.samples = 0;  // the samples the rows judged, not a count drawn
     for (CheckResult& r : rows) {
+        if (std::none_of(run.info.legends.begin(), run.info.legends.end(),
+                         [&](const CheckLegend& l) { return l.check == r.check_name; }))
+            run.info.legends.push_back(sample_row_legend(r.check_name));
         r.rerun_command = command;
         run.info.wall_seconds += r.seconds;
         run.info.samples = std::max(run.info.samples, r.samples);

@@ -291,6 +291,12 @@ public:
         return {.p_value = "p-value: the t-test's", .bounds = energy_bound_line};
     }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "The mean weight against the directional albedo (the integral of f |cos| plus the delta "
+                "lobes), and the energy albedo against 1 (energy created fails).",
+                "The t-test's two-sided p-value; where f's float noise reaches half its integral (no albedo known), "
+                "the one-sided p-value of the mean energy weight against 1."};
+    }
     std::string description() const override {
         return "BSDF: the mean weight against the directional albedo (t-test, Sidak-corrected), and the energy "
                "albedo at most 1";
@@ -347,6 +353,10 @@ public:
     std::string name() const override { return "bsdf_energy"; }
     bool statistical() const override { return true; }
     bool runs_by_default(const RunOptions&) const override { return false; }
+    CheckLegend legend() const override {
+        return {name(), "The mean energy weight of the samples against 1, without quadrature (run by --fuzz).",
+                "The one-sided t-test's p-value of the mean energy weight above 1."};
+    }
     std::string description() const override {
         return "BSDF: the mean energy weight of the samples at most 1 (one-sided t-test, Sidak-corrected); no "
                "quadrature, for --fuzz";

@@ -314,6 +314,13 @@ public:
                 .bounds = bsdf_chi2_bound_lines};
     }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "The continuous lobes' wi over cells of the sphere against pdf(wo, .) (Pearson's X\u00b2 and "
+                "the largest residual, with the chi2 check's float-aware cells and bands), and the share of draws "
+                "that landed against pdf(wo, .)'s integral; also fails on samples where the pdf integrates to 0 and "
+                "an integral above what the continuous lobes hold.",
+                "min(p_X\u00b2 / 0.7, p_cell / 0.2, p_landing / 0.1), weighted Bonferroni."};
+    }
     std::string description() const override {
         return "BSDF: chi-square of the continuous lobes' wi over the sphere against pdf(wo, .), and the pdf's "
                "integral against the share of draws that landed (Sidak-corrected)";

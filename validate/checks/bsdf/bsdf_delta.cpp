@@ -212,6 +212,11 @@ public:
                 .p_value = "p-value: the smallest lobe's, \u0160id\u00e1k-corrected over the lobes tested"};
     }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "Each delta lobe's share of draws against the probability its samples claim (exact "
+                "binomial), and its direction (mirror, Snell) and eta within float rounding.",
+                "The smallest lobe's p-value, \u0160id\u00e1k-corrected over the lobes tested."};
+    }
     std::string description() const override {
         return "BSDF: each delta lobe's share of draws against its claimed probability (binomial, Sidak-corrected), "
                "its direction exact (mirror; Snell with the sample's eta) and its eta as claimed";

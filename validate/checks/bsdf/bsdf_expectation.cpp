@@ -525,6 +525,14 @@ public:
                            "\u0160id\u00e1k-corrected"};
     }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "A stochastic BSDF in expectation: the sampled weights that land in each cell of the sphere "
+                "against the integral of its estimated f |cos| over the cell (z-tests with both sides' measured "
+                "variances; cells judged alone where pilots promise 50 effective terms, the others pooled), the "
+                "total, energy at most 1, and the MIS pdf positive at every sampled direction.",
+                "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k comparisons; a retested one's p is the "
+                "larger of its two."};
+    }
     std::string description() const override {
         return "stochastic BSDF: sampled weights per cell of the sphere against the integral of its estimated f "
                "|cos| (z-tests, Sidak), energy at most 1, the MIS pdf positive where it samples";

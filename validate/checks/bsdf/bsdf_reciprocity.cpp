@@ -257,6 +257,11 @@ public:
                  {"excused_pairs", "pairs at f's float resolution (excused)", FigureRule::Counted},
                  {"grid_excused_pairs", "of them, on the evenly spread grid", FigureRule::AtMost, "grid_excused_pairs_bound"}}};
     }
+    CheckLegend legend() const override {
+        return {name(), "f(wo, wi) against f(wi, wo) (the eta\u00b2 rule across an interface) at every sampled wi "
+                "and a Fibonacci grid, within 2^-12 relative or f's float resolution.",
+                ""};
+    }
     std::string description() const override {
         return "BSDF: f(wo, wi) = f(wi, wo), with the eta^2 rule across an interface, where the case claims "
                "reciprocity (float-rounding tolerance)";

@@ -183,6 +183,12 @@ public:
                  {"terminated", "secondary channels terminated (pdf 0)", FigureRule::Counted},
                  {"compared_without_ratio", "secondary values compared without a ratio (a hero value of 0)", FigureRule::Counted}}};
     }
+    CheckLegend legend() const override {
+        return {name(), "A spectral BSDF's channel case: at every sample, each secondary channel's f and pdf against "
+                "f() and pdf() at its wi (a pdf of 0: terminated), each in the hero's proportion that f() and pdf() "
+                "give there, within 2^-12 relative.",
+                ""};
+    }
     std::string description() const override {
         return "spectral BSDF: each sample's secondary channels' f and pdf against f() and pdf() there (0: "
                "terminated)";

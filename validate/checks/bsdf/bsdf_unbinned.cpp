@@ -63,6 +63,12 @@ public:
     std::string name() const override { return "bsdf_unbinned"; }
     JudgedRules judged_rules() const override { return unbinned_judged_rules(); }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "The continuous lobes' phi_i and cos theta_i against their CDFs from pdf(wo, .): the "
+                "unbinned check's Anderson\u2013Darling on both and Kuiper on the azimuth, each sample within its "
+                "float band where that matters.",
+                "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k judged tests."};
+    }
     std::string description() const override {
         return "BSDF: Kuiper and Anderson-Darling tests of the continuous lobes' phi_i and cos theta_i against their "
                "CDFs from pdf(wo, .), allowing for float resolution and the CDF's error (Sidak over the tests)";

@@ -321,6 +321,12 @@ public:
                  {"excused_random", "of them, from random inputs", FigureRule::AtMost, "excused_random_limit"},
                  {"excused_outside_support", "of them, where f or pdf at wi is 0 (a neighbour's is not)", FigureRule::Counted}}};
     }
+    CheckLegend legend() const override {
+        return {name(), "Every sample's weight f |cos| / pdf against f() and pdf() at its wi (2^-12 relative; "
+                "samples at f's and pdf's float resolution excused, counted, and at most 2^-10 of the random "
+                "inputs'); wi a unit vector on its flags' side; no sample where pdf or f is 0.",
+                ""};
+    }
     std::string description() const override {
         return "BSDF: every sample's weight f |cos| / pdf against f() and pdf() at its wi; wi a unit vector on "
                "its flags' side; none where pdf or f is 0; a transmission's eta as claimed (float-rounding tolerance)";

@@ -86,6 +86,12 @@ public:
     std::string name() const override { return "light_irradiance"; }
     JudgedRules judged_rules() const override { return {.p_value = "p-value: the t-test's"}; }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "A light's irradiance estimator: the mean of L |cos| / pdf over its samples (0 where it "
+                "declined) against the integral of its own L(ref, w) |cos| over the sphere (verified quadrature on "
+                "cells placed by a pilot, with the light's float noise); non-finite estimates fail.",
+                "The t-test's two-sided p-value, the integral's uncertainty added to the standard error."};
+    }
     std::string description() const override {
         return "light: the mean of L |cos| / pdf against the integral of L(ref, w) |cos| over the sphere (t-test, "
                "Sidak-corrected)";

@@ -238,6 +238,13 @@ public:
                             {"behind_surface", "samples behind the reference surface", FigureRule::Counted},
                             {"no_sample", "inputs the light declined", FigureRule::Counted}}};
     }
+    CheckLegend legend() const override {
+        return {name(), "Every sample's L against the light's own L(ref, wi) (finite, > 0, equal within float "
+                "rounding): a sampled direction that misses the light fails; misses at the silhouette within a float "
+                "step are excused, counted and bounded; samples behind the reference surface or without light are "
+                "counted, not failed.",
+                ""};
+    }
     std::string description() const override {
         return "light: every sample's L equals the light's own L(ref, wi) > 0 (misses named; samples behind the "
                "surface counted)";

@@ -182,6 +182,13 @@ public:
                              FigureRule::AtMost, "excused_limit"}},
                 .bounds = found_light_line};
     }
+    CheckLegend legend() const override {
+        return {name(), "pdf(ref, w) > 0 exactly where the light's own L(ref, w) > 0, probed over the whole sphere "
+                "and around where the sampler puts its mass: a lit direction of pdf 0 or a dark one of pdf > 0 "
+                "fails; disagreements within a float step of the silhouette are excused and bounded by the share "
+                "such a band holds.",
+                ""};
+    }
     std::string description() const override {
         return "light: pdf(ref, w) > 0 exactly where the light's own L(ref, w) > 0, probed over the sphere and "
                "around the sampled cap";

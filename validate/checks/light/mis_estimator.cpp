@@ -115,6 +115,12 @@ public:
     std::string name() const override { return "mis_estimator"; }
     JudgedRules judged_rules() const override { return {.p_value = "p-value: the t-test's"}; }
     bool statistical() const override { return true; }
+    CheckLegend legend() const override {
+        return {name(), "The multi-sample MIS estimator, one sample of every strategy per input, weighted by the "
+                "heuristic and divided by the returned pdf, against the integral of f L |cos| over the sphere "
+                "(verified quadrature on cells placed by a pilot of the strategies' lit samples).",
+                "The t-test's two-sided p-value, the integral's uncertainty added to the standard error."};
+    }
     std::string description() const override {
         return "MIS: the mean of the weighted sum over strategies of f L |cos| / pdf against the integral of "
                "f L |cos| over the sphere (t-test, Sidak-corrected)";

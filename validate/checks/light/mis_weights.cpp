@@ -200,6 +200,12 @@ public:
                             {"max_excess", "largest |sum of weights \u2212 1|", FigureRule::Counted},
                             {"no_sample", "inputs a strategy declined", FigureRule::Counted}}};
     }
+    CheckLegend legend() const override {
+        return {name(), "At every direction a strategy samples, the weights of all strategies (each one's own pdf "
+                "beside the others' pdfs as the MIS sum evaluates them) sum to 1; sums that reach 1 only at a float "
+                "neighbour are counted and bounded; a case whose sum uses the cases' own pdfs is n/a.",
+                ""};
+    }
     std::string description() const override {
         return "MIS: at every sampled direction the strategies' weights (each one's own pdf beside the others' "
                "pdfs as the MIS sum evaluates them) sum to 1";
