@@ -186,6 +186,28 @@ TEST(Fuzz, ALightFamilyIsFuzzedByTheLightChecksAndItsFarBugIsFoundFar) {
     EXPECT_EQ(f->shrunk_case, "fuzz_sphere_far_doubled[distance=100]") << fuzz_report_text(r);
 }
 
+/// Fuzzes a correct family and its planted twin on seeds 1-3 (20,000 samples,
+/// 8 random points): the correct one must come out clean and the twin found by
+/// `check`; calls `expect_shrunk` with each seed's shrunk case and report.
+template <class ExpectShrunk>
+void expect_twin_found_on_seeds(const Registry& registry, const std::string& correct, const std::string& planted,
+                                const std::string& check, ExpectShrunk expect_shrunk) {
+    for (uint64_t seed : {1, 2, 3}) {
+        FuzzOptions o;
+        o.run.samples = 20'000;
+        o.run.seed = seed;
+        o.random_points = 8;
+        o.families = {correct};
+        const FuzzReport clean = run_fuzz(registry, o);
+        EXPECT_TRUE(clean.clean()) << fuzz_report_text(clean);
+        o.families = {planted};
+        const FuzzReport r = run_fuzz(registry, o);
+        const FuzzFinding* f = finding(r, check);
+        ASSERT_NE(f, nullptr) << fuzz_report_text(r);
+        expect_shrunk(f->shrunk_case, fuzz_report_text(r));
+    }
+}
+
 /// An environment map of width x 4 pixels, a sky with one pixel `sun` times
 /// brighter; the planted twin returns from its samples the radiance half a
 /// texel further round in azimuth (a lookup at the pixel's corner where the
@@ -224,20 +246,10 @@ TEST(Fuzz, AnEnvironmentMapHalfATexelOffIsFoundByItsRadianceOnSeveralSeeds) {
     register_builtin_checks(registry);
     registry.add_family(environment_family("fuzz_environment", false));
     registry.add_family(environment_family("fuzz_environment_half_texel", true));
-    for (uint64_t seed : {1, 2, 3}) {
-        FuzzOptions o;
-        o.run.samples = 20'000;
-        o.run.seed = seed;
-        o.random_points = 8;
-        o.families = {"fuzz_environment"};
-        const FuzzReport clean = run_fuzz(registry, o);
-        EXPECT_TRUE(clean.clean()) << fuzz_report_text(clean);
-        o.families = {"fuzz_environment_half_texel"};
-        const FuzzReport r = run_fuzz(registry, o);
-        const FuzzFinding* f = finding(r, "light_radiance");
-        ASSERT_NE(f, nullptr) << fuzz_report_text(r);
-        EXPECT_NE(f->shrunk_case, "fuzz_environment_half_texel[sun=1]") << fuzz_report_text(r);
-    }
+    expect_twin_found_on_seeds(registry, "fuzz_environment", "fuzz_environment_half_texel", "light_radiance",
+                               [](const std::string& shrunk, const std::string& report) {
+                                   EXPECT_NE(shrunk, "fuzz_environment_half_texel[sun=1]") << report;
+                               });
 }
 
 using ThreeLightSet = LightSet<SphereLight, TriangleLight, DiskLight>;
@@ -279,22 +291,12 @@ TEST(Fuzz, ALightSetWhosePdfKeepsTheUniformPmfIsFoundAwayFromEqualSharesOnSevera
     register_builtin_checks(registry);
     registry.add_family(light_set_family("fuzz_light_set", false));
     registry.add_family(light_set_family("fuzz_light_set_uniform_pdf", true));
-    for (uint64_t seed : {1, 2, 3}) {
-        FuzzOptions o;
-        o.run.samples = 20'000;
-        o.run.seed = seed;
-        o.random_points = 8;
-        o.families = {"fuzz_light_set"};
-        const FuzzReport clean = run_fuzz(registry, o);
-        EXPECT_TRUE(clean.clean()) << fuzz_report_text(clean);
-        o.families = {"fuzz_light_set_uniform_pdf"};
-        const FuzzReport r = run_fuzz(registry, o);
-        const FuzzFinding* f = finding(r, "sample_pdf");
-        ASSERT_NE(f, nullptr) << fuzz_report_text(r);
-        EXPECT_NE(f->shrunk_case.find("fuzz_light_set_uniform_pdf["), std::string::npos) << fuzz_report_text(r);
-        EXPECT_EQ(f->shrunk_case.find("p_sphere=0.333"), std::string::npos)
-            << "shrunk to the equal shares, where the bug cannot show: " << fuzz_report_text(r);
-    }
+    expect_twin_found_on_seeds(registry, "fuzz_light_set", "fuzz_light_set_uniform_pdf", "sample_pdf",
+                               [](const std::string& shrunk, const std::string& report) {
+                                   EXPECT_NE(shrunk.find("fuzz_light_set_uniform_pdf["), std::string::npos) << report;
+                                   EXPECT_EQ(shrunk.find("p_sphere=0.333"), std::string::npos)
+                                       << "shrunk to the equal shares, where the bug cannot show: " << report;
+                               });
 }
 
 TEST(Fuzz, ARangeEndTheMakerRefusesIsAFinding) {
