@@ -51,6 +51,13 @@ enum class CoatFlaw : uint8_t {
     /// f omits the radiance compression 1 / eta^2 on the paths that bounce
     /// inside the coat (k >= 1), a missing refraction Jacobian in one path.
     JacobianInF,
+    /// The coat's transmittance where the light enters (f's first direction,
+    /// the sampler's wo) by Schlick's approximation, where it leaves by the
+    /// exact Fresnel term, in f and in the sampler alike (the sampler's
+    /// weights follow f's terms), while f(wo, wi) and f(wi, wo) differ by the
+    /// two approximations' ratio at wo over that at wi (a few percent at
+    /// grazing angles): not reciprocal.
+    SchlickAtEntry,
 };
 
 template <typename Base>
@@ -74,7 +81,7 @@ public:
     BsdfSample sample(Vector3f wo, float uc, Point2f u) const {
         if (wo.z == 0.0f) return {};
         const float side = wo.z > 0.0f ? 1.0f : -1.0f;
-        const float fo = fresnel_dielectric(std::abs(wo.z), eta_);
+        const float fo = flaw_ == CoatFlaw::SchlickAtEntry ? schlick(std::abs(wo.z)) : fresnel_dielectric(std::abs(wo.z), eta_);
         if (uc < fo) return {{-wo.x, -wo.y, wo.z}, fo / std::abs(wo.z), fo, BsdfFlags::Reflection | BsdfFlags::Delta};
         Vector3f w;
         if (!inside(upper(wo), w)) return {};
@@ -121,7 +128,8 @@ public:
         }
         const float compression = 1.0f / (eta_ * eta_);
         const float paths = first + (flaw_ == CoatFlaw::JacobianInF ? rest * eta_ * eta_ : rest);
-        return transmittance_in_f(up_o.z) * transmittance_in_f(up_i.z) * compression * paths;
+        const float entry = flaw_ == CoatFlaw::SchlickAtEntry ? 1.0f - schlick(up_o.z) : transmittance_in_f(up_o.z);
+        return entry * transmittance_in_f(up_i.z) * compression * paths;
     }
 
     /// (1 - F(wo)) times the mixture of a quarter uniform over the hemisphere
@@ -151,12 +159,15 @@ private:
         return in.z > 0.0f;
     }
 
+    /// Schlick's approximation of the coat's Fresnel reflectance.
+    float schlick(float cos_theta) const {
+        const float r0 = (eta_ - 1.0f) * (eta_ - 1.0f) / ((eta_ + 1.0f) * (eta_ + 1.0f));
+        const float m = 1.0f - cos_theta;
+        return r0 + (1.0f - r0) * m * m * m * m * m;
+    }
+
     float transmittance_in_f(float cos_theta) const {
-        if (flaw_ == CoatFlaw::SchlickInF) {
-            const float r0 = (eta_ - 1.0f) * (eta_ - 1.0f) / ((eta_ + 1.0f) * (eta_ + 1.0f));
-            const float m = 1.0f - cos_theta;
-            return 1.0f - (r0 + (1.0f - r0) * m * m * m * m * m);
-        }
+        if (flaw_ == CoatFlaw::SchlickInF) return 1.0f - schlick(cos_theta);
         return 1.0f - fresnel_dielectric(cos_theta, eta_);
     }
 

@@ -50,7 +50,9 @@ struct BsdfClaims {
     /// importance sampling. The checks that compare values pointwise (the
     /// weight identity, the chi-square and unbinned tests against pdf(),
     /// reciprocity, the albedo by quadrature) do not apply;
-    /// bsdf_expectation tests it in expectation, per cell of the sphere.
+    /// bsdf_expectation tests it in expectation, per cell of the sphere:
+    /// the weights against f, and f(wo, wi) against f(wi, wo) where
+    /// `reciprocal` is claimed.
     bool stochastic = false;
 };
 

@@ -234,6 +234,13 @@ std::unique_ptr<WarpCase> coated_conductor_jacobian() {
                          "coated conductor whose f drops the 1 / eta^2 of the paths that bounce inside the coat");
 }
 
+std::unique_ptr<WarpCase> coated_diffuse_schlick_at_entry() {
+    return coated_flawed("coated_diffuse_schlick_at_entry", {{"R", 0.8}, {"theta_o", 80}}, 80, Lambertian(0.8f),
+                         CoatFlaw::SchlickAtEntry,
+                         "coated diffuse whose coat transmittance is Schlick's where light enters and exact where it "
+                         "leaves, in f and sampler alike: not reciprocal");
+}
+
 /// A spectral BSDF's channel case at theta_o 30 with one thing wrong.
 template <typename B>
 std::unique_ptr<WarpCase> spectral_flawed(std::string family, int hero, B bsdf, std::string description) {
@@ -300,6 +307,9 @@ std::vector<FlawedBsdf> bsdf_flawed_catalogue() {
         {coated_diffuse_schlick, "bsdf_expectation", "f's coat transmittance by Schlick, the sampler's exact"},
         {coated_diffuse_albedo, "bsdf_expectation", "the sampler scales the base's albedo by 1.02"},
         {coated_conductor_jacobian, "bsdf_expectation", "f drops 1 / eta^2 on the paths inside the coat"},
+        // Right in expectation for the weights, wrong only by reciprocity.
+        {coated_diffuse_schlick_at_entry, "bsdf_expectation",
+         "the coat's transmittance by Schlick where light enters, exact where it leaves: not reciprocal"},
         // Spectral: a channel's value wrong as a secondary (only bsdf_spectral
         // sees it) and as the hero (its weight, its albedo, and every
         // secondary's allowance widened at every draw).

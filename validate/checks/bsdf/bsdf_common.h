@@ -112,6 +112,24 @@ inline double claimed_eta(const BsdfCase& bsdf) {
     return bsdf.wo().z > 0.0f ? bsdf.claims().eta : 1.0 / bsdf.claims().eta;
 }
 
+/// 2^-12 relative, as bsdf_weight's: f(wo, wi) and f(wi, wo) compute the same
+/// half vector and Fresnel term from the two directions in another order, each
+/// off by a few float roundings, which a sharp lobe's slope (~80 per radian at
+/// alpha = 0.05) multiplies to ~1e-5; a non-reciprocal factor is off by percent.
+constexpr double kReciprocityTolerance = 0x1p-12;
+
+/// What f(wo, wi) is multiplied by to equal f(wi, wo) under the claimed
+/// reciprocity rule (BsdfClaims::reciprocal): 1 for reflection, across the
+/// interface (eta(wi) / eta(wo))^2 in radiance transport and its inverse in
+/// importance transport. bsdf_reciprocity holds a pair to it pointwise,
+/// bsdf_expectation a stochastic f in expectation.
+inline double reciprocity_scale(const BsdfCase& bsdf, const WarpOutput& wi) {
+    if (!bsdf.transmitted(wi)) return 1.0;
+    const double eta = bsdf.claims().eta;
+    const double ratio = wi[2] < 0.0f ? eta : 1.0 / eta;  // eta(wi) / eta(wo)
+    return bsdf.claims().transport == Transport::Radiance ? ratio * ratio : 1.0 / (ratio * ratio);
+}
+
 inline const char* delta_lobe_name(int k) { return k == 0 ? "delta reflection" : "delta transmission"; }
 
 /// The delta samples of a run, per lobe: how many, and what they claim (the

@@ -40,10 +40,25 @@
 //    at every continuous sample's wi: a direction the sampler draws where the
 //    MIS pdf is 0 gives its light-sampling strategy the MIS weight 1 there,
 //    and the weights no longer sum to 1.
+//  - reciprocity in expectation, where the case claims it: at the reference's
+//    directions wi, f(wi, wo) is evaluated too, and the paired differences
+//    f(wo, wi) s - f(wi, wo) (s the claimed rule's scale, bsdf_common.h) must
+//    average to 0 per cell: the estimates' expectations obey the rule that
+//    bsdf_reciprocity holds a deterministic f to pointwise. Pairing cancels
+//    f's smooth change across a cell, so the test sees the estimates' noise
+//    only. Cells are judged alone, pooled, retested and excused as the
+//    weights' are, by the effective count of the differences' magnitudes
+//    (their mean is 0 under the claim); the total over the sphere is judged
+//    too. The z-test allows a mean asymmetry of kReciprocityTolerance of the
+//    cell's integral of f(wi, wo): the pointwise check's allowance for f's
+//    float rounding, a bias that no count of evaluations averages away. Every
+//    reference evaluation of f, in either order, must be finite and not
+//    negative (a count);
 // The integral of pdf(wo, .) over the sphere (by the same evaluations) is
 // stated, not judged: an MIS pdf need not be normalised.
 // Power: the relative shift of the total, and of the heaviest cell, that the
-// row detects with probability 0.9 at the level of a typical run.
+// row detects with probability 0.9 at the level of a typical run; for
+// reciprocity, the relative asymmetry of the heaviest cell (by f(wi, wo)).
 // A cell's edges are compared in double with the float directions of the
 // samples: a sample within float rounding of an edge may change cells, a bias
 // of about 2^-24 of a cell's mass, far below the noise of 10^6 draws.
@@ -226,6 +241,15 @@ struct Reference {
     Side f;            ///< the integral of f |cos| over the cell
     double pdf = 0.0;  ///< the integral of pdf(wo, .) over the cell
     uint64_t evaluations = 0;
+    /// Where reciprocity is claimed: the integral over the cell of
+    /// f(wo, wi) s - f(wi, wo) (s the claimed rule's scale), both evaluated at
+    /// the same directions (paired: f's smooth change across the cell cancels
+    /// and only the estimates' noise is left); `asymmetry_size` sums the
+    /// differences' magnitudes (its sum) and squares, for the effective count
+    /// of a mean that is 0 under the claim; `reverse` the integral of f(wi, wo).
+    Side asymmetry, asymmetry_size;
+    double reverse = 0.0;
+    uint64_t bad_values = 0;  ///< f(wo, wi) or f(wi, wo) not finite or negative
 };
 
 /// The integrals over cell c of f |cos| and of pdf, from m directions
@@ -242,15 +266,28 @@ Reference integrate_cell(const BsdfCase& bsdf, const CheckContext& ctx, const st
         const double z = (h + rng.next_double()) / kHeights, r = std::sqrt(std::max(0.0, 1.0 - z * z));
         w = {static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)), static_cast<float>(side * z)};
     }
-    std::vector<double> fc(wi.size()), pdf(wi.size());
-    bsdf.f_cos(wi, fc);
+    const std::vector<WarpOutput> wo(wi.size(), detail::to_output_of(bsdf.wo()));
+    const bool reciprocal = bsdf.claims().reciprocal;
+    std::vector<double> fc(wi.size()), pdf(wi.size()), back(reciprocal ? wi.size() : 0);
+    bsdf.f(wo, wi, fc);  // f(wo, wi); times |cos| below, as BsdfCase::f_cos does
+    if (reciprocal) bsdf.f(wi, wo, back);
     bsdf.pdf(wi, pdf);
-    chi2::Moments y;
+    chi2::Moments y, d;
     Reference out;
     for (std::size_t k = 0; k < wi.size(); ++k) {
+        const double forward = fc[k];
+        fc[k] *= bsdf.cosine(wi[k]);
         y.add(area * fc[k]);
         out.f.squares += area * fc[k] * area * fc[k];
         out.pdf += area * pdf[k];
+        out.bad_values += !(forward >= 0.0 && std::isfinite(forward));
+        if (!reciprocal) continue;
+        out.bad_values += !(back[k] >= 0.0 && std::isfinite(back[k]));
+        const double diff = area * (forward * reciprocity_scale(bsdf, wi[k]) - back[k]);
+        d.add(diff);
+        out.asymmetry_size.sum += std::abs(diff);
+        out.asymmetry_size.squares += diff * diff;
+        out.reverse += area * back[k];
     }
     const double md = static_cast<double>(m);
     out.f.sum = y.mean;
@@ -258,6 +295,12 @@ Reference integrate_cell(const BsdfCase& bsdf, const CheckContext& ctx, const st
     out.f.squares /= md * md;
     out.pdf /= md;
     out.evaluations = m;
+    if (reciprocal) {
+        out.asymmetry = {d.mean, m > 1 ? d.variance() / md : 0.0, out.asymmetry_size.squares / (md * md)};
+        out.asymmetry_size.sum /= md;
+        out.asymmetry_size.squares /= md * md;
+        out.reverse /= md;
+    }
     return out;
 }
 
@@ -308,11 +351,17 @@ bool enough_terms(const Side& sampled, const Side& f) {
 struct Plan {
     std::vector<char> alone;  ///< per cell: judged on its own
     bool remainder = false;   ///< the pool of the other cells with mass is judged
+    /// The same for reciprocity in expectation (where claimed): a cell's
+    /// paired differences judged alone where the pilot promises 50 effective
+    /// terms of their magnitudes, the others pooled.
+    std::vector<char> reciprocity_alone;
+    bool reciprocity_remainder = false;
 };
 
 Plan plan_from_pilots(const std::vector<Side>& pilot_sampled, double draw_ratio, const std::vector<Reference>& pilot_ref,
                       const std::vector<Reference>& ref) {
-    Plan plan{std::vector<char>(ref.size(), 0)};
+    Plan plan;
+    plan.alone.assign(ref.size(), 0);
     Side rest_s, rest_f;
     for (std::size_t c = 0; c < ref.size(); ++c) {
         const Side s = projected(pilot_sampled[c], draw_ratio);
@@ -322,6 +371,15 @@ Plan plan_from_pilots(const std::vector<Side>& pilot_sampled, double draw_ratio,
         if (!plan.alone[c]) rest_s.add(s), rest_f.add(f);
     }
     plan.remainder = enough_terms(rest_s, rest_f);
+    plan.reciprocity_alone.assign(ref.size(), 0);
+    Side rest_size;
+    for (std::size_t c = 0; c < ref.size(); ++c) {
+        const Side size = projected(pilot_ref[c].asymmetry_size, static_cast<double>(ref[c].evaluations) /
+                                                                     static_cast<double>(pilot_ref[c].evaluations));
+        plan.reciprocity_alone[c] = size.effective_terms() >= kMinEffectiveTerms;
+        if (!plan.reciprocity_alone[c]) rest_size.add(size);
+    }
+    plan.reciprocity_remainder = rest_size.effective_terms() >= kMinEffectiveTerms;
     return plan;
 }
 
@@ -339,6 +397,21 @@ struct Comparison {
 double null_variance(const Side& s, double m) {
     if (!(s.raw > 0.0 && m > 0.0 && s.draws > 1.0)) return s.variance;
     return std::max(0.0, s.raw_squares / s.raw * m - m * m) / (s.draws - 1.0);
+}
+
+/// Reciprocity in expectation over a cell (or a pool): the mean paired
+/// difference f(wo, wi) s - f(wi, wo) against 0, by a z-test with its measured
+/// variance, beyond kReciprocityTolerance of the reverse integral: the
+/// pointwise check's allowance for f's float rounding, a bias of the two
+/// orders' arithmetic that no count of evaluations averages away.
+Comparison compare_reciprocity(const Side& asymmetry, double reverse) {
+    Comparison c{0.0, 1.0, asymmetry.sum, reverse, std::sqrt(asymmetry.variance)};
+    const double excess = std::abs(asymmetry.sum) - kReciprocityTolerance * std::abs(reverse);
+    if (std::isnan(excess) || std::isnan(c.standard_error)) return {NAN, NAN, asymmetry.sum, reverse, NAN};
+    if (!(excess > 0.0)) return c;
+    c.z = std::copysign(excess, asymmetry.sum) / c.standard_error;  // no variance: infinite, p 0
+    c.p = std::erfc(std::abs(c.z) / std::numbers::sqrt2);
+    return c;
 }
 
 Comparison compare(const Side& s, const Side& f) {
@@ -361,6 +434,17 @@ struct Outcome {
     uint64_t evaluations = 0;
     std::vector<double> p_values;
     int heaviest = -1;  ///< among cells, by sampled weight
+    /// Reciprocity in expectation, where the case claims it.
+    struct Reciprocity {
+        bool tested = false, remainder_judged = false;
+        std::vector<Comparison> cells;  ///< judged alone
+        Comparison remainder, total;
+        int pooled = 0, excused = 0, retested = 0;
+        double excused_share = 0.0;  ///< of the reverse integral
+        int heaviest = -1;           ///< among cells, by the reverse integral
+        int heaviest_cell = -1;      ///< its index in the chart (cell_of)
+    } reciprocity;
+    uint64_t bad_f_values = 0;  ///< reference evaluations of f (either order) not finite or negative
 };
 
 /// The p-values of the first comparisons that were retested (NaN where not):
@@ -368,7 +452,34 @@ struct Outcome {
 struct Screen {
     std::vector<double> cell;
     double remainder = NAN;
+    std::vector<double> reciprocity_cell;  ///< the same for reciprocity in expectation
+    double reciprocity_remainder = NAN;
 };
+
+bool has_asymmetry_mass(const Reference& r) { return !(r.reverse == 0.0 && r.asymmetry_size.sum == 0.0); }
+
+/// The reciprocity comparisons' screen, as retest's: flagged cells appended.
+void screen_reciprocity(const std::vector<Reference>& ref, const Plan& plan, double threshold, Screen& screen,
+                        std::vector<std::size_t>& flagged) {
+    screen.reciprocity_cell.assign(ref.size(), NAN);
+    std::vector<std::size_t> pool;
+    Side rest;
+    double rest_reverse = 0.0;
+    for (std::size_t c = 0; c < ref.size(); ++c) {
+        if (!has_asymmetry_mass(ref[c])) continue;
+        if (!plan.reciprocity_alone[c]) {
+            rest.add(ref[c].asymmetry), rest_reverse += ref[c].reverse, pool.push_back(c);
+            continue;
+        }
+        const double p = compare_reciprocity(ref[c].asymmetry, ref[c].reverse).p;
+        if (!(p >= threshold)) screen.reciprocity_cell[c] = p, flagged.push_back(c);
+    }
+    const double p_rest = compare_reciprocity(rest, rest_reverse).p;
+    if (plan.reciprocity_remainder && !pool.empty() && !(p_rest >= threshold)) {
+        screen.reciprocity_remainder = p_rest;
+        flagged.insert(flagged.end(), pool.begin(), pool.end());
+    }
+}
 
 bool has_mass(const Side& sampled, const Side& f) { return !(sampled.sum == 0.0 && f.sum == 0.0); }
 
@@ -377,7 +488,8 @@ bool has_mass(const Side& sampled, const Side& f) { return !(sampled.sum == 0.0 
 /// fresh ones kRetestFactor times larger.
 Screen retest(const BsdfCase& bsdf, const CheckContext& ctx, const std::vector<int>& sides,
               const std::vector<Side>& sampled, const Plan& plan, std::vector<Reference>& ref) {
-    Screen screen{std::vector<double>(ref.size(), NAN)};
+    Screen screen;
+    screen.cell.assign(ref.size(), NAN);
     std::vector<std::size_t> flagged, pool;
     const double threshold = kScreenAlpha / static_cast<double>(ref.size());
     Side rest_s, rest_f;
@@ -395,6 +507,9 @@ Screen retest(const BsdfCase& bsdf, const CheckContext& ctx, const std::vector<i
         screen.remainder = p_rest;
         flagged.insert(flagged.end(), pool.begin(), pool.end());
     }
+    if (bsdf.claims().reciprocal) screen_reciprocity(ref, plan, threshold, screen, flagged);
+    std::sort(flagged.begin(), flagged.end());
+    flagged.erase(std::unique(flagged.begin(), flagged.end()), flagged.end());
     ctx.parallel_for(flagged.size(), [&](std::size_t k) {
         const std::size_t c = flagged[k];
         ref[c] = integrate_cell(bsdf, ctx, sides, c, ref[c].evaluations * kRetestFactor, kRetestChunks + c);
@@ -412,6 +527,7 @@ Outcome judge_cells(const std::vector<Side>& sampled, const std::vector<Referenc
         all_f.add(ref[c].f);
         o.pdf_integral += ref[c].pdf;
         o.evaluations += ref[c].evaluations;
+        o.bad_f_values += ref[c].bad_values;
         if (!has_mass(sampled[c], ref[c].f)) continue;
         if (plan.alone[c]) {
             o.cells.push_back(compare(sampled[c], ref[c].f));
@@ -445,10 +561,70 @@ Outcome judge_cells(const std::vector<Side>& sampled, const std::vector<Referenc
     return o;
 }
 
+/// The reciprocity comparisons (Plan::reciprocity_alone, the remainder, the
+/// total over every cell), their p-values appended to the outcome's.
+void judge_reciprocity(const std::vector<Reference>& ref, const Plan& plan, const Screen& screen, Outcome& o) {
+    Outcome::Reciprocity& r = o.reciprocity;
+    Side rest, all;
+    double rest_reverse = 0.0, all_reverse = 0.0;
+    for (std::size_t c = 0; c < ref.size(); ++c) {
+        all.add(ref[c].asymmetry), all_reverse += ref[c].reverse;
+        if (!has_asymmetry_mass(ref[c])) continue;
+        if (plan.reciprocity_alone[c]) {
+            r.cells.push_back(compare_reciprocity(ref[c].asymmetry, ref[c].reverse));
+            if (!std::isnan(screen.reciprocity_cell[c])) {
+                r.cells.back().p = std::max(r.cells.back().p, screen.reciprocity_cell[c]);
+                ++r.retested;
+            }
+            if (r.heaviest < 0 || r.cells.back().integral > r.cells[static_cast<std::size_t>(r.heaviest)].integral)
+                r.heaviest = static_cast<int>(r.cells.size()) - 1, r.heaviest_cell = static_cast<int>(c);
+            continue;
+        }
+        rest.add(ref[c].asymmetry), rest_reverse += ref[c].reverse;
+        ++r.pooled;
+    }
+    r.tested = true;
+    r.total = compare_reciprocity(all, all_reverse);
+    if (r.pooled > 0) {
+        r.remainder = compare_reciprocity(rest, rest_reverse);
+        r.remainder_judged = plan.reciprocity_remainder;
+        if (!std::isnan(screen.reciprocity_remainder))
+            r.remainder.p = std::max(r.remainder.p, screen.reciprocity_remainder), ++r.retested;
+        if (!r.remainder_judged) {
+            r.excused = r.pooled;
+            r.excused_share = all_reverse > 0.0 ? rest_reverse / all_reverse : 0.0;
+        }
+    }
+    for (const Comparison& c : r.cells) o.p_values.push_back(c.p);
+    if (r.remainder_judged) o.p_values.push_back(r.remainder.p);
+    o.p_values.push_back(r.total.p);
+}
+
 chi2::MeanTest energy_test(const chi2::Moments& energy) {
     chi2::MeanTest t = chi2::mean_test(energy, 1.0, kEnergyRounding);
     if (!std::isnan(t.p_value)) t.p_value = t.mean > 1.0 ? 0.5 * t.p_value : 1.0;
     return t;
+}
+
+/// Reciprocity's figures; its power: the relative asymmetry of the heaviest
+/// cell (by the reverse integral) that its z-test detects with probability 0.9.
+void add_reciprocity_figures(CheckResult& r, const Outcome::Reciprocity& o, double shift) {
+    double largest = 0.0;
+    for (const Comparison& c : o.cells) largest = std::isnan(c.z) ? c.z : std::max(largest, std::abs(c.z));
+    const double heavy = o.heaviest < 0 ? NAN : shift * o.cells[static_cast<std::size_t>(o.heaviest)].standard_error /
+                                                    o.cells[static_cast<std::size_t>(o.heaviest)].integral;
+    r.figures.insert(r.figures.end(),
+                     {{"reciprocity_tested", o.tested ? 1.0 : 0.0},
+                      {"reciprocity_cells_judged", static_cast<double>(o.cells.size())},
+                      {"reciprocity_cells_pooled", static_cast<double>(o.pooled)},
+                      {"reciprocity_remainder_judged", o.remainder_judged ? 1.0 : 0.0},
+                      {"reciprocity_cells_excused", static_cast<double>(o.excused)},
+                      {"reciprocity_excused_share", o.excused_share},
+                      {"reciprocity_cells_retested", static_cast<double>(o.retested)},
+                      {"reciprocity_largest_abs_z", o.tested ? largest : NAN},
+                      {"reciprocity_z_total", o.tested ? o.total.z : NAN},
+                      {"power_relative_reciprocity_shift", heavy},
+                      {"reciprocity_heaviest_cell", o.heaviest_cell < 0 ? NAN : static_cast<double>(o.heaviest_cell)}});
 }
 
 void add_figures(CheckResult& r, const DrawTally& t, const Outcome& o, double level) {
@@ -478,7 +654,9 @@ void add_figures(CheckResult& r, const DrawTally& t, const Outcome& o, double le
                  {"tests", static_cast<double>(o.p_values.size())},
                  {"power_relative_albedo_shift", shift * o.total.standard_error / o.total.integral},
                  {"power_relative_heaviest_cell_shift", heavy},
-                 {"power_level", level}};
+                 {"power_level", level},
+                 {"f_bad_values", static_cast<double>(o.bad_f_values)}};
+    add_reciprocity_figures(r, o.reciprocity, shift);
 }
 
 void judge(CheckResult& r, const DrawTally& t, const Outcome& o) {
@@ -496,6 +674,28 @@ void judge(CheckResult& r, const DrawTally& t, const Outcome& o) {
                             o.total.sampled, o.total.integral, o.total.z, worst, o.cells.size(), o.pooled,
                             o.remainder_judged ? fmt::format("z = {:.2f}", o.remainder.z) : "not judged", o.excused,
                             o.excused_weight, o.excused_integral, o.energy.mean, o.energy.t, o.pdf_integral);
+    const Outcome::Reciprocity& rec = o.reciprocity;
+    if (rec.tested) {
+        double largest = 0.0;
+        for (const Comparison& c : rec.cells) largest = std::max(largest, std::abs(c.z));
+        r.message += fmt::format("; reciprocity in expectation (f(wo, wi) s - f(wi, wo) per cell, paired, within "
+                                 "{:.3g} of f(wi, wo)'s integral): the largest |z| {:.2f} over {} cells judged alone, "
+                                 "{} pooled ({}), {} excused (share {:.3g} of f(wi, wo)'s integral), over the sphere "
+                                 "z = {:.2f}",
+                                 kReciprocityTolerance, largest, rec.cells.size(), rec.pooled,
+                                 rec.remainder_judged ? fmt::format("z = {:.2f}", rec.remainder.z) : "not judged",
+                                 rec.excused, rec.excused_share, rec.total.z);
+        r.summary += fmt::format("; reciprocity max |z| {:.2f} over {} cells", largest, rec.cells.size());
+    } else {
+        r.message += "; reciprocity: not claimed, not tested";
+    }
+    if (o.bad_f_values > 0) {
+        r.verdict = Verdict::Fail;
+        r.summary = fmt::format("{} evaluations of f not finite or negative", o.bad_f_values);
+        r.message = fmt::format("{} of the reference's evaluations of f(wo, wi){} are not finite or negative. ",
+                                o.bad_f_values, rec.tested ? " and f(wi, wo)" : "") +
+                    r.message;
+    }
     const uint64_t exact = t.bad_weight + t.bad_direction + t.off_side + t.pdf_zero;
     if (exact > 0) {
         r.verdict = Verdict::Fail;
@@ -520,8 +720,14 @@ public:
                              FigureRule::Counted},
                             {"cells_retested", "comparisons retested against a 16 times larger reference",
                              FigureRule::Counted},
-                            {"cells_excused", "cells excused (their remainder too sparse to judge)", FigureRule::Counted}},
-                .p_value = "p-value: the smallest of the cells', remainder's, total's and energy's, "
+                            {"cells_excused", "cells excused (their remainder too sparse to judge)", FigureRule::Counted},
+                            {"f_bad_values", "evaluations of f not finite or negative", FigureRule::Zero},
+                            {"reciprocity_cells_pooled", "reciprocity: cells pooled into the remainder",
+                             FigureRule::Counted},
+                            {"reciprocity_cells_retested", "reciprocity: comparisons retested", FigureRule::Counted},
+                            {"reciprocity_cells_excused", "reciprocity: cells excused (their remainder too sparse)",
+                             FigureRule::Counted}},
+                .p_value = "p-value: the smallest of the cells', remainder's, total's, reciprocity's and energy's, "
                            "\u0160id\u00e1k-corrected"};
     }
     bool statistical() const override { return true; }
@@ -529,13 +735,15 @@ public:
         return {name(), "A stochastic BSDF in expectation: the sampled weights that land in each cell of the sphere "
                 "against the integral of its estimated f |cos| over the cell (z-tests with both sides' measured "
                 "variances; cells judged alone where pilots promise 50 effective terms, the others pooled), the "
-                "total, energy at most 1, and the MIS pdf positive at every sampled direction.",
+                "total, energy at most 1, the MIS pdf positive at every sampled direction, and where the case claims "
+                "reciprocity, f(wo, wi) s against f(wi, wo) per cell in expectation (paired at the same directions).",
                 "1 \u2212 (1 \u2212 min p)^k, \u0160id\u00e1k over the k comparisons; a retested one's p is the "
                 "larger of its two."};
     }
     std::string description() const override {
         return "stochastic BSDF: sampled weights per cell of the sphere against the integral of its estimated f "
-               "|cos| (z-tests, Sidak), energy at most 1, the MIS pdf positive where it samples";
+               "|cos| (z-tests, Sidak), reciprocity in expectation where claimed, energy at most 1, the MIS pdf "
+               "positive where it samples";
     }
 
 protected:
@@ -555,6 +763,7 @@ protected:
                                            reference(bsdf, ctx, sides, pilot, kPilotShare, kPilotReferenceChunks), ref);
         const Screen screen = retest(bsdf, ctx, sides, sampled, plan, ref);
         Outcome o = judge_cells(sampled, ref, plan, screen);
+        if (bsdf.claims().reciprocal) judge_reciprocity(ref, plan, screen, o);
         o.energy = energy_test(t.energy);
         o.p_values.push_back(o.energy.p_value);
         CheckResult r;

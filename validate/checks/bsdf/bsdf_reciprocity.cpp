@@ -40,11 +40,6 @@
 namespace warpcheck::bsdf {
 namespace {
 
-/// 2^-12 relative, as bsdf_weight's: f(wo, wi) and f(wi, wo) compute_reciprocity the same
-/// half vector and Fresnel term from the two directions in another order, each
-/// off by a few float roundings, which a sharp lobe's slope (~80 per radian at
-/// alpha = 0.05) multiplies to ~1e-5; a non-reciprocal factor is off by percent.
-constexpr double kReciprocityTolerance = 0x1p-12;
 /// Directions of the deterministic grid, spread evenly over the sphere.
 constexpr int kGridDirections = 4096;
 /// The continuous samples' directions tested: at most this many.
@@ -65,14 +60,6 @@ std::vector<WarpOutput> fibonacci_sphere(int n) {
                                             static_cast<float>(r * std::sin(golden * k)), static_cast<float>(z)};
     }
     return out;
-}
-
-/// What f(wo, wi) is multiplied by to equal f(wi, wo) under the claimed rule.
-double reciprocity_scale(const BsdfCase& bsdf, const WarpOutput& wi) {
-    if (!bsdf.transmitted(wi)) return 1.0;
-    const double eta = bsdf.claims().eta;
-    const double ratio = wi[2] < 0.0f ? eta : 1.0 / eta;  // eta(wi) / eta(wo)
-    return bsdf.claims().transport == Transport::Radiance ? ratio * ratio : 1.0 / (ratio * ratio);
 }
 
 /// The rule a pair was held to, with the claims it used, for the row's message.
