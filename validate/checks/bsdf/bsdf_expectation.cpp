@@ -48,8 +48,9 @@
 //    f's smooth change across a cell, so the test sees the estimates' noise
 //    only. Cells are judged alone, pooled, retested and excused as the
 //    weights' are, by the effective count of the differences' magnitudes
-//    (their mean is 0 under the claim); the total over the sphere is judged
-//    too. The z-test allows a mean asymmetry of kReciprocityTolerance of the
+//    (their mean is 0 under the claim), and a cell whose differences are all
+//    exactly 0 is counted exact, with no test; the total over the sphere is
+//    judged too. The z-test allows a mean asymmetry of kReciprocityTolerance of the
 //    cell's integral of f(wi, wo): the pointwise check's allowance for f's
 //    float rounding, a bias that no count of evaluations averages away. Every
 //    reference evaluation of f, in either order, must be finite and not
@@ -440,6 +441,11 @@ struct Outcome {
         std::vector<Comparison> cells;  ///< judged alone
         Comparison remainder, total;
         int pooled = 0, excused = 0, retested = 0;
+        /// Cells where every paired difference is exactly 0 (a deterministic
+        /// f that is reciprocal to the bit): the rule holds at each pair, and
+        /// no z-test is made; in a pool they would add 0 to its sum and its
+        /// variance, and only their integral to its allowance.
+        int exact = 0;
         double excused_share = 0.0;  ///< of the reverse integral
         int heaviest = -1;           ///< among cells, by the reverse integral
         int heaviest_cell = -1;      ///< its index in the chart (cell_of)
@@ -570,6 +576,10 @@ void judge_reciprocity(const std::vector<Reference>& ref, const Plan& plan, cons
     for (std::size_t c = 0; c < ref.size(); ++c) {
         all.add(ref[c].asymmetry), all_reverse += ref[c].reverse;
         if (!has_asymmetry_mass(ref[c])) continue;
+        if (ref[c].asymmetry_size.sum == 0.0) {
+            ++r.exact;
+            continue;
+        }
         if (plan.reciprocity_alone[c]) {
             r.cells.push_back(compare_reciprocity(ref[c].asymmetry, ref[c].reverse));
             if (!std::isnan(screen.reciprocity_cell[c])) {
@@ -617,6 +627,7 @@ void add_reciprocity_figures(CheckResult& r, const Outcome::Reciprocity& o, doub
                      {{"reciprocity_tested", o.tested ? 1.0 : 0.0},
                       {"reciprocity_cells_judged", static_cast<double>(o.cells.size())},
                       {"reciprocity_cells_pooled", static_cast<double>(o.pooled)},
+                      {"reciprocity_cells_exact", static_cast<double>(o.exact)},
                       {"reciprocity_remainder_judged", o.remainder_judged ? 1.0 : 0.0},
                       {"reciprocity_cells_excused", static_cast<double>(o.excused)},
                       {"reciprocity_excused_share", o.excused_share},
@@ -680,9 +691,9 @@ void judge(CheckResult& r, const DrawTally& t, const Outcome& o) {
         for (const Comparison& c : rec.cells) largest = std::max(largest, std::abs(c.z));
         r.message += fmt::format("; reciprocity in expectation (f(wo, wi) s - f(wi, wo) per cell, paired, within "
                                  "{:.3g} of f(wi, wo)'s integral): the largest |z| {:.2f} over {} cells judged alone, "
-                                 "{} pooled ({}), {} excused (share {:.3g} of f(wi, wo)'s integral), over the sphere "
+                                 "{} exact (every difference 0), {} pooled ({}), {} excused (share {:.3g} of f(wi, wo)'s integral), over the sphere "
                                  "z = {:.2f}",
-                                 kReciprocityTolerance, largest, rec.cells.size(), rec.pooled,
+                                 kReciprocityTolerance, largest, rec.cells.size(), rec.exact, rec.pooled,
                                  rec.remainder_judged ? fmt::format("z = {:.2f}", rec.remainder.z) : "not judged",
                                  rec.excused, rec.excused_share, rec.total.z);
         r.summary += fmt::format("; reciprocity max |z| {:.2f} over {} cells", largest, rec.cells.size());
