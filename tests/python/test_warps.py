@@ -84,6 +84,17 @@ def test_bsdf_passes_and_its_twin_fails_the_albedo_check():
     assert "FAIL   bsdf_albedo" in str(failure.value) and "evidence: " in str(failure.value)
 
 
+def test_a_stochastic_bsdf_passes_in_expectation_and_its_one_way_twin_fails_by_reciprocity():
+    correct, wrong = light_and_bsdf.stochastic_bsdfs()
+    result = wc.assert_passes(correct, samples=N)
+    verdicts = {r.check: r.verdict for r in result.rows}
+    assert verdicts["bsdf_expectation"] == "pass"
+    assert verdicts["bsdf_reciprocity"] == "not_applicable" and verdicts["bsdf_chi2"] == "not_applicable"
+    failed = wc.assert_fails(wrong, "bsdf_expectation", samples=N)
+    row = next(r for r in failed.rows if r.check == "bsdf_expectation")
+    assert row.figures["reciprocity_largest_abs_z"] > 5
+
+
 def test_a_framework_warp_passes():
     framework_arrays.test_framework_warp_passes()
 

@@ -152,7 +152,8 @@ BsdfFlags lobes_of(const std::vector<std::string>& lobes) {
 std::shared_ptr<CaseSpec> make_bsdf(const std::string& family, const py::object& sample, const py::object& f,
                                     const py::object& pdf, const std::vector<double>& theta_o, const py::dict& params,
                                     const std::string& description, const std::vector<std::string>& lobes, float eta,
-                                    bool reciprocal, const std::string& transport, bool phase_function) {
+                                    bool reciprocal, const std::string& transport, bool phase_function,
+                                    bool stochastic) {
     WarpCaseInfo info;
     info.family = family;
     info.params = parameters(params);
@@ -164,6 +165,7 @@ std::shared_ptr<CaseSpec> make_bsdf(const std::string& family, const py::object&
     claims.transport = choice<Transport>(transport, {{"radiance", Transport::Radiance}, {"importance", Transport::Importance}},
                                          "transport");
     claims.phase_function = phase_function;
+    claims.stochastic = stochastic;
     if (sample.is_none() || f.is_none() || pdf.is_none())
         throw py::value_error("Bsdf " + family + ": a BSDF needs sample, f and pdf");
     return std::make_shared<BsdfSpec>(info, claims, BsdfParts{PyRef(sample), PyRef(f), PyRef(pdf)}, theta_o);
@@ -232,7 +234,8 @@ void bind_cases(py::module_& m) {
     m.def("bsdf", &make_bsdf, py::arg("family"), py::arg("sample"), py::kw_only(), py::arg("f"), py::arg("pdf"),
           py::arg("theta_o"), py::arg("params") = py::dict(), py::arg("description") = "",
           py::arg("lobes") = std::vector<std::string>{"reflection", "continuous"}, py::arg("eta") = 1.0f,
-          py::arg("reciprocal") = true, py::arg("transport") = "radiance", py::arg("phase_function") = false);
+          py::arg("reciprocal") = true, py::arg("transport") = "radiance", py::arg("phase_function") = false,
+          py::arg("stochastic") = false);
 }
 
 }  // namespace warpcheck::python

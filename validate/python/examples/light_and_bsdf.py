@@ -127,6 +127,54 @@ def lambert_sample_without_pi(wo, uc, u):
     return _lambert_sample(wo, uc, u, lambert_f_without_pi)
 
 
+def _hash_unit(*arrays):
+    """A uniform number in [0, 1) per row from the float32 bits of the arrays' columns, in
+    order (a layered BSDF's walk hashes wo and wi so that a pair always gets the same estimate)."""
+    h = np.full(len(arrays[0]), 2166136261, dtype=np.uint64)
+    for a in arrays:
+        bits = np.ascontiguousarray(a, dtype=np.float32).view(np.uint32).astype(np.uint64)
+        for column in range(bits.shape[1]):
+            h = ((h ^ bits[:, column]) * np.uint64(16777619)) & np.uint64(0xFFFFFFFF)
+    h ^= h >> np.uint64(16)
+    h = (h * np.uint64(0x7FEB352D)) & np.uint64(0xFFFFFFFF)
+    h ^= h >> np.uint64(15)
+    h = (h * np.uint64(0x846CA68B)) & np.uint64(0xFFFFFFFF)
+    h ^= h >> np.uint64(16)
+    return (h >> np.uint64(8)).astype(np.float64) / 2.0**24
+
+
+def noisy_lambert_f(wo, wi):
+    """An unbiased one-sample estimate of the Lambertian's f: R/pi times 2h, h uniform in [0, 1)."""
+    return lambert_f(wo, wi) * 2.0 * _hash_unit(wo, wi)
+
+
+def _noisy_sample(asymmetry):
+    def sample(wo, uc, u):
+        wi, _, pdf = _lambert_sample(wo, uc, u, lambert_f)
+        wo_rows = np.broadcast_to(wo, wi.shape)
+        return wi, lambert_f(wo_rows, wi) * 2.0 * uc * asymmetry(wo_rows, wi), pdf
+    return sample
+
+
+def _one_way(wo, wi):
+    """1 + 0.2 (|cos theta_o| - |cos theta_i|): a factor that is not symmetric in its arguments."""
+    return 1.0 + 0.2 * (np.abs(wo[:, 2]) - np.abs(wi[:, 2]))
+
+
+def stochastic_bsdfs():
+    """A Lambertian whose f is a noisy estimate (stochastic=True: bsdf_expectation judges it in
+    expectation), and its twin whose f and weights carry a factor that is not symmetric in wo and
+    wi: its weights agree with its f in expectation, but it is not reciprocal."""
+    correct = wc.Bsdf("numpy_noisy_lambert", _noisy_sample(lambda wo, wi: 1.0), f=noisy_lambert_f, pdf=lambert_pdf,
+                      theta_o=[45], params={"R": REFLECTANCE}, stochastic=True,
+                      description="Lambertian, f and weights unbiased one-sample estimates")
+    wrong = wc.Bsdf("numpy_noisy_lambert_one_way", _noisy_sample(_one_way),
+                    f=lambda wo, wi: noisy_lambert_f(wo, wi) * _one_way(wo, wi), pdf=lambert_pdf, theta_o=[45],
+                    params={"R": REFLECTANCE}, stochastic=True,
+                    description="f and weights times 1 + 0.2 (|cos theta_o| - |cos theta_i|): not reciprocal")
+    return correct, wrong
+
+
 def lights():
     correct = wc.Light("numpy_sphere_light", light_sample, pdf=light_pdf, points=POINTS,
                        description="sphere light sampled uniformly in the cone it subtends")

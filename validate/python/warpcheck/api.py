@@ -58,7 +58,7 @@ def Light(family, sample, *, pdf=None, points, params=None, description="", doma
 
 
 def Bsdf(family, sample, *, f, pdf, theta_o, params=None, description="", lobes=("reflection", "continuous"),
-         eta=1.0, reciprocal=True, transport="radiance", phase_function=False):
+         eta=1.0, reciprocal=True, transport="radiance", phase_function=False, stochastic=False):
     """A BSDF (or phase function) of Python callables at each outgoing direction theta_o
     (degrees, in the plane phi = 0): one case per direction, named family[...,theta_o=T].
 
@@ -67,10 +67,14 @@ def Bsdf(family, sample, *, f, pdf, theta_o, params=None, description="", lobes=
     (1 reflection, 2 transmission, 4 continuous, 8 delta), by default continuous and the side wi is on.
     f(wo, wi) -> (n,) and pdf(wo, wi) -> (n,) with wo and wi (n, 3); f is also called with
     its arguments swapped (the reciprocity check).
+    stochastic=True declares a layered BSDF as renderers ship it: f an unbiased estimate, the
+    sample's f |cos| / pdf an unbiased estimate of its weight with a pdf only proportional, pdf()
+    kept for MIS. The pointwise checks are then n/a and bsdf_expectation tests it in
+    expectation, reciprocity included (BsdfClaims::stochastic).
     """
     return _core.bsdf(family, sample, f=f, pdf=pdf, theta_o=[float(t) for t in theta_o], params=dict(params or {}),
                       description=description, lobes=list(lobes), eta=eta, reciprocal=reciprocal,
-                      transport=transport, phase_function=phase_function)
+                      transport=transport, phase_function=phase_function, stochastic=stochastic)
 
 
 def builtin_case(name):
