@@ -24,31 +24,6 @@ namespace warpcheck::html {
 std::string_view style_sheet();
 std::string_view script();
 
-/// The share of a chi-square check's level that its largest cell residual
-/// gets (chi2/local_residual.h, kLocalLevelShare), for the cell level the
-/// residual heatmap marks.
-inline constexpr double kChi2LocalShare = 0.2;
-
-/// The cell a chi-square row's evidence rings as its largest residual, and
-/// that residual: the check's (figures local_cell and local_max_residual: the
-/// cell of the smallest per-cell p-value). Where that p-value underflowed to 0
-/// (local_p_value 0), every cell at 0 ties and the check's is only the first
-/// of them: the ring then goes to the cell of the largest |residual| of the
-/// row's plotted residuals, the departure the table of cells lists first.
-struct RingedCell {
-    std::size_t index = 0;  ///< the cell: a residual heatmap's value index, or the residual series' point
-    double residual = 0.0;
-};
-std::optional<RingedCell> ringed_cell(const CheckResult& r);
-
-/// What the report draws into plot `index` of `r`: the limit its judged
-/// quantity is compared with, the points that failed or decide the statistic.
-void annotate_plot(const CheckResult& r, std::size_t index, SvgOptions& options);
-
-/// A sentence under plot `index` of `r` saying what is judged in it and what
-/// the drawn limits mean; empty if there is nothing to say.
-std::string plot_note(const CheckResult& r, std::size_t index);
-
 /// How close a row came to its limit, as the terminal's margin column reads it
 /// (reports/terminal_table.h: row_margin): level / p for a statistical row,
 /// error / tolerance otherwise, the larger when a row has both; 1 at the

@@ -102,11 +102,10 @@ void append_plots(std::string& html, const CheckResult& r, std::size_t index) {
     for (std::size_t p = 0; p < r.plots.size(); ++p) {
         SvgOptions options;
         options.id_prefix = fmt::format("p{}-{}", index, p);
-        annotate_plot(r, p, options);
         html += "<figure>";
         if (!r.plots[p].title.empty()) html += "<figcaption>" + escaped(r.plots[p].title) + "</figcaption>";
         html += render_svg(r.plots[p], options);
-        if (const std::string note = plot_note(r, p); !note.empty()) html += "<p class=\"note\">" + escaped(note) + "</p>";
+        if (!r.plots[p].note.empty()) html += "<p class=\"note\">" + escaped(r.plots[p].note) + "</p>";
         html += "</figure>\n";
     }
     html += "</div>\n";

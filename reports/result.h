@@ -18,6 +18,7 @@
 
 #include <array>
 #include <concepts>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -138,6 +139,68 @@ void fields(V& v, T& h) {
     v("values", h.values);
 }
 
+/// A limit drawn across an x-y plot: a vertical line at x = value, or a
+/// horizontal one at y = value, dashed in the colour of failures and labelled
+/// (e.g. "tolerance 1.5e-05"). The axis widens to show it.
+struct LimitLine {
+    bool vertical = true;
+    double value = 0.0;
+    std::string label;
+};
+
+template <class V, Model<LimitLine> T>
+void fields(V& v, T& l) {
+    v("vertical", l.vertical);
+    v("value", l.value);
+    v("label", l.label);
+}
+
+/// A point of an x-y plot ringed and labelled: a float that failed, the most
+/// biased float, where a statistic takes its value. The axes widen to show it.
+struct Highlight {
+    double x = 0.0, y = 0.0;
+    std::string label;
+};
+
+template <class V, Model<Highlight> T>
+void fields(V& v, T& h) {
+    v("x", h.x);
+    v("y", h.y);
+    v("label", h.label);
+}
+
+/// A cell of one heatmap of a plot ringed and labelled, e.g. the cell with the
+/// largest residual. Row 0 is at y_min, as in Heatmap::values.
+struct CellHighlight {
+    std::size_t heatmap = 0;
+    int row = 0, col = 0;
+    std::string label;
+};
+
+template <class V, Model<CellHighlight> T>
+void fields(V& v, T& c) {
+    v("heatmap", c.heatmap);
+    v("row", c.row);
+    v("col", c.col);
+    v("label", c.label);
+}
+
+/// A value marked on the colour bar of a heatmap's scale (both signs on a
+/// diverging one), e.g. the residual at which one cell alone fails. The scale
+/// widens to show it.
+struct ScaleMark {
+    std::size_t heatmap = 0;
+    double value = 0.0;
+    std::string label;
+};
+
+template <class V, Model<ScaleMark> T>
+void fields(V& v, T& m) {
+    v("heatmap", m.heatmap);
+    v("value", m.value);
+    v("label", m.label);
+}
+
 struct Plot {
     enum class Kind { Lines, Bars, Points, Heatmaps };
     Kind kind = Kind::Lines;
@@ -148,6 +211,19 @@ struct Plot {
     bool log_y = false;
     std::vector<Series> series;     ///< Lines, Bars, Points
     std::vector<Heatmap> heatmaps;  ///< Heatmaps: shown side by side (e.g. observed, expected, residual)
+    /// What the check marks in its plot, so that it shows the quantity judged
+    /// and its limit (written by the check's rules, validate/checks/judged.h,
+    /// once the run's level is settled; reports draw them whatever the check):
+    /// limit lines, ringed points and cells, marks on a colour scale, and a
+    /// sentence saying what is judged and what the marks mean.
+    std::vector<LimitLine> limits{};
+    std::vector<Highlight> highlights{};
+    std::vector<CellHighlight> cells{};
+    std::vector<ScaleMark> scale_marks{};
+    std::string note{};
+    bool marked() const {
+        return !limits.empty() || !highlights.empty() || !cells.empty() || !scale_marks.empty() || !note.empty();
+    }
 };
 
 template <>
@@ -166,6 +242,13 @@ void fields(V& v, T& p) {
     v("log_y", p.log_y);
     v("series", p.series);
     v("heatmaps", p.heatmaps);
+    v.optional_group("marks", p.marked(), [&](auto& g) {
+        g("limits", p.limits);
+        g("highlights", p.highlights);
+        g("cells", p.cells);
+        g("scale_marks", p.scale_marks);
+        g("note", p.note);
+    });
 }
 
 /// A small table of evidence, e.g. the worst inputs of a round trip.

@@ -1060,8 +1060,13 @@ std::string render_heatmaps(const Plot& plot, const SvgOptions& options) {
 }  // namespace
 
 std::string render_svg(const Plot& plot, const SvgOptions& options) {
-    if (plot.kind == Plot::Kind::Heatmaps) return render_heatmaps(plot, options);
-    return render_xy(plot, options);
+    SvgOptions marked = options;  // the plot's own marks first, then the caller's
+    marked.limits.insert(marked.limits.begin(), plot.limits.begin(), plot.limits.end());
+    marked.highlights.insert(marked.highlights.begin(), plot.highlights.begin(), plot.highlights.end());
+    marked.cells.insert(marked.cells.begin(), plot.cells.begin(), plot.cells.end());
+    marked.scale_marks.insert(marked.scale_marks.begin(), plot.scale_marks.begin(), plot.scale_marks.end());
+    if (plot.kind == Plot::Kind::Heatmaps) return render_heatmaps(plot, marked);
+    return render_xy(plot, marked);
 }
 
 }  // namespace warpcheck

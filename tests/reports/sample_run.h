@@ -107,6 +107,38 @@ inline CheckResult sample_chi2_fail(int rows = 16, int cols = 32) {
     return r;
 }
 
+/// An unbinned row at the per-test `level`: Kuiper judges phi,
+/// Anderson-Darling cos theta, and the curves of sqrt(n) (F_n - F) have their
+/// excursions at F = 0.3 and 0.7 (phi) and 0.02 and 0.5 (cos theta).
+inline CheckResult sample_unbinned_pass(double level) {
+    CheckResult r;
+    r.case_name = "cosine_hemisphere";
+    r.check_name = "unbinned";
+    r.verdict = Verdict::Pass;
+    r.summary = "key figure";
+    r.p_value = -std::expm1(2.0 * std::log1p(-0.01));
+    r.level = level;
+    r.figures = {{"p_value", *r.p_value},          {"tests", 2},
+                 {"phi_kuiper_statistic", 0.0012}, {"phi_kuiper_p_value", 0.53},
+                 {"phi_ad_statistic", 0.97},       {"phi_ad_p_value", 0.37},
+                 {"cos_theta_ad_statistic", 6.65}, {"cos_theta_ad_p_value", 0.01}};
+    r.tables = {{"Unbinned tests per marginal", {"marginal", "test", "judged", "statistic", "p-value"},
+                 {{"phi", "kuiper", "yes", "0.0012", "0.53"}, {"phi", "ad", "no", "0.97", "0.37"},
+                  {"cos theta", "ad", "yes", "6.65", "0.01"}}}};
+    Plot curves;
+    curves.kind = Plot::Kind::Lines;
+    Series phi{"phi", {}, {}}, cos_theta{"cos theta", {}, {}};
+    for (int i = 1; i < 100; ++i) {
+        const double f = i / 100.0;
+        phi.x.push_back(f), cos_theta.x.push_back(f);
+        phi.y.push_back(i == 30 ? 1.5 : i == 70 ? -1.1 : 0.1 * std::sin(i));
+        cos_theta.y.push_back(i == 2 ? 0.4 : i == 50 ? 0.9 : 0.05);  // 0.4 at F = 0.02 weighs 8x more than 0.9 at 0.5
+    }
+    curves.series = {phi, cos_theta, {"KS critical", {0.0, 1.0}, {2.3, 2.3}}};
+    r.plots = {curves};
+    return r;
+}
+
 /// Exhaustive float-histogram counts: multiplicity per binade on a log scale.
 inline CheckResult sample_exhaustive_pass() {
     CheckResult r;

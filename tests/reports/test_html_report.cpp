@@ -75,28 +75,7 @@ CheckResult chi2_row(double pearson, double local) {
 }
 
 /// An unbinned row: Kuiper judges phi, Anderson-Darling cos theta.
-CheckResult unbinned_row() {
-    CheckResult r = p_row("cosine_hemisphere", "unbinned", -std::expm1(2.0 * std::log1p(-0.01)));
-    r.figures = {{"p_value", *r.p_value},          {"tests", 2},
-                 {"phi_kuiper_statistic", 0.0012}, {"phi_kuiper_p_value", 0.53},
-                 {"phi_ad_statistic", 0.97},       {"phi_ad_p_value", 0.37},
-                 {"cos_theta_ad_statistic", 6.65}, {"cos_theta_ad_p_value", 0.01}};
-    r.tables = {{"Unbinned tests per marginal", {"marginal", "test", "judged", "statistic", "p-value"},
-                 {{"phi", "kuiper", "yes", "0.0012", "0.53"}, {"phi", "ad", "no", "0.97", "0.37"},
-                  {"cos theta", "ad", "yes", "6.65", "0.01"}}}};
-    Plot curves;
-    curves.kind = Plot::Kind::Lines;
-    Series phi{"phi", {}, {}}, cos_theta{"cos theta", {}, {}};
-    for (int i = 1; i < 100; ++i) {
-        const double f = i / 100.0;
-        phi.x.push_back(f), cos_theta.x.push_back(f);
-        phi.y.push_back(i == 30 ? 1.5 : i == 70 ? -1.1 : 0.1 * std::sin(i));
-        cos_theta.y.push_back(i == 2 ? 0.4 : i == 50 ? 0.9 : 0.05);  // 0.4 at F = 0.02 weighs 8x more than 0.9 at 0.5
-    }
-    curves.series = {phi, cos_theta, {"KS critical", {0.0, 1.0}, {2.3, 2.3}}};
-    r.plots = {curves};
-    return r;
-}
+CheckResult unbinned_row() { return sample_unbinned_pass(kLevel); }
 
 // ---- order ------------------------------------------------------------------
 
@@ -239,85 +218,42 @@ TEST(HtmlReport, EachChecksLegendIsTheOneItsRunCarriesWhateverTheCheck) {
 }
 
 // ---- what the plots show ----------------------------------------------------------
+// The marks are the checks' (tests/validate/checks/test_plot_marks.cpp); the
+// report draws a plot's own marks and note whatever check wrote them.
 
-TEST(PlotAnnotations, UnbinnedRingsKuipersExcursionsAndTheLargestAndersonDarlingTerm) {
-    const CheckResult r = unbinned_row();
-    SvgOptions options;
-    html::annotate_plot(r, 0, options);
-    ASSERT_EQ(options.highlights.size(), 3u);
-    EXPECT_EQ(options.highlights[0].label, "phi: D\u207a");
-    EXPECT_DOUBLE_EQ(options.highlights[0].x, 0.30);
-    EXPECT_EQ(options.highlights[1].label, "phi: D\u207b");
-    EXPECT_DOUBLE_EQ(options.highlights[1].x, 0.70);
-    // The tail point, not the curve's highest: 0.4^2 / (0.02 * 0.98) > 0.9^2 / 0.25.
-    EXPECT_EQ(options.highlights[2].label, "cos theta: largest A\u00b2 term");
-    EXPECT_DOUBLE_EQ(options.highlights[2].x, 0.02);
-    const std::string svg = render_svg(r.plots[0], options);
-    EXPECT_THAT(svg, HasSubstr(">phi: D\u207a</text>"));
-    EXPECT_EQ(count_of(svg, "<circle "), 3u);
-    EXPECT_THAT(html::plot_note(r, 0), HasSubstr("KS is not judged"));
+TEST(HtmlReport, APlotsOwnMarksAndNoteAreDrawnWhateverTheCheck) {
+    RunResult run;
+    run.info = sample_info();
+    CheckResult r = chi2_row(0.887, 0.144);
+    r.check_name = "my_renderers_check";
+    Plot& maps = r.plots[0];
+    maps.cells = {{1, 713 / 32, 713 % 32, "my worst cell"}};
+    maps.scale_marks = {{1, 5.67, "my limit"}};
+    maps.note = "What my check judges in this map.";
+    Plot curve;
+    curve.kind = Plot::Kind::Points;
+    curve.series = {{"residual", {0.0, 1.0, 2.0}, {0.5, -1.0, 2.0}}};
+    curve.limits = {{false, 3.0, "my bound"}};
+    curve.highlights = {{2.0, 2.0, "my point"}};
+    r.plots.push_back(curve);
+    run.results = {r};
+    const std::string html = unpacked_html(render_html(run));
+    for (const char* label : {">my worst cell</text>", "my limit", ">my bound</text>", ">my point</text>"})
+        EXPECT_THAT(html, HasSubstr(label)) << label;
+    EXPECT_THAT(html, HasSubstr("<p class=\"note\">What my check judges in this map.</p>"));
+    EXPECT_EQ(count_of(html, "What my check judges"), 1u);
+    EXPECT_THAT(xml_problem(html), IsEmpty());
 }
 
-TEST(PlotAnnotations, Chi2MapRingsTheLargestResidualAndMarksWhereOneCellAloneFails) {
-    const CheckResult r = chi2_row(0.887, 0.144);
-    SvgOptions options;
-    html::annotate_plot(r, 0, options);
-    ASSERT_EQ(options.cells.size(), 1u);
-    EXPECT_EQ(options.cells[0].heatmap, 1u);
-    EXPECT_EQ(options.cells[0].row, 713 / 32);
-    EXPECT_EQ(options.cells[0].col, 713 % 32);
-    ASSERT_EQ(options.scale_marks.size(), 1u);
-    // Two-sided normal tail at 1 - (1 - 0.2 level)^(1/1024) = 1.42e-08.
-    EXPECT_NEAR(options.scale_marks[0].value, 5.6707, 1e-3);
-    const std::string svg = render_svg(r.plots[0], options);
-    EXPECT_THAT(svg, HasSubstr("|r| = 5.7: one cell alone fails"));
-    EXPECT_THAT(svg, HasSubstr(">largest |r|: -3.73</text>"));
-    EXPECT_EQ(count_of(svg, "v16\" stroke=\"#c62828\""), 2u);  // at -5.67 and +5.67: the scale widened from the check's +-4
-    EXPECT_THAT(xml_problem(svg), IsEmpty());
-}
-
-// Once per-cell p-values underflow to 0, every cell at 0 ties and the check
-// names the first of them (-43.35 here, where the table lists -109 first):
-// the ring goes to the largest |residual| (the Judged line names the check's own cell).
-TEST(PlotAnnotations, Chi2RingsTheTrulyLargestResidualWhenPValuesUnderflow) {
-    CheckResult r = chi2_row(0.0, 0.0);
-    for (Figure& f : r.figures) {
-        if (f.name == "local_max_residual") f.value = -43.35;
-        if (f.name == "local_cell") f.value = 5;
-    }
-    std::vector<double>& residuals = r.plots[0].heatmaps[1].values;
-    residuals[5] = -43.35;
-    residuals[700] = 60.0;
-    residuals[713] = -109.0;
-    residuals[800] = std::nan("");
-    SvgOptions options;
-    html::annotate_plot(r, 0, options);
-    ASSERT_EQ(options.cells.size(), 1u);
-    EXPECT_EQ(options.cells[0].row, 713 / 32);
-    EXPECT_EQ(options.cells[0].col, 713 % 32);
-    EXPECT_EQ(options.cells[0].label, "largest |r|: -109.00");
-    // A p-value that did not underflow decides the cell itself: the check's stays.
-    for (Figure& f : r.figures)
-        if (f.name == "local_p_value") f.value = 1e-300;
-    SvgOptions kept;
-    html::annotate_plot(r, 0, kept);
-    ASSERT_EQ(kept.cells.size(), 1u);
-    EXPECT_EQ(kept.cells[0].col, 5);
-    EXPECT_EQ(kept.cells[0].label, "largest |r|: -43.35");
-}
-
-TEST(PlotAnnotations, RoundTripHistogramShowsItsToleranceEvenBeyondEveryError) {
+// The scale and the axes widen to show a plot's marks, as they do for the
+// caller's (SvgOptions): a limit beyond every value is drawn inside the frame.
+TEST(HtmlReport, APlotsMarksWidenItsAxesAndScale) {
     CheckResult r = sample_roundtrip_pass();  // errors 1e-12 .. 1e-7 by decade
     r.plots[0].log_x = false;
     r.plots[0].series[0].x = {-12, -11, -10, -9, -8, -7};
-    r.figures = {{"tolerance", 1e-3}};
-    SvgOptions options;
-    html::annotate_plot(r, 0, options);
-    ASSERT_EQ(options.limits.size(), 1u);
-    EXPECT_NEAR(options.limits[0].value, -3.5, 1e-12);  // log10(1e-3) - 1/2: in the slot of decade -3
-    const std::string svg = render_svg(r.plots[0], options);
+    r.plots[0].limits = {{true, -3.5, "tolerance 0.001"}};
+    const std::string svg = render_svg(r.plots[0]);
     EXPECT_THAT(svg, HasSubstr(">tolerance 0.001</text>"));
-    // The axis widened to take the line in: it is drawn inside the frame.
     const std::smatch line = [&] {
         std::smatch m;
         std::regex_search(svg, m, std::regex("<path d=\"M([0-9.]+) [0-9.]+V[0-9.]+\" stroke=\"#c62828\""));
@@ -325,21 +261,12 @@ TEST(PlotAnnotations, RoundTripHistogramShowsItsToleranceEvenBeyondEveryError) {
     }();
     ASSERT_FALSE(line.empty());
     EXPECT_LT(std::stod(line[1]), 560.0 - 16.0);
-}
-
-TEST(PlotAnnotations, ExhaustivePlotRingsTheMostBiasedFloatAndOutputsOutsideTheInterval) {
-    CheckResult r = sample_exhaustive_pass();
-    r.check_name = "exhaustive";
-    r.figures = {{"most_biased_float", 0.99999994}, {"most_biased_count", 383}, {"most_biased_ideal", 256}};
-    r.tables = {{"Outputs outside [a, b)", {"value", "inputs"}, {{"1 (0x1p+0)", "256"}}}};
-    SvgOptions options;
-    html::annotate_plot(r, 0, options);
-    ASSERT_EQ(options.highlights.size(), 2u);
-    EXPECT_EQ(options.highlights[0].x, -1.0);  // 0.99999994 is in [2^-1, 2^0)
-    EXPECT_EQ(options.highlights[0].y, 383.0);
-    EXPECT_EQ(options.highlights[1].x, 0.0);  // 1.0 is in [2^0, 2^1)
-    EXPECT_EQ(options.highlights[1].label, "outside [a, b): 1 \u00d7256");
-    EXPECT_THAT(render_svg(r.plots[0], options), HasSubstr(">most biased: 0.99999994 \u00d7383 (ideal 256)</text>"));
+    const CheckResult chi2 = [] {
+        CheckResult c = chi2_row(0.887, 0.144);
+        c.plots[0].scale_marks = {{1, 5.6707, "|r| = 5.7: one cell alone fails"}};
+        return c;
+    }();
+    EXPECT_EQ(count_of(render_svg(chi2.plots[0]), "v16\" stroke=\"#c62828\""), 2u);  // at -5.67 and +5.67
 }
 
 }  // namespace

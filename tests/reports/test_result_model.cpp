@@ -29,6 +29,10 @@ TEST(ResultModel, DescriptionsCoverEveryMember) {
     expect_every_member_described<Figure>("Figure");
     expect_every_member_described<Series>("Series");
     expect_every_member_described<Heatmap>("Heatmap");
+    expect_every_member_described<LimitLine>("LimitLine");
+    expect_every_member_described<Highlight>("Highlight");
+    expect_every_member_described<CellHighlight>("CellHighlight");
+    expect_every_member_described<ScaleMark>("ScaleMark");
     expect_every_member_described<Plot>("Plot");
     expect_every_member_described<Table>("Table");
     expect_every_member_described<FamilyValue>("FamilyValue");

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include <fmt/format.h>
+
+#include "chi2/local_residual.h"
 
 namespace warpcheck {
 namespace {
@@ -87,6 +91,91 @@ void add_pilot_refinement_figures(std::vector<Figure>& figures, const chi2::Pilo
     figures.push_back({"pilot_partitioned_cells", static_cast<double>(p.cells_cut)});
     figures.push_back({"pilot_corrected_cells", static_cast<double>(p.cells_changed)});
     figures.push_back({"pilot_corrected_mass", p.missed_mass});
+}
+
+namespace {
+
+std::optional<std::size_t> local_cell(const CheckResult& r) {
+    const auto cell = r.figure("local_cell");
+    if (!cell || !(*cell >= 0.0) || *cell != std::floor(*cell)) return std::nullopt;
+    return static_cast<std::size_t>(*cell);
+}
+
+/// The residuals a chi-square row plots, one per cell: its residual heatmap's
+/// values, or its residual series' y. Empty if it plots none.
+std::span<const double> plotted_residuals(const CheckResult& r) {
+    for (const Plot& plot : r.plots) {
+        for (const Heatmap& h : plot.heatmaps)
+            if (h.label.starts_with("residual")) return h.values;
+        if (plot.kind == Plot::Kind::Points && !plot.series.empty() && plot.series.front().label == "residual")
+            return plot.series.front().y;
+    }
+    return {};
+}
+
+std::string residual_label(const RingedCell& cell) { return fmt::format("largest |r|: {:+.2f}", cell.residual); }
+
+void mark_heatmaps(Plot& plot, const std::optional<RingedCell>& cell, const std::optional<double>& z) {
+    for (std::size_t i = 0; i < plot.heatmaps.size(); ++i) {
+        const Heatmap& h = plot.heatmaps[i];
+        if (!h.label.starts_with("residual") || h.cols <= 0) continue;
+        if (cell && cell->index < h.values.size())
+            plot.cells.push_back({i, static_cast<int>(cell->index / static_cast<std::size_t>(h.cols)),
+                                  static_cast<int>(cell->index % static_cast<std::size_t>(h.cols)),
+                                  residual_label(*cell)});
+        if (z) plot.scale_marks.push_back({i, *z, fmt::format("|r| = {:.1f}: one cell alone fails", *z)});
+    }
+}
+
+void mark_residual_points(Plot& plot, const std::optional<RingedCell>& cell, const std::optional<double>& z) {
+    if (plot.series.empty() || plot.series.front().label != "residual") return;
+    if (z) {
+        plot.limits.push_back({false, *z, fmt::format("+{:.1f}: one cell alone fails", *z)});
+        plot.limits.push_back({false, -*z, fmt::format("\u2212{:.1f}", *z)});
+    }
+    const Series& s = plot.series.front();
+    if (cell && cell->index < s.y.size() && cell->index < s.x.size())
+        plot.highlights.push_back({s.x[cell->index], s.y[cell->index], residual_label(*cell)});
+}
+
+}  // namespace
+
+std::optional<RingedCell> ringed_cell(const CheckResult& r) {
+    const auto cell = local_cell(r);
+    if (!cell) return std::nullopt;
+    RingedCell ringed{*cell, r.figure("local_max_residual").value_or(NAN)};
+    if (r.figure("local_p_value") != 0.0) return ringed;
+    // Underflowed: the tie among the cells at p = 0 goes to the largest |residual|.
+    const std::span<const double> residuals = plotted_residuals(r);
+    for (std::size_t c = 0; c < residuals.size(); ++c)
+        if (std::abs(residuals[c]) > std::abs(ringed.residual) || (c == ringed.index && std::isnan(ringed.residual)))
+            ringed = {c, residuals[c]};
+    return ringed;
+}
+
+std::optional<double> single_cell_limit(const CheckResult& r) {
+    const auto cells = r.figure("cells");
+    if (!r.level || !cells || !(*cells >= 1.0)) return std::nullopt;
+    const double tested = *cells - r.figure("zero_expected_cells").value_or(0.0);
+    const double cell_level = -std::expm1(std::log1p(-chi2::kLocalLevelShare * *r.level) / std::max(tested, 1.0));
+    if (!(cell_level > 0.0 && cell_level < 1.0)) return std::nullopt;
+    double lo = 0.0, hi = 40.0;
+    for (int i = 0; i < 100; ++i) {
+        const double mid = (lo + hi) / 2;
+        (std::erfc(mid / std::sqrt(2.0)) > cell_level ? lo : hi) = mid;
+    }
+    return lo;
+}
+
+void mark_residual_plots(CheckResult& r, const std::string& rule) {
+    const std::optional<RingedCell> cell = ringed_cell(r);
+    const std::optional<double> z = single_cell_limit(r);
+    for (Plot& plot : r.plots) {
+        if (plot.kind == Plot::Kind::Heatmaps) mark_heatmaps(plot, cell, z);
+        else if (plot.kind == Plot::Kind::Points) mark_residual_points(plot, cell, z);
+        else continue;
+        plot.note = rule + (z ? fmt::format(": one cell alone fails beyond |r| \u2248 {:.1f} (red marks).", *z) : ".");
+    }
 }
 
 }  // namespace warpcheck

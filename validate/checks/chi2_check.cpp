@@ -235,6 +235,14 @@ void chi2_p_lines(const CheckResult& r, double level, std::vector<JudgedQuantity
                          *local, share * level, fmt::format(" ({:.3g} \u00d7 level)", share)));
 }
 
+/// The marks of a row's residual plots, and what fails it.
+void mark_chi2_plots(CheckResult& r) {
+    mark_residual_plots(r, fmt::format("Residual r = (observed \u2212 expected) / \u221aexpected per cell: noise stays "
+                                       "within about \u00b14. The check fails when Pearson's p < {:.2g} \u00d7 level or "
+                                       "the ringed largest residual's p < {:.2g} \u00d7 level",
+                                       1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare));
+}
+
 class Chi2Check final : public Check {
 public:
     std::string name() const override { return "chi2"; }
@@ -247,7 +255,8 @@ public:
                             {"pooled_cells", "cells pooled (expected count below 5)", FigureRule::Counted}},
                 .p_values = chi2_p_lines,
                 .p_value = fmt::format("p-value: min(Pearson / {:.3g}, residual / {:.3g}), at most 1",
-                                       1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare)};
+                                       1.0 - chi2::kLocalLevelShare, chi2::kLocalLevelShare),
+                .marks = mark_chi2_plots};
     }
     bool statistical() const override { return true; }
     CheckLegend legend() const override {

@@ -24,6 +24,7 @@
 //   inversion), and how large the bias is, which the figures answer exactly.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <string>
@@ -32,6 +33,7 @@
 #include <boost/math/special_functions/gamma.hpp>
 #include <fmt/format.h>
 
+#include "reports/text.h"
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/evidence.h"
@@ -330,6 +332,42 @@ CheckResult judge(const SweepSummary& s, const Sweep& sw) {
     return r;
 }
 
+/// The plot's x: the binade exponent e of [2^e, 2^(e+1)), -127 for denormals and 0.
+double binade_of(double v) {
+    const double a = std::abs(v);
+    if (!(a >= 0x1p-126)) return -127.0;
+    return std::floor(std::log2(a));
+}
+
+/// On the inputs-per-float plot: the most biased float and the first outputs
+/// outside [a, b) (from the row's table of them), at their binades.
+void mark_exhaustive_plots(CheckResult& r) {
+    const auto value = r.figure("most_biased_float"), count = r.figure("most_biased_count");
+    const double ideal = r.figure("most_biased_ideal").value_or(NAN);
+    const std::string ideal_text = std::isfinite(ideal) ? fmt::format("{:.3g}", ideal) : format_number(ideal);
+    for (Plot& plot : r.plots) {
+        if (plot.kind != Plot::Kind::Lines) continue;
+        if (value && count && *count > 0.0)
+            plot.highlights.push_back({binade_of(*value), *count,
+                                       fmt::format("most biased: {:.9g} \u00d7{} (ideal {})", *value,
+                                                   format_number(*count), ideal_text)});
+        for (const Table& t : r.tables) {
+            if (!t.title.starts_with("Outputs outside")) continue;
+            for (std::size_t i = 0; i < t.rows.size() && i < 3; ++i) {
+                if (t.rows[i].size() < 2) continue;
+                const double v = std::strtod(t.rows[i][0].c_str(), nullptr);
+                const double inputs = std::strtod(t.rows[i][1].c_str(), nullptr);
+                if (std::isfinite(v) && inputs > 0)
+                    plot.highlights.push_back(
+                        {binade_of(v), inputs, fmt::format("outside [a, b): {:.9g} \u00d7{}", v, t.rows[i][1])});
+            }
+        }
+        plot.note = "Inputs per float, per binade: min, ideal and max. Ringed: the most biased float and any output "
+                    "outside [a, b) (at its binade). Outside outputs, steps down of a monotone sampler and a short reach "
+                    "fail; bias is reported.";
+    }
+}
+
 class ExhaustiveCheck final : public Check {
 public:
     std::string name() const override { return "exhaustive"; }
@@ -338,7 +376,8 @@ public:
                  {"mass_outside_reach", "ideal mass outside the outputs' reach", FigureRule::AtMost, "reach_allowance"},
                  {"non_monotone_steps", "steps down (fail if the sampler claims to be monotone)", FigureRule::Counted},
                  {"max_float_bias", "largest float bias factor (fails only beyond --max-float-bias)", FigureRule::Counted},
-                 {"unreached_above_one_input", "floats never produced whose ideal exceeds one input", FigureRule::Counted}}};
+                 {"unreached_above_one_input", "floats never produced whose ideal exceeds one input", FigureRule::Counted}},
+                .marks = mark_exhaustive_plots};
     }
     bool uses_seed() const override { return false; }  // every input, no random stream
     CheckLegend legend() const override {

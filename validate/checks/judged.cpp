@@ -111,7 +111,9 @@ std::vector<JudgedQuantity> judged_lines(const CheckResult& r, const JudgedRules
 
 void record_judgement(CheckResult& r, const JudgedRules& rules) {
     r.judged.clear();
-    if (r.verdict == Verdict::Pass || r.verdict == Verdict::Fail) r.judged = judged_lines(r, rules);
+    if (r.verdict != Verdict::Pass && r.verdict != Verdict::Fail) return;
+    r.judged = judged_lines(r, rules);
+    if (rules.marks) rules.marks(r);
 }
 
 }  // namespace warpcheck

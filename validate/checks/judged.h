@@ -36,12 +36,19 @@ using PValueLines = void (*)(const CheckResult& r, double level, std::vector<Jud
 /// Appends the lines of rules that compare figures with each other.
 using BoundLines = void (*)(const CheckResult& r, std::vector<JudgedQuantity>& out);
 
+/// Marks in a row's plots the quantity judged and its limit, and says under
+/// each plot what they mean (Plot::limits, highlights, cells, scale_marks,
+/// note), from the row's figures, plots and tables; r.level is set when the
+/// row has one.
+using PlotMarks = void (*)(CheckResult& r);
+
 /// What a check judges (Check::judged_rules).
 struct JudgedRules {
     std::vector<JudgedFigure> figures{};
     PValueLines p_values = nullptr;    ///< none: the p-value's own line alone
     std::string p_value = "p-value";   ///< what the row's p-value is, as its line names it
     BoundLines bounds = nullptr;
+    PlotMarks marks = nullptr;         ///< none: the plots as the check drew them
 };
 
 /// The lines of `r` by `rules`: the p-values (at r.level; "no level applied"
@@ -51,7 +58,8 @@ struct JudgedRules {
 std::vector<JudgedQuantity> judged_lines(const CheckResult& r, const JudgedRules& rules);
 
 /// Writes r.judged by `rules` on a row that passed or failed, once its level
-/// is settled; an error or n/a row judged nothing and gets no lines.
+/// is settled, and its plots' marks (rules.marks); an error or n/a row judged
+/// nothing and gets no lines.
 void record_judgement(CheckResult& r, const JudgedRules& rules);
 
 /// Under --strict (the row's figure "strict" is 1): `figure` must be 0,

@@ -712,6 +712,21 @@ void add_evidence(CheckResult& r, const Stats& s, const Rule& rule) {
     r.plots.push_back(std::move(p));
 }
 
+/// The tolerance on the bar plot of error decades (the bar of decade d,
+/// errors in [10^d, 10^(d+1)), stands at x = d, so an error e lies at
+/// log10(e) - 1/2 in its slot), and what the bars and the line mean.
+void mark_roundtrip_plots(CheckResult& r) {
+    const auto tolerance = r.figure("tolerance");
+    if (!tolerance || !(*tolerance > 0.0)) return;
+    for (Plot& plot : r.plots) {
+        if (plot.kind != Plot::Kind::Bars) continue;
+        plot.limits.push_back({true, std::log10(*tolerance) - 0.5, fmt::format("tolerance {:.3g}", *tolerance)});
+        plot.note = "Each bar counts the inputs whose error lies in one decade [10^e, 10^(e+1)), drawn at e; the dashed "
+                    "line stands at the tolerance's place in its decade. Right of it: inputs that missed the tolerance, "
+                    "failures unless excused (counted in the Judged table).";
+    }
+}
+
 class RoundtripCheck final : public Check {
 public:
     std::string name() const override { return "roundtrip"; }
@@ -726,7 +741,8 @@ public:
                  {"rounded_to_one", "u rounded to 1 (excused; fails under --strict)", FigureRule::Counted}},
                 .bounds = [](const CheckResult& r, std::vector<JudgedQuantity>& out) {
                     strict_zero_line(r, "rounded_to_one", "u rounded to 1", out);
-                }};
+                },
+                .marks = mark_roundtrip_plots};
     }
     CheckLegend legend() const override {
         return {name(), "|invert(sample(u)) \u2212 u| against the case's tolerance (float resolution); excused "

@@ -996,10 +996,61 @@ CheckResult run_unbinned(const WarpCase& warp, const CheckContext& ctx, const Un
 
 std::unique_ptr<Check> make_unbinned_check() { return std::make_unique<UnbinnedCheck>(); }
 
+namespace {
+
+const Series* series_labelled(const Plot& plot, const std::string& label) {
+    for (const Series& s : plot.series)
+        if (s.label == label && s.x.size() == s.y.size() && !s.x.empty()) return &s;
+    return nullptr;
+}
+
+/// Kuiper's V = D+ + D-: its two excursions, the highest and lowest points of
+/// sqrt(n) (F_n - F).
+void mark_kuiper(Plot& plot, const Series& s) {
+    const auto [lo, hi] = std::minmax_element(s.y.begin(), s.y.end());
+    const auto x_of = [&](auto it) { return s.x[static_cast<std::size_t>(it - s.y.begin())]; };
+    plot.highlights.push_back({x_of(hi), *hi, s.label + ": D\u207a"});
+    plot.highlights.push_back({x_of(lo), *lo, s.label + ": D\u207b"});
+}
+
+/// Anderson-Darling's A^2 integrates n (F_n - F)^2 / (F (1 - F)) over F: its
+/// largest term, often in a tail where the curve itself looks small.
+void mark_anderson_darling(Plot& plot, const Series& s) {
+    double best = -1.0;
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+        const double f = s.x[i];
+        if (!(f > 0.0 && f < 1.0) || !std::isfinite(s.y[i])) continue;
+        const double term = s.y[i] * s.y[i] / (f * (1.0 - f));
+        if (term > best) best = term, at = i;
+    }
+    if (best >= 0.0) plot.highlights.push_back({s.x[at], s.y[at], s.label + ": largest A\u00b2 term"});
+}
+
+/// On each plot of sqrt(n) (F_n - F): where each judged test takes its value.
+void mark_unbinned_plots(CheckResult& r) {
+    const auto judged = judged_unbinned_tests(r);
+    for (Plot& plot : r.plots) {
+        if (plot.kind != Plot::Kind::Lines) continue;
+        for (const auto& [marginal, test] : judged) {
+            const Series* s = series_labelled(plot, marginal);
+            if (!s) continue;
+            if (test == "kuiper") mark_kuiper(plot, *s);
+            if (test == "ad") mark_anderson_darling(plot, *s);
+        }
+        plot.note = "Judged per marginal: Anderson\u2013Darling's A\u00b2 (the integral of the squared curve over "
+                    "F(1 \u2212 F); its largest term is ringed), and on an azimuth Kuiper's V = D\u207a + D\u207b too "
+                    "(the ringed highest and lowest points). The \u00b1KS lines are for scale: KS is not judged.";
+    }
+}
+
+}  // namespace
+
 JudgedRules unbinned_judged_rules() {
     return {.figures = {{"nan_samples", "samples with NaN coordinates (any fails)", FigureRule::Zero}},
             .p_values = unbinned_p_lines,
-            .p_value = "p-value: smallest judged p, \u0160id\u00e1k-corrected over the judged tests"};
+            .p_value = "p-value: smallest judged p, \u0160id\u00e1k-corrected over the judged tests",
+            .marks = mark_unbinned_plots};
 }
 
 }  // namespace warpcheck

@@ -51,6 +51,7 @@
 #include "chi2/min_p.h"
 #include "chi2/power.h"
 #include "validate/checks/bsdf/bsdf_checks.h"
+#include "validate/checks/cell_evidence.h"
 #include "validate/checks/bsdf/bsdf_common.h"
 #include "validate/checks/bsdf/bsdf_evidence.h"
 #include "validate/checks/bsdf/bsdf_statistics.h"
@@ -298,6 +299,17 @@ void bsdf_chi2_bound_lines(const CheckResult& r, std::vector<JudgedQuantity>& ou
                    *integral <= room ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond});
 }
 
+/// The marks of a row's residual plots, and what fails it.
+void mark_bsdf_chi2_plots(CheckResult& r) {
+    mark_residual_plots(r, fmt::format("The sphere of wi in (phi_i, cos theta_i), where cell area is solid angle: cos "
+                                       "theta_i > 0 on wo's side. Residual r = (observed \u2212 expected) / "
+                                       "\u221aexpected per cell: noise stays within about \u00b14. The check fails when "
+                                       "Pearson's p < {:.2g} \u00d7 level, the ringed largest residual's p < {:.2g} "
+                                       "\u00d7 level or the landing share's p < {:.2g} \u00d7 level",
+                                       1.0 - chi2::kLocalLevelShare - kLandingLevelShare, chi2::kLocalLevelShare,
+                                       kLandingLevelShare));
+}
+
 class BsdfChi2Check final : public BsdfCheck {
 public:
     std::string name() const override { return "bsdf_chi2"; }
@@ -311,7 +323,8 @@ public:
                 .p_value = fmt::format("p-value: min(Pearson / {:.3g}, residual / {:.3g}, landing / {:.3g}), at most 1",
                                        1.0 - chi2::kLocalLevelShare - kLandingLevelShare, chi2::kLocalLevelShare,
                                        kLandingLevelShare),
-                .bounds = bsdf_chi2_bound_lines};
+                .bounds = bsdf_chi2_bound_lines,
+                .marks = mark_bsdf_chi2_plots};
     }
     bool statistical() const override { return true; }
     CheckLegend legend() const override {
