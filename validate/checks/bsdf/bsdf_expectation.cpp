@@ -26,7 +26,9 @@
 //    of the integral reported (the total below still holds them);
 //  - a comparison whose p falls below 0.01 over the cells is made again
 //    against a fresh reference 16 times larger (kRetestFactor says why), and
-//    its p is the larger of the two;
+//    its p is the larger of the two; the fresh reference serves that
+//    comparison alone (retest() says why), and the evaluations of every
+//    reference made count in the exact rule below;
 //  - the total: the mean continuous weight against the integral over the
 //    whole sphere (the albedo of the continuous lobes), the same z-test;
 //  - energy: the mean energy weight of all draws, delta lobes included, at
@@ -460,6 +462,9 @@ struct Screen {
     double remainder = NAN;
     std::vector<double> reciprocity_cell;  ///< the same for reciprocity in expectation
     double reciprocity_remainder = NAN;
+    /// Over every reference made (the first and the retests'): evaluations of
+    /// f, and those not finite or negative, which fail wherever they were.
+    uint64_t evaluations = 0, bad_values = 0;
 };
 
 bool has_asymmetry_mass(const Reference& r) { return !(r.reverse == 0.0 && r.asymmetry_size.sum == 0.0); }
@@ -491,12 +496,19 @@ bool has_mass(const Side& sampled, const Side& f) { return !(sampled.sum == 0.0 
 
 /// The screen: each comparison whose p is below kScreenAlpha over the cells
 /// gets its references (the remainder's: those of all its cells) replaced by
-/// fresh ones kRetestFactor times larger.
+/// fresh ones kRetestFactor times larger, for that comparison only: the
+/// weights' in `ref`, reciprocity's in `reciprocity_ref` (a copy of the first
+/// reference where reciprocity did not flag the cell). A fresh reference that
+/// replaced one for another comparison's flag would be selected: on a
+/// one-way f, reciprocity flags the cells whose f(wo, wi) estimate is high,
+/// and the weights' reference left there would be biased low. Every
+/// evaluation made, replaced or not, is counted in the screen's tallies.
 Screen retest(const BsdfCase& bsdf, const CheckContext& ctx, const std::vector<int>& sides,
-              const std::vector<Side>& sampled, const Plan& plan, std::vector<Reference>& ref) {
+              const std::vector<Side>& sampled, const Plan& plan, std::vector<Reference>& ref,
+              std::vector<Reference>& reciprocity_ref) {
     Screen screen;
     screen.cell.assign(ref.size(), NAN);
-    std::vector<std::size_t> flagged, pool;
+    std::vector<std::size_t> flagged, pool, flagged_reciprocity;
     const double threshold = kScreenAlpha / static_cast<double>(ref.size());
     Side rest_s, rest_f;
     for (std::size_t c = 0; c < ref.size(); ++c) {
@@ -513,13 +525,25 @@ Screen retest(const BsdfCase& bsdf, const CheckContext& ctx, const std::vector<i
         screen.remainder = p_rest;
         flagged.insert(flagged.end(), pool.begin(), pool.end());
     }
-    if (bsdf.claims().reciprocal) screen_reciprocity(ref, plan, threshold, screen, flagged);
-    std::sort(flagged.begin(), flagged.end());
-    flagged.erase(std::unique(flagged.begin(), flagged.end()), flagged.end());
-    ctx.parallel_for(flagged.size(), [&](std::size_t k) {
-        const std::size_t c = flagged[k];
-        ref[c] = integrate_cell(bsdf, ctx, sides, c, ref[c].evaluations * kRetestFactor, kRetestChunks + c);
+    if (bsdf.claims().reciprocal) screen_reciprocity(ref, plan, threshold, screen, flagged_reciprocity);
+    std::vector<std::size_t> fresh_cells = flagged;
+    fresh_cells.insert(fresh_cells.end(), flagged_reciprocity.begin(), flagged_reciprocity.end());
+    std::sort(fresh_cells.begin(), fresh_cells.end());
+    fresh_cells.erase(std::unique(fresh_cells.begin(), fresh_cells.end()), fresh_cells.end());
+    std::vector<Reference> fresh(fresh_cells.size());
+    ctx.parallel_for(fresh_cells.size(), [&](std::size_t k) {
+        const std::size_t c = fresh_cells[k];
+        fresh[k] = integrate_cell(bsdf, ctx, sides, c, ref[c].evaluations * kRetestFactor, kRetestChunks + c);
     });
+    for (const Reference& r : ref) screen.evaluations += r.evaluations, screen.bad_values += r.bad_values;
+    for (const Reference& r : fresh) screen.evaluations += r.evaluations, screen.bad_values += r.bad_values;
+    reciprocity_ref = ref;
+    const auto fresh_of = [&](std::size_t c) {
+        return fresh[static_cast<std::size_t>(std::lower_bound(fresh_cells.begin(), fresh_cells.end(), c) -
+                                              fresh_cells.begin())];
+    };
+    for (const std::size_t c : flagged) ref[c] = fresh_of(c);
+    for (const std::size_t c : flagged_reciprocity) reciprocity_ref[c] = fresh_of(c);
     return screen;
 }
 
@@ -532,8 +556,6 @@ Outcome judge_cells(const std::vector<Side>& sampled, const std::vector<Referenc
         all_s.add(sampled[c]);
         all_f.add(ref[c].f);
         o.pdf_integral += ref[c].pdf;
-        o.evaluations += ref[c].evaluations;
-        o.bad_f_values += ref[c].bad_values;
         if (!has_mass(sampled[c], ref[c].f)) continue;
         if (plan.alone[c]) {
             o.cells.push_back(compare(sampled[c], ref[c].f));
@@ -550,6 +572,8 @@ Outcome judge_cells(const std::vector<Side>& sampled, const std::vector<Referenc
         ++o.pooled;
     }
     o.total = compare(all_s, all_f);
+    o.evaluations = screen.evaluations;
+    o.bad_f_values = screen.bad_values;
 
     if (o.pooled > 0) {
         o.remainder = compare(rest_s, rest_f);
@@ -772,9 +796,10 @@ protected:
         std::vector<Reference> ref = reference(bsdf, ctx, sides, pilot, 1.0, kReferenceChunks);
         const Plan plan = plan_from_pilots(pilot, static_cast<double>(t.draws) / static_cast<double>(pilot_count),
                                            reference(bsdf, ctx, sides, pilot, kPilotShare, kPilotReferenceChunks), ref);
-        const Screen screen = retest(bsdf, ctx, sides, sampled, plan, ref);
+        std::vector<Reference> reciprocity_ref;
+        const Screen screen = retest(bsdf, ctx, sides, sampled, plan, ref, reciprocity_ref);
         Outcome o = judge_cells(sampled, ref, plan, screen);
-        if (bsdf.claims().reciprocal) judge_reciprocity(ref, plan, screen, o);
+        if (bsdf.claims().reciprocal) judge_reciprocity(reciprocity_ref, plan, screen, o);
         o.energy = energy_test(t.energy);
         o.p_values.push_back(o.energy.p_value);
         CheckResult r;

@@ -216,6 +216,32 @@ TEST(BsdfExpectation, AOneWayFactorOnPartOfTheSphereFailsByReciprocityAloneOnSev
     }
 }
 
+// A retest serves the comparison that asked for it. On the one-way twin
+// above, reciprocity flags most cells; if their fresh references also
+// replaced the weights' (which, selected by the reciprocity flag, are the
+// ones whose f(wo, wi) estimate was high), the weights' comparisons would be
+// judged on a biased reference (their total z averaged -1.7 over 12 seeds
+// before). The weights here agree with f in expectation: their total z must
+// stay centred over the seeds (a mean of 8 unit normals beyond 2.576 / sqrt(8)
+// has probability 0.01), while the row fails by reciprocity on every seed.
+TEST(BsdfExpectation, AReciprocityRetestLeavesTheWeightsReferenceUnbiasedOnSeveralSeeds) {
+    const std::unique_ptr<Check> check = bsdf::make_bsdf_expectation_check();
+    const Vector3f wo = bsdf_direction(60);
+    const CoatedBsdf coat(Lambertian(0.8f), 1.5f);
+    const auto wrong = one_way_scaled(coat, {.wo = wo}, 1.08f, [](Vector3f wi) { return wi.z > 0.5f; });
+    constexpr int kSeeds = 8;
+    double sum = 0.0;
+    for (uint64_t seed = 1; seed <= kSeeds; ++seed) {
+        const CheckResult w = run_judged(*check, *wrong, seed, 250'000);
+        EXPECT_EQ(w.verdict, Verdict::Fail) << "seed " << seed << ": " << w.message;
+        EXPECT_GT(figure_of(w, "reciprocity_cells_retested"), 10.0) << w.message;
+        const double z = figure_of(w, "z_total");
+        ASSERT_TRUE(std::isfinite(z)) << w.message;
+        sum += z;
+    }
+    EXPECT_LT(std::abs(sum / kSeeds), 2.576 / std::sqrt(double{kSeeds})) << "mean of the weights' total z";
+}
+
 /// The built-in rough glass with its pdf floored at FLT_MIN: at edge inputs
 /// its rounded wi can fall where pdf() is 0 (sampling/bsdf_dielectric.h's
 /// open finding), which bsdf_expectation's MIS rule counts; the floor keeps
