@@ -130,12 +130,19 @@ bool classify(ConsistencyStats& s, const chi2::Domain& domain, uint64_t index, c
     return false;
 }
 
-/// Whether the pdf is positive (and finite) at one of x's probed neighbours.
-bool positive_nearby(const WarpCase& warp, const WarpOutput& x) {
-    const std::vector<WarpOutput> probes = probe_points(warp.domain(), x);
-    std::vector<double> pdf(probes.size());
-    warp.pdf(probes, pdf);
-    return std::any_of(pdf.begin(), pdf.end(), [](double v) { return v > 0.0 && std::isfinite(v); });
+/// Whether the pdf is positive (and finite) at one of the probed neighbours
+/// of each of the samples `which`: one evaluation for all (ProbeBatch).
+std::vector<unsigned char> positive_nearby(const WarpCase& warp, std::span<const WarpOutput> x,
+                                           std::span<const std::size_t> which) {
+    ProbeBatch probes;
+    for (const std::size_t i : which) probes.add(probe_points(warp.domain(), x[i]));
+    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
+    std::vector<double> pdf(probes.points.size());
+    warp.pdf(probes.points, pdf);
+    std::vector<unsigned char> out(which.size());
+    for (std::size_t k = 0; k < which.size(); ++k)
+        out[k] = probes.any(k, [&](std::size_t j) { return pdf[j] > 0.0 && std::isfinite(pdf[j]); });
+    return out;
 }
 
 /// Whether x, the sample of `input` with pdf 0 and no positive pdf at its
@@ -159,16 +166,20 @@ bool limit_of_support(const WarpCase& warp, const WarpInput& input, const WarpOu
     return excused_in_the_limit(warp.domain(), x, xs, passes);
 }
 
-/// Whether x, a sample with a positive pdf, lies within kProbeUlps spacings of
-/// a zero pdf inside the domain (axis_probes: a zero just beyond the domain's
-/// own boundary is not a support's edge; the boundary's zeros are bounded
-/// apart, boundary_problem).
-bool near_support_edge(const WarpCase& warp, const WarpOutput& x) {
-    const std::vector<WarpOutput> probes = axis_probes(warp.domain(), x);
-    if (probes.empty()) return false;
-    std::vector<double> pdf(probes.size());
-    warp.pdf(probes, pdf);
-    return std::any_of(pdf.begin(), pdf.end(), [](double v) { return v == 0.0; });
+/// Whether each of the samples `which`, with a positive pdf, lies within
+/// kProbeUlps spacings of a zero pdf inside the domain (axis_probes: a zero
+/// just beyond the domain's own boundary is not a support's edge; the
+/// boundary's zeros are bounded apart, boundary_problem). One evaluation for all.
+std::vector<unsigned char> near_support_edge(const WarpCase& warp, std::span<const WarpOutput> x,
+                                             std::span<const std::size_t> which) {
+    ProbeBatch probes;
+    for (const std::size_t i : which) probes.add(axis_probes(warp.domain(), x[i]));
+    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
+    std::vector<double> pdf(probes.points.size());
+    warp.pdf(probes.points, pdf);
+    std::vector<unsigned char> out(which.size());
+    for (std::size_t k = 0; k < which.size(); ++k) out[k] = probes.any(k, [&](std::size_t j) { return pdf[j] == 0.0; });
+    return out;
 }
 
 /// One chunk of samples with their pdfs, classified.
@@ -178,23 +189,31 @@ ConsistencyStats classify_chunk(const WarpCase& warp, std::size_t chunk, std::sp
     const chi2::Domain& domain = warp.domain();
     ConsistencyStats s;
     if (chunk > 0) s.random_count = inputs.size();
+    // The samples probed for a zero pdf nearby and the zero pdfs inside the
+    // domain probed for a positive one nearby, each set in one batch (the
+    // tallies keep their first example by index, whatever the order).
+    std::vector<std::size_t> banded, zero;
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         if (!declined.empty() && declined[i]) {
             ++s.declined;
             s.declined_random += chunk > 0 ? 1 : 0;
             continue;
         }
+        if (chunk > 0 && warp.has_pdf() && i % stride == 0 && pdf[i] > 0.0 && std::isfinite(pdf[i]) &&
+            domain.contains(to_domain_point(x[i])))
+            banded.push_back(i);
+        if (classify(s, domain, chunk * kInputChunkSize + i, {inputs[i], x[i], pdf[i]}, chunk > 0)) zero.push_back(i);
+    }
+    for (const unsigned char near : near_support_edge(warp, x, banded)) s.band.add(near != 0);
+    // A zero pdf inside the domain: rounded across the support's edge, or a violation.
+    const std::vector<unsigned char> rounded =
+        warp.has_pdf() ? positive_nearby(warp, x, zero) : std::vector<unsigned char>(zero.size(), 0);
+    for (std::size_t k = 0; k < zero.size(); ++k) {
+        const std::size_t i = zero[k];
         const uint64_t index = chunk * kInputChunkSize + i;
         const Example e{inputs[i], x[i], pdf[i]};
-        if (chunk > 0 && warp.has_pdf() && i % stride == 0 && pdf[i] > 0.0 && std::isfinite(pdf[i]) &&
-            domain.contains(to_domain_point(x[i]))) {
-            s.band.add(near_support_edge(warp, x[i]));
-        }
-        if (!classify(s, domain, index, e, chunk > 0)) continue;
-        // A zero pdf inside the domain: rounded across the support's edge, or a violation.
-        const bool rounded = warp.has_pdf() && positive_nearby(warp, x[i]);
-        const bool limit = chunk == 0 && !rounded && warp.has_pdf() && limit_of_support(warp, inputs[i], x[i]);
-        if (!rounded && !limit) s.zero_pdf.add(index, e);
+        const bool limit = chunk == 0 && !rounded[k] && warp.has_pdf() && limit_of_support(warp, inputs[i], x[i]);
+        if (!rounded[k] && !limit) s.zero_pdf.add(index, e);
         else if (chunk == 0) ++s.rounded_edges;
         else s.rounded_random.add(index, e);
         s.below_resolution += limit ? 1 : 0;

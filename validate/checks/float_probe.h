@@ -81,6 +81,26 @@ inline constexpr std::size_t kFloatNeighbours = 8;
 /// seen edge-on.
 std::vector<WarpOutput> float_neighbours(const WarpOutput& w, double step = kFloatStep);
 
+/// The probe points of several samples gathered into one batch, so that a
+/// case's functions are called once for them all (a Python case pays per
+/// call, and a wrong one has a probe at every sample): sample k's points are
+/// points[start[k], start[k + 1]).
+struct ProbeBatch {
+    std::vector<WarpOutput> points;
+    std::vector<std::size_t> start{0};
+    void add(const std::vector<WarpOutput>& p) {
+        points.insert(points.end(), p.begin(), p.end());
+        start.push_back(points.size());
+    }
+    /// Whether `test` holds at any point of sample k (its index in points).
+    template <typename Test>
+    bool any(std::size_t k, Test test) const {
+        for (std::size_t j = start[k]; j < start[k + 1]; ++j)
+            if (test(j)) return true;
+        return false;
+    }
+};
+
 /// Random samples probed for a discontinuity nearby (EdgeBand): about 2^14
 /// of them, every k-th for k = samples / 2^14 clamped to [1, 64]. 2^14
 /// probes see a share of 10^-3 16 times; fewer samples are all probed (at

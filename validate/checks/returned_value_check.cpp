@@ -97,14 +97,22 @@ void references(const WarpCase& warp, What what, std::span<const WarpOutput> x, 
     }
 }
 
-/// Whether the returned value agrees, within the tolerance, with the
-/// reference at one of x's float neighbours (float_probe.h).
-bool agrees_nearby(const WarpCase& warp, What what, const Example& e) {
-    std::vector<WarpOutput> probes = probe_points(warp.domain(), e.output);
-    std::vector<Example> ex(probes.size());
-    references(warp, what, probes, ex);
-    return std::any_of(ex.begin(), ex.end(),
-                       [&](const Example& n) { return relative_difference(e.returned, n.reference) <= kRelativeTolerance; });
+/// Whether each of the samples `which` agrees, within the tolerance, with
+/// the reference at one of its x's float neighbours (float_probe.h): one
+/// evaluation of the references for all.
+std::vector<unsigned char> agree_nearby(const WarpCase& warp, What what, std::span<const Example> ex,
+                                        std::span<const std::size_t> which) {
+    ProbeBatch probes;
+    for (const std::size_t i : which) probes.add(probe_points(warp.domain(), ex[i].output));
+    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
+    std::vector<Example> at(probes.points.size());
+    references(warp, what, probes.points, at);
+    std::vector<unsigned char> agrees(which.size());
+    for (std::size_t k = 0; k < which.size(); ++k)
+        agrees[k] = probes.any(k, [&](std::size_t j) {
+            return relative_difference(ex[which[k]].returned, at[j].reference) <= kRelativeTolerance;
+        });
+    return agrees;
 }
 
 /// Whether x lies where the reference is not resolved in float (a light's
@@ -132,17 +140,24 @@ bool agrees_in_the_limit(const WarpCase& warp, What what, const Example& e) {
     return excused_in_the_limit(warp.domain(), e.output, xs, passes);
 }
 
-/// Whether the reference at x jumps (kJumpTolerance) within kProbeUlps
-/// spacings along a coordinate (axis_probes): x lies that close to a
-/// discontinuity of it (a silhouette, a pixel's border), where rounding can
-/// carry a sample across.
-bool near_discontinuity(const WarpCase& warp, What what, const Example& e) {
-    const std::vector<WarpOutput> probes = axis_probes(warp.domain(), e.output);
-    if (probes.empty()) return false;
-    std::vector<Example> ex(probes.size());
-    references(warp, what, probes, ex);
-    return std::any_of(ex.begin(), ex.end(),
-                       [&](const Example& n) { return relative_difference(e.reference, n.reference) > kJumpTolerance; });
+/// Whether the reference at each of the samples `which` jumps
+/// (kJumpTolerance) within kProbeUlps spacings along a coordinate
+/// (axis_probes): x lies that close to a discontinuity of it (a silhouette, a
+/// pixel's border), where rounding can carry a sample across. One evaluation
+/// of the references for all.
+std::vector<unsigned char> near_discontinuity(const WarpCase& warp, What what, std::span<const Example> ex,
+                                              std::span<const std::size_t> which) {
+    ProbeBatch probes;
+    for (const std::size_t i : which) probes.add(axis_probes(warp.domain(), ex[i].output));
+    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
+    std::vector<Example> at(probes.points.size());
+    references(warp, what, probes.points, at);
+    std::vector<unsigned char> near(which.size());
+    for (std::size_t k = 0; k < which.size(); ++k)
+        near[k] = probes.any(k, [&](std::size_t j) {
+            return relative_difference(ex[which[k]].reference, at[j].reference) > kJumpTolerance;
+        });
+    return near;
 }
 
 ReturnedValueStats compute(const WarpCase& warp, const CheckContext& ctx, What what) {
@@ -157,20 +172,29 @@ ReturnedValueStats compute(const WarpCase& warp, const CheckContext& ctx, What w
         references(warp, what, x, ex);
         ReturnedValueStats s;
         if (chunk > 0) s.random_count = inputs.size();
+        // The samples probed for a discontinuity nearby and the mismatches
+        // tried at their float neighbours, each set probed in one batch.
+        std::vector<double> rel(inputs.size());
+        std::vector<std::size_t> banded, mismatched;
         for (std::size_t i = 0; i < inputs.size(); ++i) {
             ex[i].input = inputs[i];
             ex[i].output = x[i];
             ex[i].returned = value[i];
-            const double rel = relative_difference(value[i], ex[i].reference);
+            rel[i] = relative_difference(value[i], ex[i].reference);
+            if (chunk > 0 && i % stride == 0 && std::isfinite(ex[i].reference)) banded.push_back(i);
+            if (!(rel[i] <= kRelativeTolerance) && std::isfinite(value[i])) mismatched.push_back(i);
+        }
+        const std::vector<unsigned char> near = near_discontinuity(warp, what, ex, banded);
+        const std::vector<unsigned char> agrees = agree_nearby(warp, what, ex, mismatched);
+        for (std::size_t i = 0, b = 0, m = 0; i < inputs.size(); ++i) {
             ++s.count;
             if (declines && value[i] == 0.0) {
                 ++s.declined;
                 s.declined_random += chunk > 0 ? 1 : 0;
             }
-            if (chunk > 0 && i % stride == 0 && std::isfinite(ex[i].reference))
-                s.band.add(near_discontinuity(warp, what, ex[i]));
-            if (!(rel <= kRelativeTolerance) && std::isfinite(value[i])) {
-                const bool nearby = agrees_nearby(warp, what, ex[i]);
+            if (b < banded.size() && banded[b] == i) s.band.add(near[b++] != 0);
+            if (m < mismatched.size() && mismatched[m] == i) {
+                const bool nearby = agrees[m++] != 0;
                 const bool limit = chunk == 0 && !nearby && agrees_in_the_limit(warp, what, ex[i]);
                 if (nearby || limit) {
                     if (chunk == 0) ++s.excused_edges;
@@ -179,9 +203,9 @@ ReturnedValueStats compute(const WarpCase& warp, const CheckContext& ctx, What w
                     continue;
                 }
             }
-            s.max_relative = max_nan_wins(s.max_relative, rel);
-            if (!(rel <= kRelativeTolerance)) ++s.mismatches;
-            if (s.worst.wants(rel)) s.worst.offer(rel, chunk * kInputChunkSize + i, ex[i]);
+            s.max_relative = max_nan_wins(s.max_relative, rel[i]);
+            if (!(rel[i] <= kRelativeTolerance)) ++s.mismatches;
+            if (s.worst.wants(rel[i])) s.worst.offer(rel[i], chunk * kInputChunkSize + i, ex[i]);
         }
         return s;
     });

@@ -114,29 +114,38 @@ bool on_its_side(const BsdfCase& bsdf, const BsdfRecord& r) {
     return has(r.flags, BsdfFlags::Transmission) ? side < 0.0f : side > 0.0f;
 }
 
-/// Whether the returned weight lies within the range of the weights that f()
-/// and pdf() give at wi and its float neighbours, widened by that range.
-bool within_float_resolution(const BsdfCase& bsdf, const Example& e) {
-    std::vector<WarpOutput> wi = float_neighbours(e.record.wi);
-    const std::vector<WarpOutput> wo(wi.size(), detail::to_output_of(bsdf.wo()));
-    std::vector<double> f(wi.size()), pdf(wi.size());
-    bsdf.f(wo, wi, f);
-    bsdf.pdf(wi, pdf);
-    double lo = HUGE_VAL, hi = -HUGE_VAL;
-    const auto include = [&](double w) {
-        if (!std::isfinite(w)) return;
-        lo = std::min(lo, w);
-        hi = std::max(hi, w);
-    };
-    include(e.weight_at);
-    for (std::size_t k = 0; k < wi.size(); ++k)
-        if (pdf[k] > 0.0) include(f[k] * bsdf.cosine(wi[k]) / pdf[k]);
-    // The neighbours stand in for wi, so the weight is held to them as to wi
-    // itself: within kRelativeTolerance of their range, widened by the range's
-    // spread (where the neighbours agree to the last bits, the spread alone
-    // would ask for an identity that two float paths do not give).
-    const double width = hi - lo + kRelativeTolerance * std::max(std::abs(lo), std::abs(hi));
-    return lo <= hi && e.weight >= lo - width && e.weight <= hi + width;
+/// Whether each example's returned weight lies within the range of the
+/// weights that f() and pdf() give at its wi and its float neighbours,
+/// widened by that range. One evaluation of f and pdf for all (ProbeBatch).
+std::vector<unsigned char> within_float_resolution(const BsdfCase& bsdf, std::span<const Example> examples) {
+    ProbeBatch probes;
+    for (const Example& e : examples) probes.add(float_neighbours(e.record.wi));
+    const std::vector<WarpOutput> wo(probes.points.size(), detail::to_output_of(bsdf.wo()));
+    std::vector<double> f(probes.points.size()), pdf(probes.points.size());
+    if (!probes.points.empty()) {
+        bsdf.f(wo, probes.points, f);
+        bsdf.pdf(probes.points, pdf);
+    }
+    std::vector<unsigned char> out(examples.size());
+    for (std::size_t k = 0; k < examples.size(); ++k) {
+        const Example& e = examples[k];
+        double lo = HUGE_VAL, hi = -HUGE_VAL;
+        const auto include = [&](double w) {
+            if (!std::isfinite(w)) return;
+            lo = std::min(lo, w);
+            hi = std::max(hi, w);
+        };
+        include(e.weight_at);
+        for (std::size_t j = probes.start[k]; j < probes.start[k + 1]; ++j)
+            if (pdf[j] > 0.0) include(f[j] * bsdf.cosine(probes.points[j]) / pdf[j]);
+        // The neighbours stand in for wi, so the weight is held to them as to wi
+        // itself: within kRelativeTolerance of their range, widened by the range's
+        // spread (where the neighbours agree to the last bits, the spread alone
+        // would ask for an identity that two float paths do not give).
+        const double width = hi - lo + kRelativeTolerance * std::max(std::abs(lo), std::abs(hi));
+        out[k] = lo <= hi && e.weight >= lo - width && e.weight <= hi + width;
+    }
+    return out;
 }
 
 /// |wi| in double: the squares of float components are exact in double and
@@ -163,20 +172,27 @@ void judge_direction(const BsdfCase& bsdf, Stats& s, uint64_t index, const Examp
         s.kinds[kWrongEta].add(index, e);
 }
 
-/// Judges a continuous sample's weight, given f(wo, wi) and pdf(wo, wi) at its wi.
-void judge_weight(const BsdfCase& bsdf, Stats& s, uint64_t index, bool edge, Example& e) {
-    e.weight_at = e.f_at * bsdf.cosine(e.record.wi) / e.pdf_at;
+/// A sample of weight 0 where f() is 0 too (a black Lambertian, a lobe of
+/// weight 0) claims nothing and adds nothing: the identity 0 = 0 |cos| / pdf
+/// holds exactly, so it agrees (counted as zero_weight); a sample whose f
+/// is positive where f() is 0 is the failure the rule is for.
+bool zero_weight(const Example& e) { return e.pdf_at > 0.0 && e.record.f == 0.0f && e.f_at == 0.0; }
+
+/// Whether a continuous sample's weight agrees with f(wo, wi) |cos| / pdf(wo, wi) (weight_at set).
+bool agrees(const Example& e) {
+    return e.pdf_at > 0.0 && e.f_at > 0.0 && relative_difference(e.weight, e.weight_at) <= kRelativeTolerance;
+}
+
+/// Judges a continuous sample's weight, given f(wo, wi) and pdf(wo, wi) at
+/// its wi (weight_at set) and, where it does not agree, whether it lies within
+/// the float resolution of f and pdf around wi.
+void judge_weight(Stats& s, uint64_t index, bool edge, const Example& e, bool within_resolution) {
     const double rel = relative_difference(e.weight, e.weight_at);
-    // A sample of weight 0 where f() is 0 too (a black Lambertian, a lobe of
-    // weight 0) claims nothing and adds nothing: the identity 0 = 0 |cos| / pdf
-    // holds exactly, so it agrees (counted as zero_weight); a sample whose f
-    // is positive where f() is 0 is the failure the rule is for.
-    if (e.pdf_at > 0.0 && e.record.f == 0.0f && e.f_at == 0.0) {
+    if (zero_weight(e)) {
         ++s.zero_weight;
         return;
     }
-    const bool agrees = e.pdf_at > 0.0 && e.f_at > 0.0 && rel <= kRelativeTolerance;
-    if (!agrees && within_float_resolution(bsdf, e)) {
+    if (!agrees(e) && within_resolution) {
         ++s.excused;
         if (!edge) s.kinds[kExcusedMany].add(index, e);
         if (e.pdf_at > 0.0 && e.f_at > 0.0) s.excused_max_relative = max_nan_wins(s.excused_max_relative, rel);
@@ -228,11 +244,21 @@ Stats judge_chunk(const BsdfCase& bsdf, std::size_t chunk, std::span<const WarpI
     t.pdf.resize(n);
     bsdf.f(t.wo, t.wi, t.f);
     bsdf.pdf(t.wi, t.pdf);
+    // The samples that do not agree are tried at their float neighbours in one batch.
+    std::vector<Example> examples(n), disagreeing;
     for (std::size_t k = 0; k < n; ++k) {
         const std::size_t i = t.continuous[k];
-        Example e{in[i], rec[i], static_cast<double>(rec[i].f) * bsdf.cosine(rec[i].wi) / rec[i].pdf, t.f[k], t.pdf[k],
-                  0.0};
-        judge_weight(bsdf, s, chunk * kInputChunkSize + i, chunk == 0, e);
+        Example& e = examples[k];
+        e = Example{in[i], rec[i], static_cast<double>(rec[i].f) * bsdf.cosine(rec[i].wi) / rec[i].pdf, t.f[k],
+                    t.pdf[k], 0.0};
+        e.weight_at = e.f_at * bsdf.cosine(e.record.wi) / e.pdf_at;
+        if (!zero_weight(e) && !agrees(e)) disagreeing.push_back(e);
+    }
+    const std::vector<unsigned char> within = within_float_resolution(bsdf, disagreeing);
+    for (std::size_t k = 0, d = 0; k < n; ++k) {
+        const Example& e = examples[k];
+        const bool tried = !zero_weight(e) && !agrees(e);
+        judge_weight(s, chunk * kInputChunkSize + t.continuous[k], chunk == 0, e, tried && within[d++] != 0);
     }
     if (chunk != 0) s.continuous_random = n;  // chunk 0 holds the edge inputs (map_bsdf_chunks with edges)
     return s;

@@ -80,15 +80,22 @@ struct RadianceStats {
     }
 };
 
-/// Whether the light's L at a float neighbour of wi equals the returned L
-/// (kRelativeTolerance): wi was rounded across its silhouette or a border.
-bool agrees_nearby(const LightCase& light, const WarpOutput& wi, float returned) {
-    const std::vector<WarpOutput> n = probe_points(light.domain(), wi);
-    std::vector<double> L(n.size());
-    light.radiance(n, L);
-    return std::any_of(L.begin(), L.end(), [&](double v) {
-        return std::abs(v - static_cast<double>(returned)) <= kRelativeTolerance * static_cast<double>(returned);
-    });
+/// Whether the light's L at a float neighbour of each of the samples
+/// `which` equals its returned L (kRelativeTolerance): wi was rounded across
+/// its silhouette or a border. One evaluation of L for all (ProbeBatch).
+std::vector<unsigned char> agree_nearby(const LightCase& light, std::span<const LightRecord> rec,
+                                        std::span<const std::size_t> which) {
+    ProbeBatch probes;
+    for (const std::size_t i : which) probes.add(probe_points(light.domain(), rec[i].wi));
+    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
+    std::vector<double> L(probes.points.size());
+    light.radiance(probes.points, L);
+    std::vector<unsigned char> out(which.size());
+    for (std::size_t k = 0; k < which.size(); ++k) {
+        const auto returned = static_cast<double>(rec[which[k]].L);
+        out[k] = probes.any(k, [&](std::size_t j) { return std::abs(L[j] - returned) <= kRelativeTolerance * returned; });
+    }
+    return out;
 }
 
 /// Whether wi lies where the light is not resolved in float (a corner seen
@@ -114,14 +121,28 @@ bool agrees_in_the_limit(const LightCase& light, const WarpInput& input, const W
 }
 
 /// Whether L(ref, wi) > 0 jumps (kJumpTolerance) within kProbeUlps spacings
-/// of wi along a coordinate (axis_probes): wi lies that close to the
-/// silhouette or a border, where rounding can carry a sample across.
-bool near_silhouette(const LightCase& light, const WarpOutput& wi, double L) {
-    const std::vector<WarpOutput> n = axis_probes(light.domain(), wi);
-    if (n.empty()) return false;
-    std::vector<double> values(n.size());
-    light.radiance(n, values);
-    return std::any_of(values.begin(), values.end(), [&](double v) { return std::abs(v - L) > kJumpTolerance * L; });
+/// of each of the samples `which` along a coordinate (axis_probes): wi lies
+/// that close to the silhouette or a border, where rounding can carry a
+/// sample across. One evaluation of L for all.
+std::vector<unsigned char> near_silhouette(const LightCase& light, std::span<const LightRecord> rec,
+                                           std::span<const double> L, std::span<const std::size_t> which) {
+    ProbeBatch probes;
+    for (const std::size_t i : which) probes.add(axis_probes(light.domain(), rec[i].wi));
+    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
+    std::vector<double> values(probes.points.size());
+    light.radiance(probes.points, values);
+    std::vector<unsigned char> out(which.size());
+    for (std::size_t k = 0; k < which.size(); ++k) {
+        const double at = L[which[k]];
+        out[k] = probes.any(k, [&](std::size_t j) { return std::abs(values[j] - at) > kJumpTolerance * at; });
+    }
+    return out;
+}
+
+/// The relative difference of a returned L and the light's own (0 within FLT_MIN).
+double relative_l(float returned, double L) {
+    const double diff = std::abs(static_cast<double>(returned) - L);
+    return diff <= FLT_MIN ? 0.0 : diff / std::max(std::abs(static_cast<double>(returned)), L);
 }
 
 RadianceStats compute(const LightCase& light, const CheckContext& ctx) {
@@ -136,6 +157,18 @@ RadianceStats compute(const LightCase& light, const CheckContext& ctx) {
         light.radiance(wi, L);
         RadianceStats s;
         if (chunk > 0) s.random_count = inputs.size();
+        // The samples probed for a silhouette nearby and the mismatches tried
+        // at their float neighbours, each set probed in one batch.
+        std::vector<std::size_t> banded, mismatched;
+        for (std::size_t i = 0; i < inputs.size(); ++i) {
+            const LightRecord& r = rec[i];
+            if (!r.sampled() || !std::isfinite(r.L) || !(r.L >= 0.0f) || !std::isfinite(L[i])) continue;
+            if (chunk > 0 && i % stride == 0 && L[i] > 0.0) banded.push_back(i);
+            if (!(r.L == 0.0f && L[i] == 0.0) && !(relative_l(r.L, L[i]) <= kRelativeTolerance)) mismatched.push_back(i);
+        }
+        const std::vector<unsigned char> near = near_silhouette(light, rec, L, banded);
+        const std::vector<unsigned char> agrees = agree_nearby(light, rec, mismatched);
+        std::size_t b = 0, m = 0;
         for (std::size_t i = 0; i < inputs.size(); ++i) {
             const uint64_t index = chunk * kInputChunkSize + i;
             const LightRecord& r = rec[i];
@@ -150,16 +183,15 @@ RadianceStats compute(const LightCase& light, const CheckContext& ctx) {
                 s.invalid.add(index, e);
                 continue;
             }
-            if (chunk > 0 && i % stride == 0 && L[i] > 0.0) s.band.add(near_silhouette(light, r.wi, L[i]));
+            if (b < banded.size() && banded[b] == i) s.band.add(near[b++] != 0);
             if (light.behind_surface(r.wi)) ++s.behind_surface;
             if (r.L == 0.0f && L[i] == 0.0) {
                 ++s.dark;
                 continue;
             }
-            const double diff = std::abs(static_cast<double>(r.L) - L[i]);
-            const double rel = diff <= FLT_MIN ? 0.0 : diff / std::max(std::abs(static_cast<double>(r.L)), L[i]);
+            const double rel = relative_l(r.L, L[i]);
             if (rel <= kRelativeTolerance) continue;
-            const bool nearby = agrees_nearby(light, r.wi, r.L);
+            const bool nearby = m < mismatched.size() && mismatched[m] == i && agrees[m++] != 0;
             const bool limit = chunk == 0 && !nearby && agrees_in_the_limit(light, inputs[i], r.wi, r.L);
             if (nearby || limit) {
                 if (chunk == 0) ++s.excused_edges;

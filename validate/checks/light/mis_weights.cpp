@@ -106,30 +106,44 @@ double weight_sum(const MisCase& mis, const Pdfs& p, std::size_t i) {
     return sum;
 }
 
-/// Whether the weights sum to 1 at a float neighbour of wi: wi was rounded
-/// across a silhouette that the two pdfs find a float step apart.
-bool sums_to_one_nearby(const MisCase& mis, const WarpOutput& wi, double tol) {
-    const std::vector<WarpOutput> n = float_neighbours(wi);
-    const Pdfs p = evaluate(mis, n);
-    for (std::size_t i = 0; i < n.size(); ++i)
-        if (std::abs(weight_sum(mis, p, i) - 1.0) <= tol) return true;
-    return false;
+/// Whether the weights sum to 1 at a float neighbour of each of the
+/// directions `which`: wi was rounded across a silhouette that the two pdfs
+/// find a float step apart. One evaluation of the pdfs for all (ProbeBatch).
+std::vector<unsigned char> sum_to_one_nearby(const MisCase& mis, std::span<const WarpOutput> wi,
+                                             std::span<const std::size_t> which, double tol) {
+    ProbeBatch probes;
+    for (const std::size_t i : which) probes.add(float_neighbours(wi[i]));
+    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
+    const Pdfs p = evaluate(mis, probes.points);
+    std::vector<unsigned char> out(which.size());
+    for (std::size_t k = 0; k < which.size(); ++k)
+        out[k] = probes.any(k, [&](std::size_t j) { return std::abs(weight_sum(mis, p, j) - 1.0) <= tol; });
+    return out;
 }
 
 /// Whether a strategy's own or MIS pdf jumps (kJumpTolerance of the larger
-/// value) within kProbeUlps spacings of wi i along a coordinate (axis_probes):
-/// wi lies that close to a silhouette, where rounding can carry it across.
-bool near_jump(const MisCase& mis, const Pdfs& at, std::size_t i, const WarpOutput& wi) {
-    const std::vector<WarpOutput> n = axis_probes(mis.domain(), wi);
-    if (n.empty()) return false;
-    const Pdfs p = evaluate(mis, n);
+/// value) within kProbeUlps spacings of each of the directions `which` along
+/// a coordinate (axis_probes): wi lies that close to a silhouette, where
+/// rounding can carry it across. One evaluation of the pdfs for all.
+std::vector<unsigned char> near_jump(const MisCase& mis, const Pdfs& at, std::span<const WarpOutput> wi,
+                                     std::span<const std::size_t> which) {
+    ProbeBatch probes;
+    for (const std::size_t i : which) probes.add(axis_probes(mis.domain(), wi[i]));
+    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
+    const Pdfs p = evaluate(mis, probes.points);
     const auto jumps = [](double a, double b) {
         return !(std::abs(a - b) <= kJumpTolerance * std::max(std::abs(a), std::abs(b)));
     };
-    for (std::size_t t = 0; t < mis.strategy_count(); ++t)
-        for (std::size_t k = 0; k < n.size(); ++k)
-            if (jumps(p.own[t][k], at.own[t][i]) || jumps(p.mis[t][k], at.mis[t][i])) return true;
-    return false;
+    std::vector<unsigned char> out(which.size());
+    for (std::size_t k = 0; k < which.size(); ++k) {
+        const std::size_t i = which[k];
+        out[k] = probes.any(k, [&](std::size_t j) {
+            for (std::size_t t = 0; t < mis.strategy_count(); ++t)
+                if (jumps(p.own[t][j], at.own[t][i]) || jumps(p.mis[t][j], at.mis[t][i])) return true;
+            return false;
+        });
+    }
+    return out;
 }
 
 WeightStats compute(const MisCase& mis, const CheckContext& ctx) {
@@ -145,15 +159,27 @@ WeightStats compute(const MisCase& mis, const CheckContext& ctx) {
             for (std::size_t i = 0; i < inputs.size(); ++i) wi[i] = rec[i].wi;
             const Pdfs p = evaluate(mis, wi);
             if (chunk > 0) s.random_count += inputs.size();
+            // The directions probed for a jump nearby and the wrong sums tried
+            // at their float neighbours, each set probed in one batch.
+            std::vector<double> sums(inputs.size(), 0.0);
+            std::vector<std::size_t> banded, wrong;
             for (std::size_t i = 0; i < inputs.size(); ++i) {
+                if (!rec[i].sampled() || !std::isfinite(wi[i][0] + wi[i][1] + wi[i][2])) continue;
+                sums[i] = weight_sum(mis, p, i);
+                if (chunk > 0 && i % stride == 0 && std::isfinite(sums[i])) banded.push_back(i);
+                if (sums[i] != 0.0 && !(std::abs(sums[i] - 1.0) <= tol) && std::isfinite(sums[i])) wrong.push_back(i);
+            }
+            const std::vector<unsigned char> near = near_jump(mis, p, wi, banded);
+            const std::vector<unsigned char> nearby = sum_to_one_nearby(mis, wi, wrong, tol);
+            for (std::size_t i = 0, b = 0, w = 0; i < inputs.size(); ++i) {
                 ++s.count;
                 if (!rec[i].sampled() || !std::isfinite(wi[i][0] + wi[i][1] + wi[i][2])) {
                     ++s.no_sample;
                     s.no_sample_random += chunk > 0 ? 1 : 0;
                     continue;
                 }
-                const double sum = weight_sum(mis, p, i);
-                if (chunk > 0 && i % stride == 0 && std::isfinite(sum)) s.band.add(near_jump(mis, p, i, wi[i]));
+                const double sum = sums[i];
+                if (b < banded.size() && banded[b] == i) s.band.add(near[b++] != 0);
                 if (sum == 0.0) {
                     ++s.unweighted;  // no own pdf is positive here: sample_pdf's finding, not a weight's
                     continue;
@@ -164,7 +190,7 @@ WeightStats compute(const MisCase& mis, const CheckContext& ctx) {
                 for (std::size_t j = 0; j < mis.strategy_count(); ++j)
                     e.own.push_back(p.own[j][i]), e.mis.push_back(p.mis[j][i]);
                 const uint64_t index = (uint64_t{t} << 48) + chunk * kInputChunkSize + i;
-                if (std::isfinite(sum) && sums_to_one_nearby(mis, wi[i], tol)) {
+                if (w < wrong.size() && wrong[w] == i && nearby[w++] != 0) {
                     if (chunk == 0) ++s.excused_edges;
                     else s.excused_random.add(index, e);
                     continue;
