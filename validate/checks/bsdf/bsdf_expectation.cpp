@@ -640,13 +640,27 @@ chi2::MeanTest energy_test(const chi2::Moments& energy) {
     return t;
 }
 
+/// The largest |z| over the cells judged alone; NaN where any is NaN, so
+/// that it never slips through a figure or a message.
+double largest_abs_z(const std::vector<Comparison>& cells) {
+    double largest = 0.0;
+    for (const Comparison& c : cells) largest = std::isnan(c.z) ? c.z : std::max(largest, std::abs(c.z));
+    return largest;
+}
+
+/// The relative shift of the heaviest cell's mean that its z-test detects
+/// with probability 0.9: `shift` standard errors over its integral (NaN where
+/// no cell was judged alone).
+double heaviest_shift(const std::vector<Comparison>& cells, int heaviest, double shift) {
+    if (heaviest < 0) return NAN;
+    const Comparison& c = cells[static_cast<std::size_t>(heaviest)];
+    return shift * c.standard_error / c.integral;
+}
+
 /// Reciprocity's figures; its power: the relative asymmetry of the heaviest
 /// cell (by the reverse integral) that its z-test detects with probability 0.9.
 void add_reciprocity_figures(CheckResult& r, const Outcome::Reciprocity& o, double shift) {
-    double largest = 0.0;
-    for (const Comparison& c : o.cells) largest = std::isnan(c.z) ? c.z : std::max(largest, std::abs(c.z));
-    const double heavy = o.heaviest < 0 ? NAN : shift * o.cells[static_cast<std::size_t>(o.heaviest)].standard_error /
-                                                    o.cells[static_cast<std::size_t>(o.heaviest)].integral;
+    const double largest = largest_abs_z(o.cells), heavy = heaviest_shift(o.cells, o.heaviest, shift);
     r.figures.insert(r.figures.end(),
                      {{"reciprocity_tested", o.tested ? 1.0 : 0.0},
                       {"reciprocity_cells_judged", static_cast<double>(o.cells.size())},
@@ -664,8 +678,7 @@ void add_reciprocity_figures(CheckResult& r, const Outcome::Reciprocity& o, doub
 
 void add_figures(CheckResult& r, const DrawTally& t, const Outcome& o, double level) {
     const double shift = detectable_shift_in_standard_errors(level);
-    const double heavy = o.heaviest < 0 ? NAN : shift * o.cells[static_cast<std::size_t>(o.heaviest)].standard_error /
-                                                    o.cells[static_cast<std::size_t>(o.heaviest)].integral;
+    const double heavy = heaviest_shift(o.cells, o.heaviest, shift);
     r.figures = {{"samples", static_cast<double>(t.draws)},
                  {"mean_continuous_weight", o.total.sampled},
                  {"albedo_continuous", o.total.integral},
@@ -699,8 +712,7 @@ void judge(CheckResult& r, const DrawTally& t, const Outcome& o) {
     r.verdict = Verdict::Pass;
     r.summary = fmt::format("mean weight {:.6g} vs integral of f |cos| {:.6g} (z = {:.2f}); {} cells judged", o.total.sampled,
                             o.total.integral, o.total.z, o.cells.size());
-    double worst = 0.0;
-    for (const Comparison& c : o.cells) worst = std::max(worst, std::abs(c.z));
+    const double worst = largest_abs_z(o.cells);
     r.message = fmt::format("in expectation: the continuous weights' mean {:.9g} against the integral of f |cos| "
                             "{:.9g} ({:.2f} standard errors); per cell, the largest |z| {:.2f} over {} cells judged "
                             "alone, {} pooled ({}), {} excused (share {:.3g} of the weight, {:.3g} of the integral); "
@@ -711,8 +723,7 @@ void judge(CheckResult& r, const DrawTally& t, const Outcome& o) {
                             o.excused_weight, o.excused_integral, o.energy.mean, o.energy.t, o.pdf_integral);
     const Outcome::Reciprocity& rec = o.reciprocity;
     if (rec.tested) {
-        double largest = 0.0;
-        for (const Comparison& c : rec.cells) largest = std::max(largest, std::abs(c.z));
+        const double largest = largest_abs_z(rec.cells);
         r.message += fmt::format("; reciprocity in expectation (f(wo, wi) s - f(wi, wo) per cell, paired, within "
                                  "{:.3g} of f(wi, wo)'s integral): the largest |z| {:.2f} over {} cells judged alone, "
                                  "{} exact (every difference 0), {} pooled ({}), {} excused (share {:.3g} of f(wi, wo)'s integral), over the sphere "
