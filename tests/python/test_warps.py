@@ -95,6 +95,49 @@ def test_a_stochastic_bsdf_passes_in_expectation_and_its_one_way_twin_fails_by_r
     assert row.figures["reciprocity_largest_abs_z"] > 5
 
 
+def test_mis_of_python_parts_passes_and_its_area_pdf_twin_fails_the_weights():
+    correct, wrong = light_and_bsdf.mis_cases()
+    assert correct.names == ["numpy_mis_lambert_sphere[theta_o=45,px=0,py=0,pz=0]"]
+    calls = []
+
+    def counted_light_pdf(ref, wi):
+        calls.append(len(wi))
+        return light_and_bsdf.light_pdf(ref, wi)
+
+    bsdf, light = light_and_bsdf.mis_parts()
+    counted = wc.Mis("numpy_mis_counted", bsdf, [light], light_mis_pdfs=[counted_light_pdf])
+    result = wc.assert_passes([correct, counted], samples=N)
+    for case in (correct.names[0], counted.names[0]):
+        verdicts = {r.check: r.verdict for r in result.rows if r.case == case}
+        assert verdicts["mis_weights"] == "pass" and verdicts["mis_estimator"] == "pass", verdicts
+    # The MIS pdf is called on batches (one call per chunk of directions), not per direction.
+    assert sum(calls) > 2 * N and len(calls) < sum(calls) / 1000 and min(calls) > 0
+    failed = wc.assert_fails(wrong, "mis_weights", samples=N, checks=["mis_weights", "mis_estimator"])
+    row = next(r for r in failed.rows if r.check == "mis_weights")
+    assert row.figures["wrong_sums"] > N / 2
+    assert any(r.check == "mis_estimator" and r.verdict == "fail" for r in failed.rows)
+
+
+def test_mis_refuses_parts_that_do_not_fit():
+    bsdf, light = light_and_bsdf.mis_parts()
+    with pytest.raises(ValueError, match="bsdf must be a Bsdf"):
+        wc.Mis("bad", light, [light])
+    with pytest.raises(ValueError, match="a Light of Python callables with L"):
+        wc.Mis("bad", bsdf, [light_and_bsdf.lights()[0]])
+    two_points = wc.Light("two", light_and_bsdf._with_radiance(light_and_bsdf.light_sample), pdf=light_and_bsdf.light_pdf,
+                          L=light_and_bsdf.light_radiance, normal=(0, 0, 1), points=light_and_bsdf.POINTS)
+    with pytest.raises(ValueError, match="different numbers of reference points"):
+        wc.Mis("bad", bsdf, [light, two_points])
+    with pytest.raises(ValueError, match="more MIS pdfs than lights"):
+        wc.Mis("bad", bsdf, [light], light_mis_pdfs=[None, None])
+    no_normal = wc.Light("no_normal", light_and_bsdf._with_radiance(light_and_bsdf.light_sample),
+                         pdf=light_and_bsdf.light_pdf, L=light_and_bsdf.light_radiance, points=[(0, 0, 0)])
+    with pytest.raises(ValueError, match="normal"):
+        wc.Mis("bad", bsdf, [no_normal])
+    with pytest.raises(ValueError, match="heuristic"):
+        wc.Mis("bad", bsdf, [light], heuristic="maximum")
+
+
 def test_a_framework_warp_passes():
     framework_arrays.test_framework_warp_passes()
 

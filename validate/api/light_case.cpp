@@ -114,8 +114,16 @@ MisCase::MisCase(WarpCaseInfo info, MisClaims claims, std::unique_ptr<WarpCase> 
             throw std::invalid_argument("MIS case " + name() + ": the lights are seen from different points");
         lights_.push_back(light);
     }
-    if (claims_.pdfs.lights.size() > lights_.size())
+    const MisPdfs& pdfs = claims_.pdfs;
+    if (pdfs.lights.size() > lights_.size() || pdfs.lights_batch.size() > lights_.size())
         throw std::invalid_argument("MIS case " + name() + ": more MIS pdfs than lights");
+    const auto both = [](const auto& one, const auto& batch) { return static_cast<bool>(one) && static_cast<bool>(batch); };
+    if (both(pdfs.bsdf, pdfs.bsdf_batch))
+        throw std::invalid_argument("MIS case " + name() + ": the BSDF's MIS pdf is given in both forms (one or batch)");
+    for (std::size_t k = 0; k < std::min(pdfs.lights.size(), pdfs.lights_batch.size()); ++k)
+        if (both(pdfs.lights[k], pdfs.lights_batch[k]))
+            throw std::invalid_argument("MIS case " + name() + ": light " + std::to_string(k + 1) +
+                                        "'s MIS pdf is given in both forms (one or batch)");
 }
 
 std::string MisCase::strategy_name(std::size_t s) const {
@@ -149,13 +157,29 @@ void MisCase::strategy_pdf(std::size_t s, std::span<const WarpOutput> wi, std::s
     else lights_[s - 1]->pdf(wi, out);
 }
 
+namespace {
+
+/// Strategy s's batch MIS pdf (MisPdfs), or nullptr.
+const MisPdfs::BatchPdf* batch_pdf(const MisPdfs& pdfs, std::size_t s) {
+    const MisPdfs::BatchPdf* f = s == 0 ? &pdfs.bsdf_batch
+                                        : (s - 1 < pdfs.lights_batch.size() ? &pdfs.lights_batch[s - 1] : nullptr);
+    return f != nullptr && *f ? f : nullptr;
+}
+
+}  // namespace
+
 bool MisCase::has_mis_pdf(std::size_t s) const {
+    if (batch_pdf(claims_.pdfs, s) != nullptr) return true;
     if (s == 0) return static_cast<bool>(claims_.pdfs.bsdf);
     return s - 1 < claims_.pdfs.lights.size() && static_cast<bool>(claims_.pdfs.lights[s - 1]);
 }
 
 void MisCase::mis_pdf(std::size_t s, std::span<const WarpOutput> wi, std::span<double> out) const {
     if (!has_mis_pdf(s)) return strategy_pdf(s, wi, out);
+    if (const MisPdfs::BatchPdf* batch = batch_pdf(claims_.pdfs, s)) {
+        if (wi.empty()) return;
+        return (*batch)(s == 0 ? bsdf_->wo() : lights_[s - 1]->ref(), wi, out.first(wi.size()));
+    }
     if (s == 0) {
         const Vector3f wo = bsdf_->wo();
         for (std::size_t i = 0; i < wi.size(); ++i) out[i] = static_cast<double>(claims_.pdfs.bsdf(wo, vector_of(wi[i])));

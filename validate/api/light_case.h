@@ -191,6 +191,13 @@ struct MisPdfs {
     /// strategies' samples, in the order of the lights; empty or shorter:
     /// the cases' own pdf().
     std::vector<std::function<float(Vector3f ref, Vector3f wi)>> lights{};
+    /// The same pdfs in batch form, one call per batch of directions, for a
+    /// caller whose every call costs (Python's NumPy functions):
+    /// out[i] = the pdf at wi[i], with the BSDF's wo or the light's ref first.
+    /// A strategy takes one form or the other, not both; empty: as above.
+    using BatchPdf = std::function<void(Vector3f origin, std::span<const WarpOutput> wi, std::span<double> out)>;
+    BatchPdf bsdf_batch{};
+    std::vector<BatchPdf> lights_batch{};
 };
 
 /// What an MIS case declares besides its strategies.

@@ -171,6 +171,29 @@ std::shared_ptr<CaseSpec> make_bsdf(const std::string& family, const py::object&
     return std::make_shared<BsdfSpec>(info, claims, BsdfParts{PyRef(sample), PyRef(f), PyRef(pdf)}, theta_o);
 }
 
+std::shared_ptr<CaseSpec> make_mis(const std::string& family, const std::shared_ptr<CaseSpec>& bsdf,
+                                   const std::vector<std::shared_ptr<CaseSpec>>& lights, const std::string& heuristic,
+                                   const py::object& bsdf_mis_pdf, const std::vector<py::object>& light_mis_pdfs,
+                                   const py::dict& params, const std::string& description) {
+    WarpCaseInfo info;
+    info.family = family;
+    info.params = parameters(params);
+    info.description = description;
+    auto b = std::dynamic_pointer_cast<const BsdfSpec>(bsdf);
+    if (!b) throw py::value_error("Mis " + family + ": bsdf must be a Bsdf of Python callables");
+    std::vector<std::shared_ptr<const LightSpec>> ls;
+    for (const auto& l : lights) {
+        auto light = std::dynamic_pointer_cast<const LightSpec>(l);
+        if (!light) throw py::value_error("Mis " + family + ": each light must be a Light of Python callables with L");
+        ls.push_back(std::move(light));
+    }
+    std::vector<PyRef> pdfs;
+    for (const py::object& f : light_mis_pdfs) pdfs.emplace_back(f);
+    return std::make_shared<MisSpec>(
+        info, choice<MisHeuristic>(heuristic, {{"power", MisHeuristic::Power}, {"balance", MisHeuristic::Balance}}, "heuristic"),
+        std::move(b), std::move(ls), PyRef(bsdf_mis_pdf), std::move(pdfs));
+}
+
 void bind_domain(py::module_& m) {
     py::class_<chi2::Domain>(m, "Domain", "The set a warp maps onto, and the measure its pdf is a density of")
         .def_static("interval", &chi2::Domain::interval, py::arg("a"), py::arg("b"))
@@ -236,6 +259,10 @@ void bind_cases(py::module_& m) {
           py::arg("lobes") = std::vector<std::string>{"reflection", "continuous"}, py::arg("eta") = 1.0f,
           py::arg("reciprocal") = true, py::arg("transport") = "radiance", py::arg("phase_function") = false,
           py::arg("stochastic") = false);
+    m.def("mis", &make_mis, py::arg("family"), py::arg("bsdf"), py::arg("lights"), py::kw_only(),
+          py::arg("heuristic") = "power", py::arg("bsdf_mis_pdf") = py::none(),
+          py::arg("light_mis_pdfs") = std::vector<py::object>{}, py::arg("params") = py::dict(),
+          py::arg("description") = "");
 }
 
 }  // namespace warpcheck::python

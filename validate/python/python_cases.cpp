@@ -338,6 +338,68 @@ std::vector<std::unique_ptr<WarpCase>> LightSpec::make() const {
     return cases;
 }
 
+namespace {
+
+/// A Python MIS pdf as MisPdfs' batch form: called as the BSDF's pdf (wo
+/// repeated, (n, 3)) or as a light's (ref, (3,)), its values checked as theirs.
+MisPdfs::BatchPdf batch_mis_pdf(PyRef fn, std::string what, bool bsdf) {
+    if (!fn.given()) return {};
+    return [fn = std::move(fn), what = std::move(what), bsdf](Vector3f origin, std::span<const WarpOutput> wi,
+                                                             std::span<double> out) {
+        const CallGil gil;
+        const py::object first = bsdf ? py::object(repeated({origin.x, origin.y, origin.z}, wi.size()))
+                                      : py::object(vector3({origin.x, origin.y, origin.z}));
+        const std::vector<double> v = read_array(call(fn, what, first, points_array(wi, 3)), wi.size(), 1, what);
+        std::copy(v.begin(), v.end(), out.begin());
+    };
+}
+
+}  // namespace
+
+MisSpec::MisSpec(WarpCaseInfo info, MisHeuristic heuristic, std::shared_ptr<const BsdfSpec> bsdf,
+                 std::vector<std::shared_ptr<const LightSpec>> lights, PyRef bsdf_mis_pdf,
+                 std::vector<PyRef> light_mis_pdfs)
+    : info_(std::move(info)), heuristic_(heuristic), bsdf_(std::move(bsdf)), lights_(std::move(lights)),
+      bsdf_mis_pdf_(std::move(bsdf_mis_pdf)), light_mis_pdfs_(std::move(light_mis_pdfs)) {
+    const std::string who = "MIS " + info_.family;
+    if (!bsdf_) throw std::invalid_argument(who + ": the BSDF must be a Bsdf of Python callables");
+    if (lights_.empty()) throw std::invalid_argument(who + ": give at least one light");
+    for (const auto& l : lights_) {
+        if (!l) throw std::invalid_argument(who + ": each light must be a Light of Python callables with L");
+        if (l->reference_points().size() != lights_.front()->reference_points().size())
+            throw std::invalid_argument(who + ": the lights give different numbers of reference points");
+    }
+    if (light_mis_pdfs_.size() > lights_.size())
+        throw std::invalid_argument(who + ": more MIS pdfs than lights");
+    (void)make();  // refused here if the parts do not fit (make_mis_case)
+}
+
+std::vector<std::unique_ptr<WarpCase>> MisSpec::make() const {
+    std::vector<std::unique_ptr<WarpCase>> cases;
+    const std::size_t directions = bsdf_->theta_o().size(), points = lights_.front()->reference_points().size();
+    for (std::size_t d = 0; d < directions; ++d) {
+        for (std::size_t p = 0; p < points; ++p) {
+            WarpCaseInfo info = info_;
+            const std::array<float, 3>& ref = lights_.front()->reference_points()[p];
+            info.params.push_back({"theta_o", bsdf_->theta_o()[d]});
+            info.params.push_back({"px", ref[0]});
+            info.params.push_back({"py", ref[1]});
+            info.params.push_back({"pz", ref[2]});
+            MisClaims claims{.heuristic = heuristic_};
+            claims.pdfs.bsdf_batch = batch_mis_pdf(bsdf_mis_pdf_, info_.family + ": bsdf_mis_pdf", true);
+            for (std::size_t k = 0; k < light_mis_pdfs_.size(); ++k)
+                claims.pdfs.lights_batch.push_back(
+                    batch_mis_pdf(light_mis_pdfs_[k], info_.family + ": light " + std::to_string(k + 1) + " mis_pdf",
+                                  false));
+            std::vector<std::unique_ptr<WarpCase>> lights;
+            for (const auto& l : lights_) lights.push_back(std::move(l->make()[p]));
+            cases.push_back(make_mis_case(std::move(info), std::move(claims), std::move(bsdf_->make()[d]),
+                                          std::move(lights)));
+        }
+    }
+    return cases;
+}
+
 std::vector<std::unique_ptr<WarpCase>> RegisteredSpec::make() const {
     std::vector<std::unique_ptr<WarpCase>> cases;
     cases.push_back(std::make_unique<ForwardingCase>(warp_));

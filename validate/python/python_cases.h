@@ -132,6 +132,7 @@ public:
     LightSpec(WarpCaseInfo info, LightParts parts, std::vector<std::array<float, 3>> reference_points,
               std::array<float, 3> normal);
     std::vector<std::unique_ptr<WarpCase>> make() const override;
+    const std::vector<std::array<float, 3>>& reference_points() const { return reference_points_; }
 
 private:
     WarpCaseInfo info_;
@@ -146,12 +147,35 @@ class BsdfSpec final : public CaseSpec {
 public:
     BsdfSpec(WarpCaseInfo info, BsdfClaims claims, BsdfParts parts, std::vector<double> theta_o);
     std::vector<std::unique_ptr<WarpCase>> make() const override;
+    const std::vector<double>& theta_o() const { return theta_o_; }
 
 private:
     WarpCaseInfo info_;
     BsdfClaims claims_;
     BsdfParts parts_;
     std::vector<double> theta_o_;
+};
+
+/// An MIS case of Python parts (make_mis_case): a BSDF spec and one or more
+/// light specs with L, one MIS case per pair of the BSDF's outgoing direction
+/// and the lights' k-th reference point (every light gives the same number),
+/// named family[...,theta_o=T,px=..,py=..,pz=..]. The MIS pdfs, where given,
+/// are Python batch callables in the BSDF's and the lights' pdf forms:
+/// bsdf_mis_pdf(wo, wi) with wo and wi (n, 3), a light's mis_pdf(ref, wi) with
+/// ref (3,) (MisPdfs::bsdf_batch and lights_batch); None: the case's own pdf.
+class MisSpec final : public CaseSpec {
+public:
+    MisSpec(WarpCaseInfo info, MisHeuristic heuristic, std::shared_ptr<const BsdfSpec> bsdf,
+            std::vector<std::shared_ptr<const LightSpec>> lights, PyRef bsdf_mis_pdf, std::vector<PyRef> light_mis_pdfs);
+    std::vector<std::unique_ptr<WarpCase>> make() const override;
+
+private:
+    WarpCaseInfo info_;
+    MisHeuristic heuristic_;
+    std::shared_ptr<const BsdfSpec> bsdf_;
+    std::vector<std::shared_ptr<const LightSpec>> lights_;
+    PyRef bsdf_mis_pdf_;
+    std::vector<PyRef> light_mis_pdfs_;
 };
 
 /// A case of the C++ registry (a built-in warp), by reference: its own

@@ -85,7 +85,12 @@ const MemberMap kBsdfClaims = {
 const MemberMap kLightClaims = {{"ref", "LightInfo::ref"}, {"normal", "LightInfo::normal"}};
 const MemberMap kMisClaims = {{"heuristic", "MisInfo::power_heuristic"},
                               {"pdfs", "add_mis's bsdf_mis_pdf and each MisLight's mis_pdf"}};
-const MemberMap kMisPdfs = {{"bsdf", "add_mis's bsdf_mis_pdf"}, {"lights", "MisLight::mis_pdf, per light"}};
+const MemberMap kMisPdfs = {
+    {"bsdf", "add_mis's bsdf_mis_pdf"},
+    {"lights", "MisLight::mis_pdf, per light"},
+    {"bsdf_batch", "none: the batch form is for callers whose every call costs (Python's NumPy functions); a C++ "
+                   "renderer's per-direction bsdf_mis_pdf costs a function call"},
+    {"lights_batch", "none: as bsdf_batch, for MisLight::mis_pdf"}};
 const MemberMap kBinResolution = {{"first", "BinResolution::first"},
                                   {"second", "BinResolution::second"},
                                   {"half_line_scale", "BinResolution::half_line_scale"},

@@ -203,5 +203,43 @@ def bsdfs():
     return correct, wrong
 
 
+def light_area_pdf(ref, wi):
+    """The light's density per unit AREA of the sphere at the point wi hits (pdf times |cos| at
+    the light over the squared distance): the bug of an area pdf in a solid-angle MIS sum."""
+    p = np.asarray(ref, dtype=np.float64)
+    w = wi.astype(np.float64)
+    w /= np.linalg.norm(w, axis=1, keepdims=True)
+    to_centre = CENTRE - p
+    b = w @ to_centre
+    disc = np.maximum(b * b - (to_centre @ to_centre - RADIUS**2), 0.0)
+    t = b - np.sqrt(disc)
+    hit = (light_pdf(ref, wi) > 0) & (t > 0)
+    normal = (t[:, None] * w - to_centre) / RADIUS
+    cos_light = np.abs(np.sum(normal * w, axis=1))
+    return np.where(hit, light_pdf(ref, wi) * cos_light / np.maximum(t * t, 1e-300), 0.0)
+
+
+def mis_parts():
+    """The Lambertian at 45 degrees and the sphere light with L seen from the origin (normal +z)."""
+    bsdf = wc.Bsdf("numpy_lambert", lambert_sample, f=lambert_f, pdf=lambert_pdf, theta_o=[45],
+                   params={"R": REFLECTANCE}, description="Lambertian reflection")
+    light = wc.Light("numpy_sphere_light_l", _with_radiance(light_sample), pdf=light_pdf, L=light_radiance,
+                     normal=(0, 0, 1), points=POINTS[:1], description="sphere light with its radiance")
+    return bsdf, light
+
+
+def mis_cases():
+    """A renderer's direct lighting at a diffuse point under the sphere light: the Lambertian
+    and the light combined by the power heuristic, with the pdfs its MIS code evaluates given
+    as NumPy functions (here the cases' own). The twin's MIS sum takes the light's density per
+    unit area of the light for its density per solid angle."""
+    bsdf, light = mis_parts()
+    correct = wc.Mis("numpy_mis_lambert_sphere", bsdf, [light], bsdf_mis_pdf=lambert_pdf, light_mis_pdfs=[light_pdf],
+                     description="Lambertian and a sphere light, power heuristic")
+    wrong = wc.Mis("numpy_mis_area_pdf", bsdf, [light], light_mis_pdfs=[light_area_pdf],
+                   description="the MIS sum takes the light's area pdf for its solid-angle pdf")
+    return correct, wrong
+
+
 if __name__ == "__main__":
-    print(wc.run([*lights(), *bsdfs()], samples=100_000).table())
+    print(wc.run([*lights(), *bsdfs(), *mis_cases()], samples=100_000).table())

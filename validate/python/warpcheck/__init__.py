@@ -30,6 +30,7 @@ from .api import (  # noqa: F401
     Warp,
     Light,
     Bsdf,
+    Mis,
     builtin_case,
     run,
     assert_passes,

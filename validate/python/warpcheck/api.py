@@ -77,6 +77,25 @@ def Bsdf(family, sample, *, f, pdf, theta_o, params=None, description="", lobes=
                       transport=transport, phase_function=phase_function, stochastic=stochastic)
 
 
+def Mis(family, bsdf, lights, *, heuristic="power", bsdf_mis_pdf=None, light_mis_pdfs=(), params=None,
+        description=""):
+    """The strategies a renderer's direct lighting combines by multiple importance sampling: a
+    Bsdf (strategy 0) and one or more Lights with L (strategies 1..), as C++'s make_mis_case
+    combines them. One MIS case per pair of the BSDF's theta_o and the lights' k-th reference
+    point (every light gives the same number; the lights are seen with the BSDF's normal
+    (0, 0, 1), or none for a phase function), named family[...,theta_o=T,px=..,py=..,pz=..].
+    The MIS checks (mis_weights, mis_estimator) and chi2 of the one-sample mixture take it.
+
+    heuristic: "power" (exponent 2) or "balance". bsdf_mis_pdf(wo, wi) -> (n,), wo and wi
+    (n, 3), and light_mis_pdfs[k](ref, wi) -> (n,), ref (3,), are the pdfs your MIS code
+    evaluates at the other strategies' samples where they are not the cases' own pdf (None or
+    missing: the case's pdf); each is called once per batch of directions.
+    """
+    lights = list(lights) if isinstance(lights, (list, tuple)) else [lights]
+    return _core.mis(family, bsdf, lights, heuristic=heuristic, bsdf_mis_pdf=bsdf_mis_pdf,
+                     light_mis_pdfs=list(light_mis_pdfs), params=dict(params or {}), description=description)
+
+
 def builtin_case(name):
     """One of warpcheck's built-in warp cases by its full name, e.g. "cosine_hemisphere",
     with its C++ functions: a reference for samples from elsewhere, or a case to run."""
