@@ -9,8 +9,11 @@
 // test (test_light_checks.cpp, LightFlawed).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -91,6 +94,37 @@ TEST(MisCase, TheOneSampleModelsPdfIsTheMeanOfTheMisPdfs) {
     EXPECT_GT(light[1], 0.0) << "u[0] = 0.75 chooses the light: its sample is on the light";
 }
 
+// The batch form of an MIS pdf is what mis_pdf returns, called once per
+// batch with the strategy's origin (the BSDF's wo, the light's ref).
+TEST(MisCase, ABatchMisPdfIsCalledOncePerBatchWithItsOrigin) {
+    int calls = 0;
+    Vector3f seen_wo{}, seen_ref{};
+    MisClaims claims;
+    claims.pdfs.bsdf_batch = [&](Vector3f wo, std::span<const WarpOutput> wi, std::span<double> out) {
+        ++calls, seen_wo = wo;
+        for (std::size_t i = 0; i < wi.size(); ++i) out[i] = 0.25 + wi[i][2];
+    };
+    claims.pdfs.lights_batch = {[&](Vector3f ref, std::span<const WarpOutput> wi, std::span<double> out) {
+        ++calls, seen_ref = ref;
+        std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(wi.size()), 7.0);
+    }};
+    const auto c = diffuse_under_sphere(std::move(claims));
+    const MisCase& mis = *as_mis(*c);
+    EXPECT_TRUE(mis.has_mis_pdf(0));
+    EXPECT_TRUE(mis.has_mis_pdf(1));
+    const std::vector<WarpOutput> wi = {{0.0f, 0.0f, 1.0f}, {0.6f, 0.0f, 0.8f}, {0.0f, 0.6f, -0.8f}};
+    std::vector<double> b(wi.size()), l(wi.size());
+    mis.mis_pdf(0, wi, b);
+    mis.mis_pdf(1, wi, l);
+    EXPECT_EQ(calls, 2);
+    EXPECT_EQ(b, (std::vector<double>{1.25, 0.25 + double{0.8f}, 0.25 - double{0.8f}}));
+    EXPECT_EQ(l, std::vector<double>(3, 7.0));
+    EXPECT_EQ(seen_wo, kWo);
+    EXPECT_EQ(seen_ref, mis.light(0).ref());
+    mis.mis_pdf(0, {}, std::span<double>{});
+    EXPECT_EQ(calls, 2) << "no call with no directions";
+}
+
 TEST(MisCase, HeuristicsWeighAsVeach) {
     const auto balance = diffuse_under_sphere({.heuristic = MisHeuristic::Balance});
     const auto power = diffuse_under_sphere({.heuristic = MisHeuristic::Power});
@@ -116,6 +150,24 @@ TEST(MisCaseDeclaration, PartsThatDoNotFitAreRefused) {
     MisClaims two;
     two.pdfs.lights = {[](Vector3f, Vector3f) { return 1.0f; }, [](Vector3f, Vector3f) { return 1.0f; }};
     EXPECT_THROW((void)make_mis_case({.family = "extra"}, std::move(two),
+                                     make_bsdf_case({.family = "b"}, {.wo = kWo}, Lambertian(0.5f)),
+                                     make_light_case({.family = "l"}, kAtOrigin, sphere)),
+                 std::invalid_argument);
+    // One strategy's MIS pdf in both forms (per direction and batch).
+    const auto batch = [](Vector3f, std::span<const WarpOutput>, std::span<double> out) {
+        std::fill(out.begin(), out.end(), 1.0);
+    };
+    MisClaims both;
+    both.pdfs.bsdf = [](Vector3f, Vector3f) { return 1.0f; };
+    both.pdfs.bsdf_batch = batch;
+    EXPECT_THROW((void)make_mis_case({.family = "both"}, std::move(both),
+                                     make_bsdf_case({.family = "b"}, {.wo = kWo}, Lambertian(0.5f)),
+                                     make_light_case({.family = "l"}, kAtOrigin, sphere)),
+                 std::invalid_argument);
+    MisClaims both_light;
+    both_light.pdfs.lights = {[](Vector3f, Vector3f) { return 1.0f; }};
+    both_light.pdfs.lights_batch = {batch};
+    EXPECT_THROW((void)make_mis_case({.family = "both_light"}, std::move(both_light),
                                      make_bsdf_case({.family = "b"}, {.wo = kWo}, Lambertian(0.5f)),
                                      make_light_case({.family = "l"}, kAtOrigin, sphere)),
                  std::invalid_argument);
