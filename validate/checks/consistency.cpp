@@ -130,19 +130,21 @@ bool classify(ConsistencyStats& s, const chi2::Domain& domain, uint64_t index, c
     return false;
 }
 
+/// The pdf at the points x.
+std::vector<double> pdf_at(const WarpCase& warp, std::span<const WarpOutput> x) {
+    std::vector<double> pdf(x.size());
+    warp.pdf(x, pdf);
+    return pdf;
+}
+
 /// Whether the pdf is positive (and finite) at one of the probed neighbours
 /// of each of the samples `which`: one evaluation for all (ProbeBatch).
 std::vector<unsigned char> positive_nearby(const WarpCase& warp, std::span<const WarpOutput> x,
                                            std::span<const std::size_t> which) {
-    ProbeBatch probes;
-    for (const std::size_t i : which) probes.add(probe_points(warp.domain(), x[i]));
-    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
-    std::vector<double> pdf(probes.points.size());
-    warp.pdf(probes.points, pdf);
-    std::vector<unsigned char> out(which.size());
-    for (std::size_t k = 0; k < which.size(); ++k)
-        out[k] = probes.any(k, [&](std::size_t j) { return pdf[j] > 0.0 && std::isfinite(pdf[j]); });
-    return out;
+    return holds_at_a_probe(
+        which, [&](std::size_t i) { return probe_points(warp.domain(), x[i]); },
+        [&](std::span<const WarpOutput> points) { return pdf_at(warp, points); },
+        [](std::size_t, const std::vector<double>& pdf, std::size_t j) { return pdf[j] > 0.0 && std::isfinite(pdf[j]); });
 }
 
 /// Whether x, the sample of `input` with pdf 0 and no positive pdf at its
@@ -172,14 +174,10 @@ bool limit_of_support(const WarpCase& warp, const WarpInput& input, const WarpOu
 /// boundary's zeros are bounded apart, boundary_problem). One evaluation for all.
 std::vector<unsigned char> near_support_edge(const WarpCase& warp, std::span<const WarpOutput> x,
                                              std::span<const std::size_t> which) {
-    ProbeBatch probes;
-    for (const std::size_t i : which) probes.add(axis_probes(warp.domain(), x[i]));
-    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
-    std::vector<double> pdf(probes.points.size());
-    warp.pdf(probes.points, pdf);
-    std::vector<unsigned char> out(which.size());
-    for (std::size_t k = 0; k < which.size(); ++k) out[k] = probes.any(k, [&](std::size_t j) { return pdf[j] == 0.0; });
-    return out;
+    return holds_at_a_probe(
+        which, [&](std::size_t i) { return axis_probes(warp.domain(), x[i]); },
+        [&](std::span<const WarpOutput> points) { return pdf_at(warp, points); },
+        [](std::size_t, const std::vector<double>& pdf, std::size_t j) { return pdf[j] == 0.0; });
 }
 
 /// One chunk of samples with their pdfs, classified.

@@ -101,6 +101,25 @@ struct ProbeBatch {
     }
 };
 
+/// For each of the samples `which` (indices i), whether `holds(i, values, j)`
+/// is true at any of its probe points j, where `points_of(i)` gives sample
+/// i's probes and `values = evaluate(points)` is the case evaluated at all of
+/// them in one call (never with none: a sample with no probes holds nowhere).
+/// The probes of consistency, sample_pdf, weight, light_radiance and
+/// mis_weights all take this shape.
+template <typename PointsOf, typename Evaluate, typename Holds>
+std::vector<unsigned char> holds_at_a_probe(std::span<const std::size_t> which, PointsOf&& points_of,
+                                            Evaluate&& evaluate, Holds&& holds) {
+    ProbeBatch probes;
+    for (const std::size_t i : which) probes.add(points_of(i));
+    std::vector<unsigned char> out(which.size(), 0);
+    if (probes.points.empty()) return out;  // no call with nothing to evaluate
+    const auto values = evaluate(std::span<const WarpOutput>(probes.points));
+    for (std::size_t k = 0; k < which.size(); ++k)
+        out[k] = probes.any(k, [&](std::size_t j) { return holds(which[k], values, j); });
+    return out;
+}
+
 /// Random samples probed for a discontinuity nearby (EdgeBand): about 2^14
 /// of them, every k-th for k = samples / 2^14 clamped to [1, 64]. 2^14
 /// probes see a share of 10^-3 16 times; fewer samples are all probed (at

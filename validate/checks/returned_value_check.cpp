@@ -97,22 +97,24 @@ void references(const WarpCase& warp, What what, std::span<const WarpOutput> x, 
     }
 }
 
+/// The references at the points x, returned.
+std::vector<Example> references_at(const WarpCase& warp, What what, std::span<const WarpOutput> x) {
+    std::vector<Example> ex(x.size());
+    references(warp, what, x, ex);
+    return ex;
+}
+
 /// Whether each of the samples `which` agrees, within the tolerance, with
 /// the reference at one of its x's float neighbours (float_probe.h): one
 /// evaluation of the references for all.
 std::vector<unsigned char> agree_nearby(const WarpCase& warp, What what, std::span<const Example> ex,
                                         std::span<const std::size_t> which) {
-    ProbeBatch probes;
-    for (const std::size_t i : which) probes.add(probe_points(warp.domain(), ex[i].output));
-    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
-    std::vector<Example> at(probes.points.size());
-    references(warp, what, probes.points, at);
-    std::vector<unsigned char> agrees(which.size());
-    for (std::size_t k = 0; k < which.size(); ++k)
-        agrees[k] = probes.any(k, [&](std::size_t j) {
-            return relative_difference(ex[which[k]].returned, at[j].reference) <= kRelativeTolerance;
+    return holds_at_a_probe(
+        which, [&](std::size_t i) { return probe_points(warp.domain(), ex[i].output); },
+        [&](std::span<const WarpOutput> points) { return references_at(warp, what, points); },
+        [&](std::size_t i, const std::vector<Example>& at, std::size_t j) {
+            return relative_difference(ex[i].returned, at[j].reference) <= kRelativeTolerance;
         });
-    return agrees;
 }
 
 /// Whether x lies where the reference is not resolved in float (a light's
@@ -147,17 +149,12 @@ bool agrees_in_the_limit(const WarpCase& warp, What what, const Example& e) {
 /// of the references for all.
 std::vector<unsigned char> near_discontinuity(const WarpCase& warp, What what, std::span<const Example> ex,
                                               std::span<const std::size_t> which) {
-    ProbeBatch probes;
-    for (const std::size_t i : which) probes.add(axis_probes(warp.domain(), ex[i].output));
-    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
-    std::vector<Example> at(probes.points.size());
-    references(warp, what, probes.points, at);
-    std::vector<unsigned char> near(which.size());
-    for (std::size_t k = 0; k < which.size(); ++k)
-        near[k] = probes.any(k, [&](std::size_t j) {
-            return relative_difference(ex[which[k]].reference, at[j].reference) > kJumpTolerance;
+    return holds_at_a_probe(
+        which, [&](std::size_t i) { return axis_probes(warp.domain(), ex[i].output); },
+        [&](std::span<const WarpOutput> points) { return references_at(warp, what, points); },
+        [&](std::size_t i, const std::vector<Example>& at, std::size_t j) {
+            return relative_difference(ex[i].reference, at[j].reference) > kJumpTolerance;
         });
-    return near;
 }
 
 ReturnedValueStats compute(const WarpCase& warp, const CheckContext& ctx, What what) {

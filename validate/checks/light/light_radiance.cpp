@@ -80,22 +80,25 @@ struct RadianceStats {
     }
 };
 
+/// The light's own L at the directions wi.
+std::vector<double> radiance_at(const LightCase& light, std::span<const WarpOutput> wi) {
+    std::vector<double> L(wi.size());
+    light.radiance(wi, L);
+    return L;
+}
+
 /// Whether the light's L at a float neighbour of each of the samples
 /// `which` equals its returned L (kRelativeTolerance): wi was rounded across
 /// its silhouette or a border. One evaluation of L for all (ProbeBatch).
 std::vector<unsigned char> agree_nearby(const LightCase& light, std::span<const LightRecord> rec,
                                         std::span<const std::size_t> which) {
-    ProbeBatch probes;
-    for (const std::size_t i : which) probes.add(probe_points(light.domain(), rec[i].wi));
-    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
-    std::vector<double> L(probes.points.size());
-    light.radiance(probes.points, L);
-    std::vector<unsigned char> out(which.size());
-    for (std::size_t k = 0; k < which.size(); ++k) {
-        const auto returned = static_cast<double>(rec[which[k]].L);
-        out[k] = probes.any(k, [&](std::size_t j) { return std::abs(L[j] - returned) <= kRelativeTolerance * returned; });
-    }
-    return out;
+    return holds_at_a_probe(
+        which, [&](std::size_t i) { return probe_points(light.domain(), rec[i].wi); },
+        [&](std::span<const WarpOutput> points) { return radiance_at(light, points); },
+        [&](std::size_t i, const std::vector<double>& L, std::size_t j) {
+            const auto returned = static_cast<double>(rec[i].L);
+            return std::abs(L[j] - returned) <= kRelativeTolerance * returned;
+        });
 }
 
 /// Whether wi lies where the light is not resolved in float (a corner seen
@@ -126,17 +129,12 @@ bool agrees_in_the_limit(const LightCase& light, const WarpInput& input, const W
 /// sample across. One evaluation of L for all.
 std::vector<unsigned char> near_silhouette(const LightCase& light, std::span<const LightRecord> rec,
                                            std::span<const double> L, std::span<const std::size_t> which) {
-    ProbeBatch probes;
-    for (const std::size_t i : which) probes.add(axis_probes(light.domain(), rec[i].wi));
-    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
-    std::vector<double> values(probes.points.size());
-    light.radiance(probes.points, values);
-    std::vector<unsigned char> out(which.size());
-    for (std::size_t k = 0; k < which.size(); ++k) {
-        const double at = L[which[k]];
-        out[k] = probes.any(k, [&](std::size_t j) { return std::abs(values[j] - at) > kJumpTolerance * at; });
-    }
-    return out;
+    return holds_at_a_probe(
+        which, [&](std::size_t i) { return axis_probes(light.domain(), rec[i].wi); },
+        [&](std::span<const WarpOutput> points) { return radiance_at(light, points); },
+        [&](std::size_t i, const std::vector<double>& values, std::size_t j) {
+            return std::abs(values[j] - L[i]) > kJumpTolerance * L[i];
+        });
 }
 
 /// The relative difference of a returned L and the light's own (0 within FLT_MIN).

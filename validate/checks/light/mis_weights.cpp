@@ -111,14 +111,10 @@ double weight_sum(const MisCase& mis, const Pdfs& p, std::size_t i) {
 /// find a float step apart. One evaluation of the pdfs for all (ProbeBatch).
 std::vector<unsigned char> sum_to_one_nearby(const MisCase& mis, std::span<const WarpOutput> wi,
                                              std::span<const std::size_t> which, double tol) {
-    ProbeBatch probes;
-    for (const std::size_t i : which) probes.add(float_neighbours(wi[i]));
-    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
-    const Pdfs p = evaluate(mis, probes.points);
-    std::vector<unsigned char> out(which.size());
-    for (std::size_t k = 0; k < which.size(); ++k)
-        out[k] = probes.any(k, [&](std::size_t j) { return std::abs(weight_sum(mis, p, j) - 1.0) <= tol; });
-    return out;
+    return holds_at_a_probe(
+        which, [&](std::size_t i) { return float_neighbours(wi[i]); },
+        [&](std::span<const WarpOutput> points) { return evaluate(mis, points); },
+        [&](std::size_t, const Pdfs& p, std::size_t j) { return std::abs(weight_sum(mis, p, j) - 1.0) <= tol; });
 }
 
 /// Whether a strategy's own or MIS pdf jumps (kJumpTolerance of the larger
@@ -127,23 +123,17 @@ std::vector<unsigned char> sum_to_one_nearby(const MisCase& mis, std::span<const
 /// rounding can carry it across. One evaluation of the pdfs for all.
 std::vector<unsigned char> near_jump(const MisCase& mis, const Pdfs& at, std::span<const WarpOutput> wi,
                                      std::span<const std::size_t> which) {
-    ProbeBatch probes;
-    for (const std::size_t i : which) probes.add(axis_probes(mis.domain(), wi[i]));
-    if (probes.points.empty()) return std::vector<unsigned char>(which.size(), 0);  // no call with nothing to evaluate
-    const Pdfs p = evaluate(mis, probes.points);
     const auto jumps = [](double a, double b) {
         return !(std::abs(a - b) <= kJumpTolerance * std::max(std::abs(a), std::abs(b)));
     };
-    std::vector<unsigned char> out(which.size());
-    for (std::size_t k = 0; k < which.size(); ++k) {
-        const std::size_t i = which[k];
-        out[k] = probes.any(k, [&](std::size_t j) {
+    return holds_at_a_probe(
+        which, [&](std::size_t i) { return axis_probes(mis.domain(), wi[i]); },
+        [&](std::span<const WarpOutput> points) { return evaluate(mis, points); },
+        [&](std::size_t i, const Pdfs& p, std::size_t j) {
             for (std::size_t t = 0; t < mis.strategy_count(); ++t)
                 if (jumps(p.own[t][j], at.own[t][i]) || jumps(p.mis[t][j], at.mis[t][i])) return true;
             return false;
         });
-    }
-    return out;
 }
 
 WeightStats compute(const MisCase& mis, const CheckContext& ctx) {
