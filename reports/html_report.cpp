@@ -198,7 +198,7 @@ std::string html_margin_cell(const CheckResult& r) {
     const double c = html::closeness(r).value_or(0.0);
     const double fill = std::clamp((std::log10(std::max(c, 1e-300)) + 3.0) / 3.0, 0.0, 1.0);
     const std::string title = m.p_over_level && !tolerance_closer ? fmt::format("p-value {} is {} times the level", format_probability(r.p_value.value_or(NAN)), fmt::format("{:.3g}", *m.p_over_level))
-                                             : fmt::format("{} is {:.3g} of its tolerance", m.tolerance_figure, m.of_tolerance.value_or(NAN));
+                                             : fmt::format("{} is {:.3g} of its limit", m.tolerance_figure, m.of_tolerance.value_or(NAN));
     return fmt::format("<span class=\"m\" title=\"{}\"><span class=\"gauge{}\"><i style=\"width:{:.0f}%\"></i></span>{}</span>",
                        escaped(title), c >= 1.0 ? " over" : c >= 0.3 ? " near" : "", fill * 100.0, escaped(text));
 }

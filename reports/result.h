@@ -339,6 +339,18 @@ struct JudgedQuantity {
         Reported,  ///< reported beside the verdict, not judged
     };
     State state = State::Within;
+    /// The value against its limit as one number, for the margin column
+    /// (reports/terminal_table.h, row_margin), so that no report infers it
+    /// from figure names: for a p-value, p over its limit (beyond below 1);
+    /// for a size held under a limit, the size over that limit (beyond above
+    /// 1). None for a count that must be 0 and for a reported figure.
+    enum class Margin {
+        None,
+        POverLimit,  ///< p / limit
+        OfLimit,     ///< size / limit
+    };
+    Margin margin_kind = Margin::None;
+    double margin = 0.0;
 };
 
 template <>
@@ -347,12 +359,23 @@ struct EnumNames<JudgedQuantity::State> {
     static constexpr std::array<std::string_view, 3> names{"within", "beyond", "reported"};
 };
 
+template <>
+struct EnumNames<JudgedQuantity::Margin> {
+    static constexpr std::string_view noun = "judged margin";
+    static constexpr std::array<std::string_view, 3> names{"none", "p_over_limit", "of_limit"};
+};
+
 template <class V, Model<JudgedQuantity> T>
 void fields(V& v, T& j) {
     v("quantity", j.quantity);
     v("value", j.value);
     v("limit", j.limit);
     v("state", j.state);
+    // Absent where there is none (and in files written before it was added).
+    v.optional_group("margin", j.margin_kind != JudgedQuantity::Margin::None, [&](auto& g) {
+        g("kind", j.margin_kind);
+        g("value", j.margin);
+    });
 }
 
 /// The outcome of one check on one warp case: one row of the pass/fail table.

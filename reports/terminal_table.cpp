@@ -165,20 +165,8 @@ bool several_families(const RunResult& run) {
 RowMargin row_margin(const CheckResult& r) {
     RowMargin m;
     if (r.p_value && r.level && *r.level > 0.0) m.p_over_level = *r.p_value / *r.level;
-    const auto fraction = [](double error, double tolerance) {
-        return tolerance > 0.0 && std::isfinite(tolerance) ? std::abs(error) / tolerance : std::nan("");
-    };
-    for (const Figure& f : r.figures) {
-        const std::string_view name = f.name;
-        if (name.ends_with("_over_tolerance")) keep_largest(m, f.value, f.name);
-        if (const auto tolerance = r.figure(f.name + "_tolerance"))
-            keep_largest(m, fraction(name.ends_with("integral") ? f.value - 1.0 : f.value, *tolerance), f.name);
-    }
-    if (const auto tolerance = r.figure("tolerance")) {
-        for (const char* name : {"max_error", "max_relative_difference", "max_relative_error"})
-            if (const auto error = r.figure(name)) keep_largest(m, fraction(*error, *tolerance), name);
-        if (const auto sum = r.figure("sum")) keep_largest(m, fraction(*sum - 1.0, *tolerance), "sum");
-    }
+    for (const JudgedQuantity& j : r.judged)
+        if (j.margin_kind == JudgedQuantity::Margin::OfLimit) keep_largest(m, j.margin, j.quantity);
     return m;
 }
 

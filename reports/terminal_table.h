@@ -24,15 +24,13 @@ struct TableStyle {
     std::size_t weakest = 3;     ///< passing rows listed per kind of limit as closest to it (0: none)
 };
 
-/// How far a row's key figure is from the limit that judges it, read off its
-/// figures: `p_over_level` for a statistical row (its p-value over the per-test
-/// level: it fails below 1), `of_tolerance` for a row judged against a
-/// tolerance (its largest error over that tolerance: it fails above 1; the
-/// largest of those a row has, named by `tolerance_figure`). Read from the
-/// figures' names: `*_over_tolerance` as it is; `X` beside `X_tolerance` as
-/// |X| (|X - 1| for an integral) over it; `max_error`, `max_relative_difference`,
-/// `max_relative_error` (bsdf_reciprocity's) and a pmf's `sum` (|sum - 1|) over
-/// `tolerance`. A tolerance of 0 (an exact rule) gives no fraction.
+/// How far a row is from the limits that judge it: `p_over_level` for a
+/// statistical row (its p-value over the per-test level: it fails below 1),
+/// `of_tolerance` for a row with quantities held under limits (the largest
+/// margin of its judged lines of that kind, JudgedQuantity::Margin::OfLimit:
+/// it fails above 1), named by `tolerance_figure` (that line's quantity). Read
+/// from the judged lines the check wrote (validate/checks/judged.h), never
+/// from figure names; a limit of 0 (an exact rule) gives no fraction.
 struct RowMargin {
     std::optional<double> p_over_level;
     std::optional<double> of_tolerance;

@@ -46,6 +46,12 @@ CheckResult roundtrip_row(std::string case_name, double max_error, Verdict v = V
     CheckResult r = row(std::move(case_name), "roundtrip", v);
     r.figures = {{"max_error", max_error}, {"tolerance", 1e-5}, {"failures", v == Verdict::Pass ? 0.0 : 3.0},
                  {"resolution_limited", 7}};
+    // Its judged line with the margin the report reads (validate/checks/judged.h).
+    JudgedQuantity error{"largest |invert(sample(u)) \u2212 u|", std::to_string(max_error), "\u2264 1e-05",
+                         max_error <= 1e-5 ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond};
+    error.margin_kind = JudgedQuantity::Margin::OfLimit;
+    error.margin = max_error / 1e-5;
+    r.judged = {error};
     return r;
 }
 
@@ -184,6 +190,7 @@ TEST(HtmlReport, EveryRowHasItsJudgedTableAndTheLegendExplainsEachPValue) {
     run.results[0].judged = {{"Pearson X\u00b2 = 968.6 on 1023 dof: p-value", "1.00e-09", "\u2265 5.82e-05", State::Beyond},
                              {"cells pooled", "3", "counted", State::Reported}};
     run.results[1].judged = {{"p-value", "0.0199", "\u2265 7.28e-05", State::Within}};
+    run.results[2].judged.clear();
     const std::string html = unpacked_html(render_html(run));
     // A table for each row with lines, drawn as the check wrote them; none for the row without.
     EXPECT_EQ(count_of(html, "<table class=\"judged\">"), 2u);

@@ -18,14 +18,31 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
+/// A judged line held under `limit`, with its margin, as a check writes it
+/// (validate/checks/judged.h: with_margin): the margins are read from these.
+JudgedQuantity held(std::string quantity, double size, double limit) {
+    JudgedQuantity j{std::move(quantity), std::to_string(size), "\u2264 " + std::to_string(limit),
+                     size <= limit ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond};
+    j.margin_kind = JudgedQuantity::Margin::OfLimit;
+    j.margin = size / limit;
+    return j;
+}
+
+/// An exact rule's line (a count that must be 0): no margin.
+JudgedQuantity exact(std::string quantity, double count) {
+    return {std::move(quantity), std::to_string(count), "= 0",
+            count == 0.0 ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond};
+}
+
 CheckResult result(std::string case_name, std::string check, Verdict verdict, std::string summary,
-                   std::vector<Figure> figures = {}) {
+                   std::vector<Figure> figures = {}, std::vector<JudgedQuantity> judged = {}) {
     CheckResult r;
     r.case_name = std::move(case_name);
     r.check_name = std::move(check);
     r.verdict = verdict;
     r.summary = std::move(summary);
     r.figures = std::move(figures);
+    r.judged = std::move(judged);
     r.rerun_command = "validate --filter '" + r.case_name + "' --check " + r.check_name;
     return r;
 }
@@ -47,13 +64,17 @@ RunResult long_run() {
                "cos theta: max |dx| 1.30e-01 (0.17 of tol), pdf 1.00e+00 (0.37 of tol); phi: max |dx| 5.45e-07 (0.05 "
                "of tol), pdf 0.00e+00 (0.00 of tol)",
                {{"cos_theta_max_x_error_over_tolerance", 0.17}, {"cos_theta_max_pdf_error_over_tolerance", 0.37},
-                {"phi_max_x_error_over_tolerance", 0.05}}),
+                {"phi_max_x_error_over_tolerance", 0.05}},
+               {held("cos_theta_max_x_error_over_tolerance", 0.17, 1.0),
+                held("cos_theta_max_pdf_error_over_tolerance", 0.37, 1.0),
+                held("phi_max_x_error_over_tolerance", 0.05, 1.0)}),
         result(tr, "roundtrip", Verdict::Pass, "max |du| 3.87e-07",
-               {{"max_error", 3.87e-07}, {"tolerance", 1.52587890625e-05}}),
+               {{"max_error", 3.87e-07}, {"tolerance", 1.52587890625e-05}},
+               {held("max_error", 3.87e-07, 1.52587890625e-05), exact("failures", 0)}),
         statistical(tr, 0.43, 7.28e-05),
         statistical("trowbridge_reitz_normals[ax=0.3,ay=0.05]", 0.0029, 7.28e-05),
         result("uniform_float_interval[a=0,b=1]", "roundtrip", Verdict::Pass, "exact inverse",
-               {{"max_error", 0}, {"tolerance", 0}}),
+               {{"max_error", 0}, {"tolerance", 0}}, {exact("failures", 0)}),
     };
     return run;
 }
@@ -90,7 +111,8 @@ TEST(TerminalTable, WideKeepsEverything) {
 }
 
 // The margin says what a key figure is against its limit: an alarming-looking
-// "max |dx| 1.30e-01" is 0.37 of its tolerance at most.
+// "max |dx| 1.30e-01" is 0.37 of its tolerance at most. It is read from the
+// judged lines the check wrote, never from figure names.
 TEST(TerminalTable, MarginOfEachKindOfLimit) {
     const RunResult run = long_run();
     const RowMargin tabulated = row_margin(run.results[0]);
@@ -103,10 +125,12 @@ TEST(TerminalTable, MarginOfEachKindOfLimit) {
     EXPECT_EQ(margin_text(row_margin(run.results[2])), ">1000x level");
     EXPECT_EQ(margin_text(row_margin(run.results[3])), "40x level");
     EXPECT_FALSE(row_margin(run.results[4]).of_tolerance) << "a tolerance of 0 is an exact rule, not a fraction";
-    CheckResult chi2 = result("c", "chi2", Verdict::Pass, "", {{"integral", 1.000002}, {"integral_tolerance", 4e-6}});
-    EXPECT_NEAR(*row_margin(chi2).of_tolerance, 0.5, 1e-9) << "an integral is judged by its distance from 1";
-    CheckResult pmf = result("d", "pmf", Verdict::Pass, "", {{"sum", 0.9999999}, {"tolerance", 4e-7}});
-    EXPECT_NEAR(*row_margin(pmf).of_tolerance, 0.25, 1e-6);
+    CheckResult unjudged = result("c", "chi2", Verdict::Pass, "", {{"integral", 1.000002}, {"integral_tolerance", 4e-6},
+                                                                   {"error_over_tolerance", 0.5}});
+    EXPECT_FALSE(row_margin(unjudged).of_tolerance) << "figure names are not read: no judged line, no margin";
+    CheckResult nan = result("d", "pmf", Verdict::Fail, "", {},
+                             {held("sum", 0.25, 1.0), held("mass", std::nan(""), 1.0)});
+    EXPECT_NEAR(*row_margin(nan).of_tolerance, 0.25, 1e-12) << "a NaN margin is no number to show";
     CheckResult failing = statistical("f", 1e-9, 7.28e-05);
     EXPECT_EQ(margin_text(row_margin(failing)), "1.4e-5x level");
     CheckResult nan_p = statistical("n", std::nan(""), 7.28e-05);
@@ -118,9 +142,11 @@ TEST(TerminalTable, MarginOfEachKindOfLimit) {
 TEST(TerminalTable, FailedRowShowsOnlyAMarginPastItsLimit) {
     RunResult run;
     run.results = {result("lerp[a=1]", "roundtrip", Verdict::Fail, "max |du| 5.96e-08",
-                          {{"max_error", 5.96e-08}, {"tolerance", 1.52587890625e-05}}),
+                          {{"max_error", 5.96e-08}, {"tolerance", 1.52587890625e-05}},
+                          {held("max_error", 5.96e-08, 1.52587890625e-05), exact("outside_input_domain", 2)}),
                    result("lerp[a=2]", "roundtrip", Verdict::Fail, "max |du| 0.5",
-                          {{"max_error", 0.5}, {"tolerance", 1.52587890625e-05}}),
+                          {{"max_error", 0.5}, {"tolerance", 1.52587890625e-05}},
+                          {held("max_error", 0.5, 1.52587890625e-05)}),
                    statistical("power_wrong[n=2]", 1e-30, 7.28e-05)};
     std::ostringstream out;
     print_table(run, out);
@@ -152,7 +178,8 @@ TEST(TerminalTable, ReciprocityRowsHaveAMargin) {
     RunResult run = long_run();
     run.results.push_back(result("rough_dielectric[alpha=0.3,eta=1.5,theta_o=85]", "bsdf_reciprocity", Verdict::Pass,
                                  "max rel. error 0.000243 over 67990 pairs, 35 at float resolution",
-                                 {{"max_relative_error", 0.996 * 0x1p-12}, {"tolerance", 0x1p-12}}));
+                                 {{"max_relative_error", 0.996 * 0x1p-12}, {"tolerance", 0x1p-12}},
+                                 {held("max_relative_error", 0.996 * 0x1p-12, 0x1p-12)}));
     const RowMargin m = row_margin(run.results.back());
     ASSERT_TRUE(m.of_tolerance);
     EXPECT_NEAR(*m.of_tolerance, 0.996, 1e-12);
@@ -256,10 +283,11 @@ RunResult widest_run() {
           "rough_conductor[alpha=0.05,theta_o=85]", "rough_conductor[alpha=0.3,theta_o=85]",
           "rough_conductor_aniso[ax=0.3,ay=0.05,theta_o=60,phi_o=45]"})
         run.results.push_back(result(name, "bsdf_weight", Verdict::Pass, key,
-                                     {{"max_relative_difference", 1e-9}, {"tolerance", 1.0}}));
+                                     {{"max_relative_difference", 1e-9}, {"tolerance", 1.0}},
+                                     {held("max_relative_difference", 1e-9, 1.0)}));
     run.results.push_back(statistical("uniform_float_interval[a=0.999,b=1.001]", 0.3, 7.28e-05));
     run.results.push_back(result("unit_float_mul32[a=1]", "exhaustive_roundtrip", Verdict::Pass, key,
-                                 {{"max_error", 0.0078}, {"tolerance", 1.0}}));
+                                 {{"max_error", 0.0078}, {"tolerance", 1.0}}, {held("max_error", 0.0078, 1.0)}));
     run.results.push_back(result("hostile_name\x1b[2J\x1b]0;owned\x07\r\n", "roundtrip", Verdict::Fail, key));
     run.results.push_back(result("smooth_dielectric[eta=1.5,theta_o=60]", "bsdf_reciprocity",
                                  Verdict::NotApplicable, "not applicable: only delta lobes: f is 0 everywhere"));

@@ -24,12 +24,14 @@ std::optional<JudgedQuantity> figure_line(const CheckResult& r, const JudgedFigu
         case FigureRule::AtMost:
             // An exact rule (tolerance 0) is judged by its count of failures, not here.
             if (!limit || (*limit == 0.0 && std::string_view(s.limit) == "tolerance")) return std::nullopt;
-            return JudgedQuantity{s.quantity, judged_number(*value), "\u2264 " + judged_number(*limit),
-                                  *value <= *limit ? State::Within : State::Beyond};
+            return with_margin({s.quantity, judged_number(*value), "\u2264 " + judged_number(*limit),
+                                *value <= *limit ? State::Within : State::Beyond},
+                               *value, *limit);
         case FigureRule::WithinOfOne:
             if (!limit) return std::nullopt;
-            return JudgedQuantity{s.quantity, fmt::format("{:.9g}", *value), "|x \u2212 1| \u2264 " + judged_number(*limit),
-                                  std::abs(*value - 1.0) <= *limit ? State::Within : State::Beyond};
+            return with_margin({s.quantity, fmt::format("{:.9g}", *value), "|x \u2212 1| \u2264 " + judged_number(*limit),
+                                std::abs(*value - 1.0) <= *limit ? State::Within : State::Beyond},
+                               std::abs(*value - 1.0), *limit);
         case FigureRule::Counted:
             return JudgedQuantity{s.quantity, judged_number(*value), "counted", State::Reported};
     }
@@ -54,13 +56,15 @@ void tolerance_lines(const CheckResult& r, const std::set<std::string>& used, st
     for (const Figure& f : r.figures) {
         if (used.count(f.name)) continue;
         if (f.name.ends_with("_over_tolerance")) {
-            out.push_back({f.name, judged_number(f.value), "\u2264 1", f.value <= 1.0 ? State::Within : State::Beyond});
+            out.push_back(with_margin(
+                {f.name, judged_number(f.value), "\u2264 1", f.value <= 1.0 ? State::Within : State::Beyond}, f.value, 1.0));
         } else if (const auto tol = r.figure(f.name + "_tolerance"); tol && !used.count(f.name + "_tolerance")) {
             const bool integral = f.name.ends_with("integral");
             const double error = integral ? std::abs(f.value - 1.0) : std::abs(f.value);
-            out.push_back({f.name, judged_number(f.value),
-                           (integral ? "|x \u2212 1| \u2264 " : "|x| \u2264 ") + judged_number(*tol),
-                           error <= *tol ? State::Within : State::Beyond});
+            out.push_back(with_margin({f.name, judged_number(f.value),
+                                       (integral ? "|x \u2212 1| \u2264 " : "|x| \u2264 ") + judged_number(*tol),
+                                       error <= *tol ? State::Within : State::Beyond},
+                                      error, *tol));
         }
     }
 }
@@ -72,9 +76,24 @@ std::string judged_number(double v) {
     return std::isfinite(v) ? fmt::format("{:.3g}", v) : format_number(v);
 }
 
+JudgedQuantity with_margin(JudgedQuantity line, double size, double limit) {
+    // Over a limit of 0 (an exact rule) or a non-finite one, no fraction says how near.
+    if (limit > 0.0 && std::isfinite(limit)) {
+        line.margin_kind = JudgedQuantity::Margin::OfLimit;
+        line.margin = size / limit;
+    }
+    return line;
+}
+
 JudgedQuantity p_line(std::string quantity, double p, double limit, const std::string& limit_note) {
-    return {std::move(quantity), probability(p), fmt::format("\u2265 {}{}", format_probability(limit), limit_note),
-            p >= limit ? State::Within : State::Beyond};
+    JudgedQuantity line{std::move(quantity), probability(p),
+                        fmt::format("\u2265 {}{}", format_probability(limit), limit_note),
+                        p >= limit ? State::Within : State::Beyond};
+    if (limit > 0.0 && std::isfinite(limit)) {
+        line.margin_kind = JudgedQuantity::Margin::POverLimit;
+        line.margin = p / limit;
+    }
+    return line;
 }
 
 void strict_zero_line(const CheckResult& r, const char* figure, const char* quantity, std::vector<JudgedQuantity>& out) {

@@ -66,7 +66,12 @@ void record_judgement(CheckResult& r, const JudgedRules& rules);
 /// where by default it is an excuse counted beside the verdict.
 void strict_zero_line(const CheckResult& r, const char* figure, const char* quantity, std::vector<JudgedQuantity>& out);
 
-/// A p-value's line: within where p >= limit (NaN is below every limit).
+/// `line`, a size held under `limit`, with its margin: size / limit (none
+/// where the limit is 0, an exact rule, or not finite). A NaN size keeps a
+/// NaN margin, as its line is never within.
+JudgedQuantity with_margin(JudgedQuantity line, double size, double limit);
+/// A p-value's line: within where p >= limit (NaN is below every limit),
+/// with its margin p / limit.
 JudgedQuantity p_line(std::string quantity, double p, double limit, const std::string& limit_note);
 /// A value as the lines print it: integers grouped, others to 3 digits.
 std::string judged_number(double v);

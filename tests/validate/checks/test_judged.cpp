@@ -132,6 +132,47 @@ TEST(Judged, ToleranceRulesCountsAndExcusesOfARoundTrip) {
     EXPECT_EQ(excused->state, State::Reported);
 }
 
+// Each line with a numeric limit carries how near it is as a number, which
+// the terminal and HTML margins read (reports/terminal_table.h, row_margin):
+// a size over the limit it must stay under, a p-value over its limit; a count
+// that must be 0, a reported count and an exact rule (tolerance 0) carry none.
+TEST(Judged, EachLimitCarriesItsMarginAsANumber) {
+    using Margin = JudgedQuantity::Margin;
+    const auto chi2 = lines_of(chi2_row(0.887, 0.144), *make_chi2_check());
+    const auto* integral = line_starting(chi2, "integral of the density");
+    ASSERT_TRUE(integral);
+    EXPECT_EQ(integral->margin_kind, Margin::OfLimit);
+    EXPECT_NEAR(integral->margin, 4e-8 / 9.5e-7, 1e-6) << "an integral is held by its distance from 1";
+    const auto* pearson = line_starting(chi2, "Pearson");
+    ASSERT_TRUE(pearson);
+    EXPECT_EQ(pearson->margin_kind, Margin::POverLimit);
+    EXPECT_NEAR(pearson->margin, 0.887 / (0.8 * kLevel), 1e-6);
+
+    const CheckResult trip = row("roundtrip", Verdict::Fail,
+                                 {{"max_error", 2e-5}, {"tolerance", 1e-5}, {"failures", 3.0}, {"resolution_limited", 7}});
+    const auto lines = lines_of(trip, *make_roundtrip_check());
+    EXPECT_EQ(line_starting(lines, "largest |invert")->margin_kind, Margin::OfLimit);
+    EXPECT_DOUBLE_EQ(line_starting(lines, "largest |invert")->margin, 2.0);
+    EXPECT_EQ(line_starting(lines, "inputs beyond the tolerance")->margin_kind, Margin::None);
+    EXPECT_EQ(line_starting(lines, "resolution-limited")->margin_kind, Margin::None);
+    const CheckResult exact = row("roundtrip", Verdict::Pass, {{"max_error", 0}, {"tolerance", 0}, {"failures", 0}});
+    for (const auto& l : lines_of(exact, *make_roundtrip_check())) EXPECT_EQ(l.margin_kind, Margin::None) << l.quantity;
+
+    // A figure judged by name alone (no rule declared it): *_over_tolerance as it is.
+    const CheckResult generic = row("a_check_of_its_own", Verdict::Pass, {{"pdf_error_over_tolerance", 0.37}});
+    const auto g = judged_lines(generic, JudgedRules{});
+    ASSERT_EQ(g.size(), 1u);
+    EXPECT_EQ(g[0].margin_kind, Margin::OfLimit);
+    EXPECT_DOUBLE_EQ(g[0].margin, 0.37);
+    // A NaN size keeps a NaN margin beside a line that is beyond.
+    const CheckResult nan = row("roundtrip", Verdict::Fail, {{"max_error", std::nan("")}, {"tolerance", 1e-5}});
+    const auto nan_lines = lines_of(nan, *make_roundtrip_check());
+    const auto* n = line_starting(nan_lines, "largest |invert");
+    ASSERT_TRUE(n);
+    EXPECT_EQ(n->state, State::Beyond);
+    EXPECT_TRUE(std::isnan(n->margin));
+}
+
 TEST(Judged, ConsistencyBoundsTheZeroPdfsOfFloatRoundingByTheirPoissonBound) {
     CheckResult r = row("consistency", Verdict::Pass,
                         {{"zero_pdf", 0}, {"zero_pdf_rounded_random", 12}, {"zero_pdf_rounded_edge_inputs", 3},

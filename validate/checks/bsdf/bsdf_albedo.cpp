@@ -280,8 +280,9 @@ std::vector<FamilyPoint> albedo_points(const BsdfCase& bsdf, const Outcome& o) {
 void energy_bound_line(const CheckResult& r, std::vector<JudgedQuantity>& out) {
     const auto energy = r.figure("energy_albedo"), bound = r.figure("energy_tolerance");
     if (!energy || !bound || r.figure("albedo_known").value_or(1.0) == 0.0) return;
-    out.push_back({"energy albedo", fmt::format("{:.9g}", *energy), "\u2264 1 + " + judged_number(*bound),
-                   *energy <= 1.0 + *bound ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond});
+    out.push_back(with_margin({"energy albedo", fmt::format("{:.9g}", *energy), "\u2264 1 + " + judged_number(*bound),
+                               *energy <= 1.0 + *bound ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond},
+                              std::max(0.0, *energy - 1.0), *bound));
 }
 
 class BsdfAlbedoCheck final : public BsdfCheck {

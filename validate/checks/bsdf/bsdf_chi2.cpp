@@ -294,9 +294,12 @@ void bsdf_chi2_bound_lines(const CheckResult& r, std::vector<JudgedQuantity>& ou
                delta = r.figure("delta_claimed");
     if (!integral || !tolerance || !delta) return;
     const double room = 1.0 - *delta + *tolerance;
-    out.push_back({"pdf(wo, .) integrated over the sphere", fmt::format("{:.9g}", *integral),
-                   fmt::format("\u2264 1 \u2212 {} (delta lobes) + {}", judged_number(*delta), judged_number(*tolerance)),
-                   *integral <= room ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond});
+    // The margin: the excess over the continuous lobes' share, over the tolerance.
+    out.push_back(with_margin(
+        {"pdf(wo, .) integrated over the sphere", fmt::format("{:.9g}", *integral),
+         fmt::format("\u2264 1 \u2212 {} (delta lobes) + {}", judged_number(*delta), judged_number(*tolerance)),
+         *integral <= room ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond},
+        std::max(0.0, *integral - (1.0 - *delta)), *tolerance));
 }
 
 /// The marks of a row's residual plots, and what fails it.
