@@ -113,6 +113,28 @@ TEST(ResultModel, EveryVerdictAndPhasesSurviveTheJson) {
     EXPECT_EQ(back.totals(), (Totals{4, 1, 1, 1, 1}));
 }
 
+// A judged line's margin is optional: a file written before it was added
+// (or a line whose rule has none) reads as no margin, and one written with
+// it comes back as it was.
+TEST(ResultModel, AJudgedLineWithoutAMarginReadsAsNone) {
+    RunResult run = every_member_run(1);
+    ASSERT_FALSE(run.results.empty());
+    JudgedQuantity with{"largest error", "0.5", "\u2264 1", JudgedQuantity::State::Within,
+                        JudgedQuantity::Margin::OfLimit, 0.5};
+    JudgedQuantity without{"failures", "0", "= 0", JudgedQuantity::State::Within};
+    run.results[0].judged = {with, without};
+    const RunResult back = parse_json_results(render_json(run));
+    ASSERT_EQ(back.results[0].judged.size(), 2u);
+    EXPECT_EQ(back.results[0].judged[0].margin_kind, JudgedQuantity::Margin::OfLimit);
+    EXPECT_DOUBLE_EQ(back.results[0].judged[0].margin, 0.5);
+    EXPECT_EQ(back.results[0].judged[1].margin_kind, JudgedQuantity::Margin::None);
+    const std::string text = render_json(run);
+    const std::size_t line = text.find("\"quantity\":\"failures\"");
+    ASSERT_NE(line, std::string::npos);
+    EXPECT_EQ(text.substr(line, text.find('}', line) - line).find("\"margin\""), std::string::npos)
+        << "none is not written";
+}
+
 TEST(ResultModel, AReadErrorNamesThePlace) {
     RunResult run = every_member_run(1);
     std::string text = render_json(run);
