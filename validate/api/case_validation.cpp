@@ -2,8 +2,11 @@
 // validate_case): its types against what its description says, its settings,
 // its views, a BSDF's claims and a swept float sampler's domain. Every problem
 // is a sentence; the refusal lists them all under the case's name.
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -104,6 +107,33 @@ std::string claims_problem(const BsdfClaims& c) {
     return "";
 }
 
+/// A parameter of the case's name, if it has one.
+std::optional<double> named_parameter(const WarpCaseInfo& info, std::string_view name) {
+    for (const Parameter& p : info.params)
+        if (p.name == name) return p.value;
+    return std::nullopt;
+}
+
+/// A BSDF's wo against the direction its name states (theta_o and phi_o in
+/// degrees, bsdf_direction), where it states one: a case named for one
+/// direction and seen from another reports every figure under the wrong name.
+/// 2^-16 per component, as for wo's length: a renderer's own float
+/// trigonometry is within a few 2^-24 of bsdf_direction's, while a wo of
+/// another angle (or in radians, or measured from the horizon) is off by far
+/// more (2^-16 is 0.0009 degrees at the least).
+std::string named_wo_problem(const WarpCaseInfo& info, const BsdfClaims& c) {
+    const auto theta = named_parameter(info, "theta_o");
+    if (!theta) return "";
+    const auto phi = named_parameter(info, "phi_o");
+    const Vector3f named = bsdf_direction(*theta, phi.value_or(0.0));
+    const float off = std::max({std::abs(named.x - c.wo.x), std::abs(named.y - c.wo.y), std::abs(named.z - c.wo.z)});
+    if (off <= 0x1p-16f) return "";
+    return fmt::format("wo ({}, {}, {}) is not the direction its name states: theta_o = {}{} gives ({}, {}, {}) "
+                       "(bsdf_direction, degrees)",
+                       c.wo.x, c.wo.y, c.wo.z, *theta, phi ? fmt::format(", phi_o = {}", *phi) : std::string(),
+                       named.x, named.y, named.z);
+}
+
 /// A light's claims: the first thing wrong, or "".
 std::string light_claims_problem(const LightClaims& c) {
     if (!(std::isfinite(c.ref.x) && std::isfinite(c.ref.y) && std::isfinite(c.ref.z)))
@@ -153,8 +183,11 @@ void view_problems(const WarpCase& warp, const MonotoneMarginal& m, std::vector<
 std::vector<std::string> case_problems(const WarpCase& warp) {
     std::vector<std::string> out;
     if (std::string problem = type_problem(warp); !problem.empty()) out.push_back(std::move(problem));
-    if (const BsdfCase* bsdf = as_bsdf(warp))
+    if (const BsdfCase* bsdf = as_bsdf(warp)) {
         if (std::string problem = claims_problem(bsdf->claims()); !problem.empty()) out.push_back(std::move(problem));
+        if (std::string problem = named_wo_problem(warp.info(), bsdf->claims()); !problem.empty())
+            out.push_back(std::move(problem));
+    }
     if (const LightCase* light = as_light(warp))
         if (std::string problem = light_claims_problem(light->claims()); !problem.empty())
             out.push_back(std::move(problem));

@@ -120,6 +120,29 @@ TEST(CaseValidation, ACaseWrittenByHandIsRefusedWhereItIsRegistered) {
                 AllOf(HasSubstr(kHeading), HasSubstr("roundtrip_tolerance 2 is not in (0, 1)")));
 }
 
+// A BSDF case states wo twice, in its name (theta_o, phi_o) and in its claims:
+// where they disagree it is refused, so that no figure is reported under the
+// name of a direction the BSDF was not seen from. A renderer's own float
+// trigonometry for the same angles is accepted.
+TEST(CaseValidation, ABsdfSeenFromAnotherDirectionThanItsNameIsRefused) {
+    const auto lambertian = Lambertian(0.5f);
+    const auto make = [&](std::vector<Parameter> params, Vector3f wo) {
+        return [=] { return make_bsdf_case({.family = "lin", .params = params}, {.wo = wo}, lambertian); };
+    };
+    const Vector3f at30 = bsdf_direction(30.0);
+    EXPECT_THAT(refusal(make({{"theta_o", 60}}, at30)),
+                AllOf(HasSubstr("warp case lin[theta_o=60] is declared inconsistently"),
+                      HasSubstr("is not the direction its name states: theta_o = 60")));
+    const float r = 30.0f * 3.14159265f / 180.0f;  // a renderer's own float trigonometry
+    EXPECT_NO_THROW(make({{"theta_o", 30}}, {std::sin(r), 0.0f, std::cos(r)})());
+    EXPECT_NO_THROW(make({{"theta_o", 30}}, at30)());
+    EXPECT_NO_THROW(make({{"alpha", 0.3}}, at30)()) << "a name that states no direction";
+    // phi_o counts too; so does a theta_o in radians (0.5236 is 30 degrees).
+    EXPECT_NO_THROW(make({{"theta_o", 30}, {"phi_o", 45}}, bsdf_direction(30.0, 45.0))());
+    EXPECT_THAT(refusal(make({{"theta_o", 30}, {"phi_o", 45}}, at30)), HasSubstr("phi_o = 45"));
+    EXPECT_THAT(refusal(make({{"theta_o", 0.5235987755982988}}, at30)), HasSubstr("its name states"));
+}
+
 // The other declarations a case is made from are refused in the same words:
 // a BSDF's claims, a swept float sampler's domain and subrange, a grid's axes.
 TEST(CaseValidation, EveryKindIsRefusedInTheSameWords) {
