@@ -31,7 +31,7 @@ inline std::unique_ptr<WarpCase> henyey_greenstein_wrong_g(float g, float dg) {
         s.f = s.pdf = right.pdf(wo, s.wi);
         return s;
     };
-    return make_bsdf_case({.family = "hg_wrong_g", .params = {{"g", g}, {"theta_o", 30}, {"dg", dg}}},
+    return make_bsdf_case({.family = "hg_wrong_g", .params = {{"g", g}, {"theta_o", 30}, {"phi_o", 20}, {"dg", dg}}},
                           {.wo = bsdf_direction(30, 20), .lobes = BsdfFlags::Continuous, .phase_function = true},
                           bsdf_of(sample)
                               .with_f([right](Vector3f wo, Vector3f wi) { return right.p(wo, wi); })

@@ -34,7 +34,7 @@ std::unique_ptr<WarpCase> conductor(float alpha, double theta) {
 }
 
 std::unique_ptr<WarpCase> hg_lobe(float g) {
-    return make_phase_case({.family = "hard_hg", .params = {{"g", g}, {"theta_o", 30}}}, bsdf_direction(30, 20),
+    return make_phase_case({.family = "hard_hg", .params = {{"g", g}, {"theta_o", 30}, {"phi_o", 20}}}, bsdf_direction(30, 20),
                            HenyeyGreenstein(g));
 }
 
