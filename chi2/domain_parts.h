@@ -45,7 +45,7 @@ struct BinResolution {
     /// line_center), whose uniform cells in t bin the line. Half the cells lie
     /// within s of the start (centre); choose s near the distribution's median
     /// distance. Zero means 1 to Binning; the checks derive it from the density
-    /// instead (validate/checks/line_resolution.h).
+    /// instead (validate/checks/shared/line_resolution.h).
     double half_line_scale = 0.0;
     /// RealLine only: the centre c of the map above (where the cells are
     /// finest). The checks derive it from the warp when the case leaves it 0.

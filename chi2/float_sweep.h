@@ -1,7 +1,7 @@
 // Exhaustive float histograms: run a function over every input of a range (up
 // to all 2^32 values of a u32) and count, exactly, how often each float comes
 // out, summarised per binade against the ideal measure. Pure counting: no
-// printing, no verdicts (validate/checks/exhaustive_check.cpp judges). Knows no
+// printing, no verdicts (validate/checks/exhaustive/exhaustive_check.cpp judges). Knows no
 // warps: it takes the function to sweep as a block callback.
 //
 // Ideal measure: a uniform real of [a,b) rounded down to a float, so the ideal

@@ -1,6 +1,6 @@
 // Reading a result's tables by their column names: what the unbinned checks'
 // table of tests says was judged, read by the check's own judgement
-// (validate/checks/unbinned_check.cpp) and by the report's plot marks.
+// (validate/checks/unbinned/unbinned_check.cpp) and by the report's plot marks.
 #pragma once
 
 #include <algorithm>

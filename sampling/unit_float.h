@@ -9,7 +9,7 @@
 // The reference measure throughout is "uniform real, rounded down to a float":
 // a float x of [0,1) should come out with probability next_float_up(x) - x, its
 // spacing. 2^-32 inputs cannot give a 2^-149 spacing, so every 32-bit method is
-// off somewhere; the exhaustive check (validate/checks/exhaustive_check.cpp) counts by how much.
+// off somewhere; the exhaustive check (validate/checks/exhaustive/exhaustive_check.cpp) counts by how much.
 #pragma once
 
 #include <bit>

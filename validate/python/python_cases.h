@@ -5,7 +5,7 @@
 // call is paid per chunk. Each call takes the GIL; the check threads wait for
 // it in turn (NumPy releases it inside its own loops), and the figures do not
 // depend on the order in which they get it, because every chunk's inputs and
-// the merge of the results are fixed (validate/checks/input_chunks.h).
+// the merge of the results are fixed (validate/checks/shared/input_chunks.h).
 //
 // The shapes (n inputs in a batch):
 //   warp:   sample(u) -> x, or (x, value) when it returns its pdf or weight,

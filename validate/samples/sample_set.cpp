@@ -10,11 +10,11 @@
 
 #include "chi2/chi2_test.h"
 #include "chi2/power.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/formatting.h"
-#include "validate/checks/judged.h"
-#include "validate/checks/line_resolution.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/formatting.h"
+#include "validate/checks/shared/judged.h"
+#include "validate/checks/shared/line_resolution.h"
+#include "validate/checks/shared/power_level.h"
 #include "validate/run/runner.h"
 #include "warpcheck/version.h"
 

@@ -11,8 +11,8 @@
 #include "chi2/min_p.h"
 #include "chi2/power.h"
 #include "chi2/two_sample.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/power_level.h"
 
 namespace warpcheck {
 namespace {

@@ -30,7 +30,7 @@ struct TwoSampleComparison {
 
 /// The comparison as a result row ("two_sample") with its p-value set; a NaN
 /// output or one outside the domain fails it without a level. `options`
-/// gives the level at which power is stated (validate/checks/power_level.h).
+/// gives the level at which power is stated (validate/checks/shared/power_level.h).
 CheckResult compare_independent(std::span<const WarpOutput> a, std::span<const WarpOutput> b,
                                 const TwoSampleComparison& how, const RunOptions& options);
 

@@ -9,8 +9,8 @@
 
 #include <fmt/format.h>
 
-#include "validate/checks/evidence.h"
-#include "validate/checks/formatting.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/formatting.h"
 
 namespace warpcheck {
 

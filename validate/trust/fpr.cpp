@@ -34,8 +34,8 @@
 
 #include "chi2/binning.h"
 #include "chi2/multiple_testing.h"
-#include "validate/checks/cell_power.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/cell_power.h"
+#include "validate/checks/shared/power_level.h"
 #include "validate/trust/power_simulation.h"
 #include "validate/api/registry.h"
 #include "validate/run/runner.h"

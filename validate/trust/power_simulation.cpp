@@ -9,7 +9,7 @@
 #include "chi2/binning.h"
 #include "chi2/multiple_testing.h"
 #include "sampling/pcg32.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/power_level.h"
 #include "validate/run/runner.h"
 #include "validate/run/thread_pool.h"
 

@@ -1,6 +1,6 @@
 // Evidence that a stated power figure is right: the chi2 and unbinned checks
 // state the smallest linear tilt of a marginal (chi2/power.h) that they detect
-// with 90% probability at the planned level (checks/power_level.h). This
+// with 90% probability at the planned level (checks/shared/power_level.h). This
 // simulates exactly that deviation and counts how often the check detects it.
 //
 // The tilted sampler: a warp whose marginal coordinate is a monotone function

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "validate/checks/evidence.h"
+#include "validate/checks/shared/evidence.h"
 
 namespace warpcheck {
 namespace {

@@ -9,7 +9,7 @@
 #include "support/check_harness.h"
 #include "support/verdict_twins.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/input_chunks.h"
 #include "validate/api/registry.h"
 #include "validate/run/runner.h"
 

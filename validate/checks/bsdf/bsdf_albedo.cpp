@@ -49,9 +49,9 @@
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/bsdf/bsdf_common.h"
 #include "validate/checks/bsdf/bsdf_statistics.h"
-#include "validate/checks/cell_evidence.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/cell_evidence.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/power_level.h"
 
 namespace warpcheck::bsdf {
 namespace {

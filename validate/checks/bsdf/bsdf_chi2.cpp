@@ -51,14 +51,14 @@
 #include "chi2/min_p.h"
 #include "chi2/power.h"
 #include "validate/checks/bsdf/bsdf_checks.h"
-#include "validate/checks/cell_evidence.h"
+#include "validate/checks/shared/cell_evidence.h"
 #include "validate/checks/bsdf/bsdf_common.h"
 #include "validate/checks/bsdf/bsdf_evidence.h"
 #include "validate/checks/bsdf/bsdf_statistics.h"
-#include "validate/checks/cell_power.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/input_chunks.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/cell_power.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/input_chunks.h"
+#include "validate/checks/shared/power_level.h"
 
 namespace warpcheck::bsdf {
 namespace {
@@ -210,7 +210,7 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
                  {"quadrature_evaluations", static_cast<double>(o.integrals.evaluations)},
                  {"equal_probability_cells", binning.has_own_edges() ? 1.0 : 0.0}};
     // The stated power of the test as it ran, over the samples that landed
-    // (validate/checks/cell_power.h).
+    // (validate/checks/shared/cell_power.h).
     add_cell_power(r, binning, o, level, n.landed);
 }
 

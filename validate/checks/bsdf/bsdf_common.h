@@ -16,9 +16,9 @@
 #include "chi2/binning.h"
 #include "chi2/quadrature.h"
 #include "validate/api/bsdf_case.h"
-#include "validate/checks/float_probe.h"  // float_neighbours, kFloatStep
+#include "validate/checks/shared/float_probe.h"  // float_neighbours, kFloatStep
 #include "validate/checks/check.h"
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/input_chunks.h"
 
 namespace warpcheck::bsdf {
 

@@ -7,14 +7,14 @@
 #include "chi2/binning.h"
 #include "chi2/chi2_test.h"
 #include "reports/result.h"
-#include "validate/checks/cell_evidence.h"
+#include "validate/checks/shared/cell_evidence.h"
 
 namespace warpcheck::bsdf {
 
-/// validate/checks/cell_evidence.h's, with the axes named for wi.
+/// validate/checks/shared/cell_evidence.h's, with the axes named for wi.
 Plot cell_heatmaps(const chi2::Binning& binning, const chi2::Chi2Outcome& o, const std::string& title);
 
-/// validate/checks/cell_evidence.h's, with the axes named for wi.
+/// validate/checks/shared/cell_evidence.h's, with the axes named for wi.
 Table worst_cells(const chi2::Binning& binning, const chi2::Chi2Outcome& o);
 
 }  // namespace warpcheck::bsdf

@@ -33,9 +33,9 @@
 
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/bsdf/bsdf_common.h"
-#include "validate/checks/direction_length.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/formatting.h"
+#include "validate/checks/shared/direction_length.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/formatting.h"
 
 namespace warpcheck::bsdf {
 namespace {

@@ -33,7 +33,7 @@
 
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/bsdf/bsdf_common.h"
-#include "validate/checks/evidence.h"
+#include "validate/checks/shared/evidence.h"
 
 namespace warpcheck::bsdf {
 namespace spectral_detail {

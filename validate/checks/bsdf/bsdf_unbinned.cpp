@@ -24,7 +24,7 @@
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/bsdf/bsdf_common.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/direction_length.h"
+#include "validate/checks/shared/direction_length.h"
 
 namespace warpcheck::bsdf {
 namespace {

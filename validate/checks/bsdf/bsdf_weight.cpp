@@ -35,8 +35,8 @@
 
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/bsdf/bsdf_common.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/formatting.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/formatting.h"
 
 namespace warpcheck::bsdf {
 namespace {

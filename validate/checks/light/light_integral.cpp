@@ -6,8 +6,8 @@
 #include <fmt/format.h>
 
 #include "chi2/equal_probability.h"
-#include "validate/checks/cell_evidence.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/cell_evidence.h"
+#include "validate/checks/shared/power_level.h"
 
 namespace warpcheck::light {
 

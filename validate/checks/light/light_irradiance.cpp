@@ -29,13 +29,13 @@
 #include "chi2/mean_test.h"
 #include "chi2/quadrature.h"
 #include "validate/api/light_case.h"
-#include "validate/checks/cell_evidence.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/cell_evidence.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/input_chunks.h"
 #include "validate/checks/light/light_checks.h"
 #include "validate/checks/light/light_integral.h"
 #include "validate/checks/light/light_pilot.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/power_level.h"
 
 namespace warpcheck::light {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "validate/api/light_case.h"
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/input_chunks.h"
 
 namespace warpcheck::light {
 

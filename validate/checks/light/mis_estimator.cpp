@@ -19,9 +19,9 @@
 #include "chi2/equal_probability.h"
 #include "chi2/mean_test.h"
 #include "validate/api/light_case.h"
-#include "validate/checks/cell_evidence.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/cell_evidence.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/input_chunks.h"
 #include "validate/checks/light/light_checks.h"
 #include "validate/checks/light/light_integral.h"
 

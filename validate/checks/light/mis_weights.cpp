@@ -23,10 +23,10 @@
 #include <fmt/format.h>
 
 #include "validate/api/light_case.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/float_probe.h"
-#include "validate/checks/formatting.h"
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/float_probe.h"
+#include "validate/checks/shared/formatting.h"
+#include "validate/checks/shared/input_chunks.h"
 #include "validate/checks/light/light_checks.h"
 
 namespace warpcheck::light {

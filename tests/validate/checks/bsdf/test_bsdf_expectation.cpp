@@ -20,7 +20,7 @@
 #include "validate/api/bsdf_case.h"
 #include "validate/api/registry.h"
 #include "validate/checks/bsdf/bsdf_checks.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/power_level.h"
 #include "validate/run/fuzz.h"
 #include "validate/run/runner.h"
 

@@ -12,7 +12,7 @@
 #include "support/support_warps.h"
 #include "sampling/hemisphere.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/float_probe.h"
+#include "validate/checks/shared/float_probe.h"
 
 namespace warpcheck {
 namespace {

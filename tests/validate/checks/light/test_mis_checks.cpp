@@ -23,7 +23,7 @@
 #include "support/flawed_catalogue.h"
 #include "validate/api/light_case.h"
 #include "validate/api/registry.h"
-#include "validate/checks/float_probe.h"
+#include "validate/checks/shared/float_probe.h"
 #include "validate/run/runner.h"
 
 namespace warpcheck {

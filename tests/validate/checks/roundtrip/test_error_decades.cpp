@@ -1,5 +1,5 @@
 // The round trip's error histogram bins by comparison with powers of ten
-// (validate/checks/error_decades.h) must be the bins floor(log10(error)) gave:
+// (validate/checks/roundtrip/error_decades.h) must be the bins floor(log10(error)) gave:
 // at every double within 300 ulps of each edge, at dyadic errors (what
 // |invert(sample(u)) - u| of floats is), and at log-uniform random errors.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <limits>
 
 #include "sampling/pcg32.h"
-#include "validate/checks/error_decades.h"
+#include "validate/checks/roundtrip/error_decades.h"
 
 namespace warpcheck {
 namespace {

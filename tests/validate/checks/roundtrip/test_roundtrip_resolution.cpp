@@ -13,7 +13,7 @@
 #include "support/check_harness.h"
 #include "support/roundtrip_hard_warps.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/float_cell.h"
+#include "validate/checks/shared/float_cell.h"
 #include "validate/run/runner.h"
 
 namespace warpcheck {

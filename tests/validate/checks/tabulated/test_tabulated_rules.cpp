@@ -19,7 +19,7 @@
 #include "support/builtin_case.h"
 #include "support/check_harness.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/tabulated_reference.h"
+#include "validate/checks/tabulated/tabulated_reference.h"
 #include "validate/api/register17.h"
 #include "validate/api/registry.h"
 #include "sampling/math.h"

@@ -1,11 +1,11 @@
-#include "validate/checks/tabulated_monotonicity.h"
+#include "validate/checks/tabulated/tabulated_monotonicity.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <span>
 
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/input_chunks.h"
 
 namespace warpcheck {
 namespace {

@@ -1,4 +1,4 @@
-#include "validate/checks/line_resolution.h"
+#include "validate/checks/shared/line_resolution.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/input_chunks.h"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "validate/checks/cell_power.h"
+#include "validate/checks/shared/cell_power.h"
 
 #include <algorithm>
 #include <cctype>

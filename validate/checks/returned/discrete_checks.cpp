@@ -21,9 +21,9 @@
 #include "chi2/resolution_test.h"
 #include "chi2/unbinned.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/formatting.h"
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/formatting.h"
+#include "validate/checks/shared/input_chunks.h"
 
 namespace warpcheck {
 namespace {

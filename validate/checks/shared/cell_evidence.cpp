@@ -1,4 +1,4 @@
-#include "validate/checks/cell_evidence.h"
+#include "validate/checks/shared/cell_evidence.h"
 
 #include <algorithm>
 #include <cmath>

@@ -27,13 +27,13 @@
 #include "chi2/min_p.h"
 #include "chi2/power.h"
 #include "validate/api/light_case.h"
-#include "validate/checks/cell_evidence.h"
-#include "validate/checks/cell_power.h"
+#include "validate/checks/shared/cell_evidence.h"
+#include "validate/checks/shared/cell_power.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/input_chunks.h"
-#include "validate/checks/line_resolution.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/input_chunks.h"
+#include "validate/checks/shared/line_resolution.h"
+#include "validate/checks/shared/power_level.h"
 #include "validate/lanes/lane_sampling.h"
 
 namespace warpcheck {
@@ -201,7 +201,7 @@ void add_figures(CheckResult& r, const chi2::Chi2Outcome& o, const chi2::LocalRe
     if (binning.domain().is<chi2::RealLine>())
         r.figures.push_back({"line_center", binning.resolution().line_center});
     // The localised statistic (chi2/local_residual.h) and the stated power of
-    // the test as it ran (validate/checks/cell_power.h), at the planned level
+    // the test as it ran (validate/checks/shared/cell_power.h), at the planned level
     // less the largest residual's share.
     r.figures.insert(r.figures.end(), {{"local_max_residual", local.residual},
                                        {"local_cell", static_cast<double>(local.cell)},

@@ -47,14 +47,14 @@
 #include "chi2/power.h"
 #include "chi2/unbinned.h"
 #include "validate/api/light_case.h"
-#include "validate/checks/cell_power.h"
+#include "validate/checks/shared/cell_power.h"
 #include "reports/result_tables.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/direction_length.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/input_chunks.h"
-#include "validate/checks/line_resolution.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/direction_length.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/input_chunks.h"
+#include "validate/checks/shared/line_resolution.h"
+#include "validate/checks/shared/power_level.h"
 
 namespace warpcheck {
 namespace {

@@ -1,4 +1,4 @@
-#include "validate/checks/float_cell.h"
+#include "validate/checks/shared/float_cell.h"
 
 #include <algorithm>
 #include <cmath>

@@ -46,10 +46,10 @@
 #include "sampling/float_bits.h"
 #include "validate/api/light_case.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/float_probe.h"
-#include "validate/checks/formatting.h"
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/float_probe.h"
+#include "validate/checks/shared/formatting.h"
+#include "validate/checks/shared/input_chunks.h"
 
 namespace warpcheck {
 namespace {

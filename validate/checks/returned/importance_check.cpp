@@ -30,8 +30,8 @@
 #include "chi2/mean_test.h"
 #include "chi2/quadrature.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/input_chunks.h"
 
 namespace warpcheck {
 namespace {

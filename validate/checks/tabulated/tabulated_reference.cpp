@@ -1,4 +1,4 @@
-#include "validate/checks/tabulated_reference.h"
+#include "validate/checks/tabulated/tabulated_reference.h"
 
 #include <algorithm>
 #include <cmath>

@@ -33,9 +33,9 @@
 
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/float_cell.h"
-#include "validate/checks/formatting.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/float_cell.h"
+#include "validate/checks/shared/formatting.h"
 #include "validate/api/exhaustive_sweep.h"
 
 namespace warpcheck {

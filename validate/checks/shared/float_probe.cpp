@@ -1,4 +1,4 @@
-#include "validate/checks/float_probe.h"
+#include "validate/checks/shared/float_probe.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "validate/checks/formatting.h"
+#include "validate/checks/shared/formatting.h"
 
 #include <fmt/format.h>
 

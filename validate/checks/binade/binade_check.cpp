@@ -40,8 +40,8 @@
 #include "chi2/resolution_test.h"
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/input_chunks.h"
-#include "validate/checks/power_level.h"
+#include "validate/checks/shared/input_chunks.h"
+#include "validate/checks/shared/power_level.h"
 
 namespace warpcheck {
 namespace {

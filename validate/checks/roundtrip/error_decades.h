@@ -1,4 +1,4 @@
-// The round trip's error histogram (validate/checks/roundtrip.cpp): the bin of
+// The round trip's error histogram (validate/checks/roundtrip/roundtrip.cpp): the bin of
 // an error |invert(sample(u)) - u| by its decade, without a log10 per trip.
 #pragma once
 

@@ -36,7 +36,7 @@
 #include "reports/text.h"
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/evidence.h"
+#include "validate/checks/shared/evidence.h"
 #include "validate/api/exhaustive_sweep.h"
 
 namespace warpcheck {

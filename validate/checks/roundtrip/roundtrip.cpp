@@ -92,11 +92,11 @@
 #include "sampling/float_bits.h"
 #include "validate/api/light_case.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/error_decades.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/float_cell.h"
-#include "validate/checks/formatting.h"
-#include "validate/checks/input_chunks.h"
+#include "validate/checks/roundtrip/error_decades.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/float_cell.h"
+#include "validate/checks/shared/formatting.h"
+#include "validate/checks/shared/input_chunks.h"
 
 namespace warpcheck {
 namespace {

@@ -1,5 +1,5 @@
 // "tabulated": the warp against the inversion method on a tabulated copy of its
-// own density (validate/checks/tabulated_reference.h explains the table and the
+// own density (validate/checks/tabulated/tabulated_reference.h explains the table and the
 // tolerances its discretisation implies).
 //
 // The density of a 1D warp (or the marginal density of a monotone coordinate of
@@ -30,11 +30,11 @@
 
 #include "sampling/float_bits.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/evidence.h"
-#include "validate/checks/formatting.h"
-#include "validate/checks/input_chunks.h"
-#include "validate/checks/tabulated_monotonicity.h"
-#include "validate/checks/tabulated_reference.h"
+#include "validate/checks/shared/evidence.h"
+#include "validate/checks/shared/formatting.h"
+#include "validate/checks/shared/input_chunks.h"
+#include "validate/checks/tabulated/tabulated_monotonicity.h"
+#include "validate/checks/tabulated/tabulated_reference.h"
 
 namespace warpcheck {
 namespace {
