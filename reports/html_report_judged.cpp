@@ -1,6 +1,6 @@
 // A row's closeness to its limit, for the report's margin. The judged
 // quantities themselves are the checks' own (CheckResult::judged,
-// validate/checks/shared/judged.h), and so are their legends (RunInfo::legends, from
+// validate/checks/judged.h), and so are their legends (RunInfo::legends, from
 // Check::legend): no check is named here.
 #include <algorithm>
 #include <cmath>

@@ -212,7 +212,7 @@ struct Plot {
     std::vector<Series> series;     ///< Lines, Bars, Points
     std::vector<Heatmap> heatmaps;  ///< Heatmaps: shown side by side (e.g. observed, expected, residual)
     /// What the check marks in its plot, so that it shows the quantity judged
-    /// and its limit (written by the check's rules, validate/checks/shared/judged.h,
+    /// and its limit (written by the check's rules, validate/checks/judged.h,
     /// once the run's level is settled; reports draw them whatever the check):
     /// limit lines, ringed points and cells, marks on a colour scale, and a
     /// sentence saying what is judged and what the marks mean.
@@ -327,7 +327,7 @@ void fields(V& v, T& p) {
 
 /// One quantity a check judged, against its limit: a line of a row's
 /// "Judged" table in the reports, written by the check's own rules
-/// (validate/checks/shared/judged.h) once the run's level is settled. NaN is never
+/// (validate/checks/judged.h) once the run's level is settled. NaN is never
 /// within its limit.
 struct JudgedQuantity {
     std::string quantity;  ///< e.g. "Pearson X² = 968.6 on 1023 dof: p-value"

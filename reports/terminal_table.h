@@ -29,7 +29,7 @@ struct TableStyle {
 /// `of_tolerance` for a row with quantities held under limits (the largest
 /// margin of its judged lines of that kind, JudgedQuantity::Margin::OfLimit:
 /// it fails above 1), named by `tolerance_figure` (that line's quantity). Read
-/// from the judged lines the check wrote (validate/checks/shared/judged.h), never
+/// from the judged lines the check wrote (validate/checks/judged.h), never
 /// from figure names; a limit of 0 (an exact rule) gives no fraction.
 struct RowMargin {
     std::optional<double> p_over_level;

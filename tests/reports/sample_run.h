@@ -22,7 +22,7 @@ inline CheckResult sample_roundtrip_pass() {
     r.verdict = Verdict::Pass;
     r.summary = "max |du| 5.96e-08";
     r.figures = {{"max_error", 5.96e-08}, {"mean_error", 1.1e-08}, {"tolerance", 1e-5}, {"inputs", 100000}};
-    // Its judged line, with the margin the reports read (validate/checks/shared/judged.h).
+    // Its judged line, with the margin the reports read (validate/checks/judged.h).
     r.judged = {{"largest |invert(sample(u)) \u2212 u|", "5.96e-08", "\u2264 1e-05", JudgedQuantity::State::Within,
                  JudgedQuantity::Margin::OfLimit, 5.96e-08 / 1e-5}};
     r.samples = 100000;

@@ -46,7 +46,7 @@ CheckResult roundtrip_row(std::string case_name, double max_error, Verdict v = V
     CheckResult r = row(std::move(case_name), "roundtrip", v);
     r.figures = {{"max_error", max_error}, {"tolerance", 1e-5}, {"failures", v == Verdict::Pass ? 0.0 : 3.0},
                  {"resolution_limited", 7}};
-    // Its judged line with the margin the report reads (validate/checks/shared/judged.h).
+    // Its judged line with the margin the report reads (validate/checks/judged.h).
     JudgedQuantity error{"largest |invert(sample(u)) \u2212 u|", std::to_string(max_error), "\u2264 1e-05",
                          max_error <= 1e-5 ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond};
     error.margin_kind = JudgedQuantity::Margin::OfLimit;

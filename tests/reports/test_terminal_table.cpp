@@ -19,7 +19,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 
 /// A judged line held under `limit`, with its margin, as a check writes it
-/// (validate/checks/shared/judged.h: with_margin): the margins are read from these.
+/// (validate/checks/judged.h: with_margin): the margins are read from these.
 JudgedQuantity held(std::string quantity, double size, double limit) {
     JudgedQuantity j{std::move(quantity), std::to_string(size), "\u2264 " + std::to_string(limit),
                      size <= limit ? JudgedQuantity::State::Within : JudgedQuantity::State::Beyond};

@@ -18,7 +18,7 @@
 #include "sampling/pcg32.h"
 #include "reports/result.h"
 #include "validate/api/warp_case.h"
-#include "validate/checks/shared/judged.h"
+#include "validate/checks/judged.h"
 
 namespace warpcheck {
 
@@ -211,7 +211,7 @@ public:
     /// command, and turns an exception into an Error verdict.
     virtual CheckResult run(const WarpCase& warp, const CheckContext& ctx) const = 0;
     /// What the check judges, written into each of its rows (CheckResult::
-    /// judged) once the run's level is settled (validate/checks/shared/judged.h).
+    /// judged) once the run's level is settled (validate/checks/judged.h).
     /// The default: the p-value's line, and the generic tolerance lines.
     virtual JudgedRules judged_rules() const { return {}; }
 };

@@ -12,7 +12,7 @@
 #include "chi2/power.h"
 #include "validate/checks/shared/evidence.h"
 #include "validate/checks/shared/formatting.h"
-#include "validate/checks/shared/judged.h"
+#include "validate/checks/judged.h"
 #include "validate/checks/shared/line_resolution.h"
 #include "validate/checks/shared/power_level.h"
 #include "validate/run/runner.h"

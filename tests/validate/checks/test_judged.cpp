@@ -1,4 +1,4 @@
-// A check's judgement in its result (validate/checks/shared/judged.h): each check's
+// A check's judgement in its result (validate/checks/judged.h): each check's
 // rules turn its figures into the lines a report draws — its p-value split
 // into the tests it combines at their shares of the level, each limit with
 // its state, counts reported beside the verdict, and the generic tolerance
@@ -18,7 +18,7 @@
 #include "validate/api/registry.h"
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/checks.h"
-#include "validate/checks/shared/judged.h"
+#include "validate/checks/judged.h"
 
 namespace warpcheck {
 namespace {

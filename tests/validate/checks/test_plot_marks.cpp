@@ -14,7 +14,7 @@
 #include "tests/reports/sample_run.h"
 #include "validate/api/registry.h"
 #include "validate/checks/check.h"
-#include "validate/checks/shared/judged.h"
+#include "validate/checks/judged.h"
 
 namespace warpcheck {
 namespace {

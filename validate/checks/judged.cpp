@@ -1,5 +1,5 @@
-// The judged lines of a row from its check's rules (validate/checks/shared/judged.h).
-#include "validate/checks/shared/judged.h"
+// The judged lines of a row from its check's rules (validate/checks/judged.h).
+#include "validate/checks/judged.h"
 
 #include <algorithm>
 #include <cmath>
