@@ -9,6 +9,7 @@
 #include "validate/checks/bsdf/bsdf_checks.h"
 #include "validate/checks/checks.h"
 #include "validate/checks/light/light_checks.h"
+#include "validate/checks/repeatability/repeatability_check.h"
 #include "validate/api/registry.h"
 
 namespace warpcheck {
@@ -59,6 +60,7 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(make_pmf_check());
     registry.add_check(make_discrete_chi2_check());
     registry.add_check(make_remapped_u_check());
+    registry.add_check(make_repeatability_check());
     registry.add_check(bsdf::make_bsdf_chi2_check());
     registry.add_check(bsdf::make_bsdf_unbinned_check());
     registry.add_check(bsdf::make_bsdf_weight_check());
@@ -68,6 +70,7 @@ void register_builtin_checks(Registry& registry) {
     registry.add_check(bsdf::make_bsdf_energy_check());
     registry.add_check(bsdf::make_bsdf_expectation_check());
     registry.add_check(bsdf::make_bsdf_spectral_check());
+    registry.add_check(make_bsdf_repeatability_check());
     registry.add_check(light::make_light_radiance_check());
     registry.add_check(light::make_light_support_check());
     registry.add_check(light::make_light_irradiance_check());
