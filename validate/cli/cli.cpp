@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -751,6 +752,29 @@ std::optional<int> parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
 }
 
 }  // namespace
+
+void prefer_huge_pages([[maybe_unused]] char** argv) {
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 35)) && \
+    !defined(__SANITIZE_ADDRESS__)
+    if (!argv || !argv[0]) return;
+    const char* tunables = std::getenv("GLIBC_TUNABLES");
+    const std::string before = tunables ? tunables : "";
+    if (before.find("glibc.malloc.hugetlb") != std::string::npos) return;  // set: by the user, or by this exec
+    std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string modes;
+    std::getline(mode, modes);
+    if (modes.find("[madvise]") == std::string::npos) return;  // "always" has them already, "never" not at all
+    const std::string after = before.empty() ? "glibc.malloc.hugetlb=1" : before + ":glibc.malloc.hugetlb=1";
+    if (::setenv("GLIBC_TUNABLES", after.c_str(), 1) != 0) return;
+    std::fflush(nullptr);
+    ::execv("/proc/self/exe", argv);
+    // The exec failed: run on as this process, with the environment it had.
+    if (tunables)
+        ::setenv("GLIBC_TUNABLES", before.c_str(), 1);
+    else
+        ::unsetenv("GLIBC_TUNABLES");
+#endif
+}
 
 int run_cli(int argc, char** argv, const Registry& registry) {
     // A reader that closes early (`validate --all | head`) must not kill the run

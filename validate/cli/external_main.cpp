@@ -8,6 +8,7 @@
 #include "validate/api/external.h"
 
 int main(int argc, char** argv) {
+    warpcheck::prefer_huge_pages(argv);  // may re-execute this program, before anything runs
     // Messages name the program as it was run: it is the renderer's, not `validate`.
     const std::string program =
         argc > 0 && argv[0] && *argv[0] ? std::filesystem::path(argv[0]).filename().string() : "validate";

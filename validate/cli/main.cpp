@@ -6,6 +6,7 @@
 #include "validate/api/registry.h"
 
 int main(int argc, char** argv) {
+    warpcheck::prefer_huge_pages(argv);  // may re-execute this program, before anything runs
     warpcheck::Registry registry;
     try {
         warpcheck::register_builtin_cases(registry);

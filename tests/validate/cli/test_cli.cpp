@@ -9,6 +9,8 @@
 #include <regex>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "support/run_command.h"
 #include "support/temp_dir.h"
 
@@ -291,11 +293,43 @@ TEST(Cli, ProgressAndSummaryCountTheSameChecks) {
     const auto r = run_validate("--filter 'smooth_dielectric[eta=1.5,theta_o=60]' --samples 1e4 --progress bar");
     EXPECT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("n/a    bsdf_reciprocity"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("/3 "), std::string::npos) << "the progress counts 3 jobs:\n" << r.output;
-    EXPECT_EQ(r.output.find("/4 "), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("3 checks: 3 passed, 0 failed, 0 errors; 1 n/a, not run in "),
+    EXPECT_NE(r.output.find("/4 "), std::string::npos) << "the progress counts 4 jobs:\n" << r.output;
+    EXPECT_EQ(r.output.find("/5 "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("4 checks: 4 passed, 0 failed, 0 errors; 1 n/a, not run in "),
               std::string::npos)
         << r.output;
+}
+
+// validate re-executes itself once with huge pages asked of glibc's malloc
+// (validate/cli/cli.h): whatever GLIBC_TUNABLES held before, it runs once, prints
+// once and keeps the user's own settings; the same rows come out either way.
+TEST(Cli, HugePagesReexecRunsOnceAndChangesNoResult) {
+    const std::string exe = WARPCHECK_VALIDATE_EXE;
+    for (const std::string env : {"env -u GLIBC_TUNABLES ", "GLIBC_TUNABLES=glibc.malloc.hugetlb=0 ",
+                                  "GLIBC_TUNABLES=glibc.malloc.check=0 "}) {
+        const auto version = testing::run_command(env + exe + " --version");
+        EXPECT_EQ(version.status, 0) << env << version.output;
+        const std::size_t first = version.output.find("warpcheck");
+        ASSERT_NE(first, std::string::npos) << env << version.output;
+        EXPECT_EQ(version.output.find("warpcheck", first + 1), std::string::npos) << env << "printed twice:\n"
+                                                                                   << version.output;
+    }
+    testing::TempDir scratch;
+    const std::string run = std::string(kQuickRun) + "--progress none --json ";
+    const auto with = testing::run_command("env -u GLIBC_TUNABLES " + exe + " " + run + scratch.file("a.json"));
+    const auto without =
+        testing::run_command("GLIBC_TUNABLES=glibc.malloc.hugetlb=0 " + exe + " " + run + scratch.file("b.json"));
+    ASSERT_EQ(with.status, 0) << with.output;
+    ASSERT_EQ(without.status, 0) << without.output;
+    const auto rows = [&](const char* name) {
+        std::ifstream in(scratch.file(name));
+        return nlohmann::json::parse(in)["results"];
+    };
+    nlohmann::json a = rows("a.json"), b = rows("b.json");
+    ASSERT_FALSE(a.empty());
+    for (auto* r : {&a, &b})
+        for (auto& row : *r) row.erase("seconds"), row.erase("phases");
+    EXPECT_EQ(a, b);
 }
 
 // The time budget and memory limit reach a ctest run too (and the
