@@ -223,9 +223,9 @@ CheckResult judge(const WarpCase& warp, const Differences& d) {
     if (d.differing == 0) {
         r.verdict = Verdict::Pass;
         r.summary = fmt::format("{} inputs twice: identical bits{}", d.inputs, excused);
-        r.message = fmt::format("every one of {} inputs (edges and random, across threads, then in reverse order on one "
-                                "thread) gave the same bits both times{}; state touching 1 call in {:.2g} would "
-                                "show with 90% probability",
+        r.message = fmt::format("every one of {} inputs (edges and random, in chunks on the job's threads, then again "
+                                "in reverse order on one thread) gave the same bits both times{}; state touching 1 "
+                                "call in {:.2g} would show with 90% probability",
                                 d.inputs, excused, 1.0 / *r.figure("detectable_share"));
         return r;
     }
@@ -258,13 +258,13 @@ public:
     bool about_bsdfs() const override { return bsdfs_; }
     std::string description() const override {
         return "the same inputs give the same outputs, bit for bit: sample, what it returns and the pdf, computed "
-               "across threads and again in reverse order";
+               "in chunks on the job's threads and again in reverse order";
     }
     CheckLegend legend() const override {
-        return {name(), "Every input's sample, the values it returns and the pdf at it, computed twice (across "
-                "threads, then in reverse order on one thread, each chunk as a batch of the same size), must have the same "
-                "bits: any difference is state the inputs do not carry, and a NaN, which equals nothing, fails. A stochastic BSDF's f estimates are counted, "
-                "not judged.",
+        return {name(), "Every input's sample, the values it returns and the pdf at it, computed twice (in chunks "
+                "on the job's threads, then in reverse order on one thread, each chunk as a batch of the same "
+                "size), must have the same bits: any difference is state the inputs do not carry, and a NaN, "
+                "which equals nothing, fails. A stochastic BSDF's f estimates are counted, not judged.",
                 ""};
     }
     JudgedRules judged_rules() const override {
