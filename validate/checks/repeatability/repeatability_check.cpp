@@ -22,10 +22,11 @@
 // every other comparison of warpcheck (counted apart, as nan_inputs).
 //
 // Batch shape is kept: each chunk is passed whole both times, and the
-// reversal leaves the chunk's last (size mod 16) inputs in place, so an input
-// that a 4-, 8- or 16-wide batched sampler computes in its scalar tail is
-// computed there both times, and one whose SIMD body and tail round
-// differently is not mistaken for one with state. Reversing within the chunk
+// reversal leaves the chunk's last (size mod 64) inputs in place, so an input
+// that a batched sampler of 4 to 64 lanes (16 floats of AVX-512, unrolled up
+// to 4 times) computes in its scalar tail is computed there both times, and a
+// sampler whose SIMD body and tail round differently is not mistaken for one
+// with state. Reversing within the chunk
 // is what reaches state carried from one call to the next (a memo of the last
 // call): in the same order, only each chunk's first call would see it.
 //
@@ -128,8 +129,8 @@ std::vector<double> observe(const WarpCase& warp, std::span<const WarpInput> in)
 }
 
 /// Inputs before this index of a chunk of n are reversed on the second pass;
-/// the rest, a 16-wide sampler's scalar tail, stay where they were.
-std::size_t reversed_prefix(std::size_t n) { return n - n % 16; }
+/// the rest, the scalar tail of a sampler of up to 64 lanes, stay where they were.
+std::size_t reversed_prefix(std::size_t n) { return n - n % 64; }
 
 /// The chunk's inputs in the second pass's order.
 std::vector<WarpInput> second_order(const std::vector<WarpInput>& in) {
