@@ -36,6 +36,7 @@
 #include "reports/terminal_table.h"
 #include "validate/cli/cli_input.h"
 #include "validate/cli/samples_options.h"
+#include "validate/run/asan.h"
 #include "validate/run/merge.h"
 #include "validate/run/run_digest.h"
 #include "validate/run/runner.h"
@@ -755,7 +756,7 @@ std::optional<int> parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
 
 void prefer_huge_pages([[maybe_unused]] char** argv) {
 #if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 35)) && \
-    !defined(__SANITIZE_ADDRESS__)
+    !defined(WARPCHECK_ASAN)
     if (!argv || !argv[0]) return;
     const char* tunables = std::getenv("GLIBC_TUNABLES");
     const std::string before = tunables ? tunables : "";

@@ -25,18 +25,12 @@
 
 #include <fmt/format.h>
 
+#include "validate/run/asan.h"
 #include "validate/run/result_codec.h"
 #include "validate/run/runner.h"
 #include "validate/run/thread_pool.h"
 #include "validate/run/worker.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define WARPCHECK_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define WARPCHECK_ASAN 1
-#endif
-#endif
 
 namespace warpcheck {
 
