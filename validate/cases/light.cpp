@@ -229,11 +229,9 @@ void register_environment_lights(Registry& registry) {
         add_light(registry, family, description, {{"width", static_cast<double>(w)}, {"height", static_cast<double>(h)}},
                   EnvironmentLight(w, h, std::move(pixels)));
     };
-    env("environment_sky", "equirectangular sky: a gradient, dark below the horizon, and a sun 500 times brighter",
-        32, 16, image(32, 16, [](int i, int j) {
-            if (i == 9 && j == 3) return 500.0;
-            return j < 8 ? 1.0 + 0.5 * std::cos(2.0 * std::numbers::pi * i / 32.0) : 0.05;
-        }));
+    add_light(registry, "environment_sky",
+              "equirectangular sky: a gradient, dark below the horizon, and a sun 500 times brighter",
+              {{"width", 32.0}, {"height", 16.0}}, sky_light());
     env("environment_zero_rows", "equirectangular map whose top three rows and bottom row are black", 16, 8,
         image(16, 8, [](int i, int j) { return (j < 3 || j == 7) ? 0.0 : 1.0 + (i % 3); }));
     env("environment_one_pixel", "equirectangular map with a single lit pixel", 64, 32,
@@ -244,6 +242,13 @@ void register_environment_lights(Registry& registry) {
 
 }  // namespace
 }  // namespace builtin_lights
+
+EnvironmentLight sky_light() {
+    return EnvironmentLight(32, 16, builtin_lights::image(32, 16, [](int i, int j) {
+                                if (i == 9 && j == 3) return 500.0;
+                                return j < 8 ? 1.0 + 0.5 * std::cos(2.0 * std::numbers::pi * i / 32.0) : 0.05;
+                            }));
+}
 
 ThreeLights three_lights() {
     using builtin_lights::kLe;
@@ -275,6 +280,15 @@ void register_light_sets(Registry& registry) {
                                                                l.triangle, l.disk));
     add_light(registry, "light_set_power", "a sphere, a triangle and a disk, each chosen by its power", {},
               LightSet<SphereLight, TriangleLight, DiskLight>(power_pmf(l), l.sphere, l.triangle, l.disk));
+    // A sky behind the sphere and the disk (issue 37): the sky shines in every
+    // direction, so the set's density at a sample is the sum of all three
+    // lights' (kOverlappingLights); the disk lies below the horizon, where the
+    // sky is 0.05, the sphere above it, where the sky's gradient is.
+    add_light(registry, "light_set_sky",
+              "a sphere and a disk light in front of an equirectangular sky with a sun, chosen with probability "
+              "1/4, 1/4 and 1/2; the sky overlaps both",
+              {}, LightSet<SphereLight, DiskLight, EnvironmentLight>(kOverlappingLights, {0.25f, 0.25f, 0.5f},
+                                                                      l.sphere, l.disk, sky_light()));
     // The family --fuzz draws from (issue 37): the sphere chosen with
     // probability p_sphere, the triangle with p_triangle of the rest, the
     // disk with what is left, each between 1% and all but 1%. A light of

@@ -22,4 +22,8 @@ ThreeLights three_lights();
 /// The pmf by power (Le pi area, every Le the same) of the three lights.
 std::array<float, 3> power_pmf(const ThreeLights& lights);
 
+/// The environment_sky map (32 x 16): a gradient above the horizon, 0.05
+/// below it, and a sun 500 times the sky at pixel (9, 3).
+EnvironmentLight sky_light();
+
 }  // namespace warpcheck

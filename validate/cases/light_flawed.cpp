@@ -301,6 +301,21 @@ std::unique_ptr<WarpCase> set_last_unsampled() {
                            SetLastUnsampled{ThreeLightSet({third, third, third}, l.sphere, l.triangle, l.disk), l});
 }
 
+/// The light_set_sky set built as if its lights did not overlap: a sample
+/// returns its chosen light's pmf times pdf, and that light's L, while the
+/// sky shines behind the sphere and the disk. Each sample's L / pdf is still
+/// unbiased for the lights' summed irradiance (an estimator per chosen
+/// light), but the pdf it returns is not the density the set draws from
+/// (pdf(), the pmf-weighted sum), so MIS weighs it wrongly.
+std::unique_ptr<WarpCase> set_sky_chosen_pdf() {
+    const ThreeLights l = three_lights();
+    return make_light_case(
+        flawed_info("light_set_sky_chosen_pdf", {},
+                    "the sky set's samples return their chosen light's pmf x pdf and L, not the set's"),
+        kAtOrigin,
+        LightSet<SphereLight, DiskLight, EnvironmentLight>({0.25f, 0.25f, 0.5f}, l.sphere, l.disk, sky_light()));
+}
+
 }  // namespace
 }  // namespace flawed_lights
 
@@ -328,6 +343,11 @@ std::vector<FlawedLight> light_flawed_catalogue() {
         // integrates pdf(), three times too large.
         {set_pdf_without_pmf, "sample_pdf", "light set: pdf() without the pmf", {"chi2"}},
         {set_last_unsampled, "chi2", "light set: the last light never chosen", {"light_irradiance"}},
+        // Its directions are drawn from the set's density, which pdf()
+        // returns, and each L / pdf is an unbiased estimate: only the pdf
+        // and L a sample returns are off, where the sky overlaps a light.
+        {set_sky_chosen_pdf, "sample_pdf", "light set with a sky: a sample's pdf is its chosen light's",
+         {"light_radiance"}},
     };
     for (FlawedLight& m : mis_flawed_catalogue()) catalogue.push_back(std::move(m));
     return catalogue;
