@@ -366,7 +366,22 @@ PilotRefinement refine_by_pilot(const Binning& binning, std::span<const SamplePo
         // pdf's values differ between two sets of points by its float noise,
         // and each sum rounds by 2^-20 of the value), with both sets' noise,
         // since both were measured.
-        if (!std::isfinite(g.value) || std::abs(g.value - q.probability[c]) <= g.error + q.error[c] + slack) continue;
+        if (!std::isfinite(g.value)) continue;
+        if (std::abs(g.value - q.probability[c]) <= g.error + q.error[c] + slack) {
+            // Two estimates of one integral that agree within their bounds:
+            // where the first missed the accuracy rule (its nodes straddled a
+            // jump or sliver they could not resolve in their budget, such as
+            // the edge of an environment map's bright pixel a 1/1000 of the
+            // cell inside it) and the pieces' bound is tighter, the pieces'
+            // is kept, since a bound the agreement test did not contradict and
+            // a smaller one give the smaller band (and the power that comes
+            // with it); a first integral that met the rule stands.
+            if (q.error[c] > cell_tolerance(q.probability[c], qo) && g.error < q.error[c]) {
+                replace_cell(q, c, g);
+                ++out.cells_sharpened;
+            }
+            continue;
+        }
         out.missed_mass += g.value - q.probability[c];
         replace_cell(q, c, g);
         ++out.cells_changed;

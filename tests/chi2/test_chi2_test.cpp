@@ -411,6 +411,70 @@ TEST(PilotRefinement, ASpotBetweenTheNodesIsIntegratedWhereThePilotShowsItOnSeve
     }
 }
 
+// A bright sliver at a cell's edge (an environment map's sun pixel, cut by a
+// cell a 1/40 of the cell inside it): on [0, 1] in 200 cells, density 1 with
+// 500 on [0.5, 0.5 + 1.25e-4), the first 40th of cell 100. With a budget of 2
+// regions the first integral sees the jump but cannot place it: its bound
+// holds the exact value yet misses the accuracy rule. The pilot's pieces cut
+// at the sliver's end and bound it more than 4 times tighter (under the same
+// budget); agreeing within both bounds, their bound and value replace the
+// first's, still holding the exact value, and that cell alone changes. With the
+// default budget the first meets the rule, and nothing changes.
+constexpr double kSliverEnd = 0.5 + 0.005 / 40.0;
+double sliver(double x) { return x >= 0.5 && x < kSliverEnd ? 500.0 : 1.0; }
+double sliver_cell(double a, double b) {
+    return (b - a) + 499.0 * std::max(0.0, std::min(b, kSliverEnd) - std::max(a, 0.5));
+}
+std::vector<SamplePoint> sliver_pilot(std::size_t n, uint64_t seed) {
+    const double bright = 499.0 * (kSliverEnd - 0.5), total = 1.0 + bright;
+    Pcg32 rng(seed, 5);
+    std::vector<SamplePoint> out;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double u = rng.next_double(), v = rng.next_double();
+        const double x = u < bright / total ? 0.5 + v * (kSliverEnd - 0.5) : v;
+        out.push_back({static_cast<float>(x), 0.0f, 0.0f});
+    }
+    return out;
+}
+
+TEST(PilotRefinement, AnUnconvergedCellTakesTheTighterAgreeingBoundOnSeveralSeeds) {
+    const Binning b(Domain::interval(0.0, 1.0));
+    QuadratureOptions q;
+    q.verify = true;
+    q.float_noise = true;
+    q.sample_count = 1'000'000;
+    q.max_regions_per_cell = 2;
+    const BatchPdf pdf = pointwise([](const DomainPoint& p) { return sliver(p[0]); });
+    const CellIntegrals first = integrate_cells(b, pdf, q);
+    const std::size_t cell = 100;
+    ASSERT_EQ(b.cell_rect(cell).u0, 0.5);
+    const double exact = sliver_cell(0.5, b.cell_rect(cell).u1);
+    // The hardness: the first bound holds the value but misses the rule.
+    EXPECT_LE(std::abs(first.probability[cell] - exact), first.error[cell]);
+    EXPECT_GT(first.error[cell], 10.0 * cell_tolerance(first.probability[cell], q));
+    for (uint64_t seed : {1, 2, 3}) {
+        CellIntegrals q2 = first;
+        const PilotRefinement r = refine_by_pilot(b, sliver_pilot(64 * b.cell_count(), seed), pdf, q, q2);
+        EXPECT_EQ(r.cells_changed, 0u) << "seed " << seed;
+        EXPECT_EQ(r.cells_sharpened, 1u) << "seed " << seed << " cut " << r.cells_cut;
+        EXPECT_LT(q2.error[cell], first.error[cell] / 4.0) << "seed " << seed << " first " << first.error[cell];
+        EXPECT_NEAR(q2.probability[cell], exact, q2.error[cell] + 1e-12) << "seed " << seed;
+        for (std::size_t c = 0; c < b.cell_count(); ++c)
+            if (c != cell) {
+                EXPECT_EQ(q2.probability[c], first.probability[c]) << "seed " << seed << " cell " << c;
+            }
+    }
+    // The same cells under the default budget: the first meets the rule and stands.
+    q.max_regions_per_cell = QuadratureOptions{}.max_regions_per_cell;
+    const CellIntegrals converged = integrate_cells(b, pdf, q);
+    ASSERT_LE(converged.error[cell], cell_tolerance(converged.probability[cell], q));
+    CellIntegrals q3 = converged;
+    const PilotRefinement r = refine_by_pilot(b, sliver_pilot(64 * b.cell_count(), 1), pdf, q, q3);
+    EXPECT_EQ(r.cells_sharpened, 0u);
+    EXPECT_EQ(q3.probability, converged.probability);
+    EXPECT_EQ(q3.error, converged.error);
+}
+
 TEST(PilotRefinement, APilotThatMissesTheSpotChangesNothing) {
     // A sampler that never draws the spot (its pilot uniform) gives no cell
     // a cluster to cut at: the first values stand, and the test against them

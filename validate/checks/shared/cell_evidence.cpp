@@ -91,6 +91,7 @@ void add_pilot_refinement_figures(std::vector<Figure>& figures, const chi2::Pilo
     figures.push_back({"pilot_partitioned_cells", static_cast<double>(p.cells_cut)});
     figures.push_back({"pilot_corrected_cells", static_cast<double>(p.cells_changed)});
     figures.push_back({"pilot_corrected_mass", p.missed_mass});
+    figures.push_back({"pilot_sharpened_cells", static_cast<double>(p.cells_sharpened)});
 }
 
 namespace {

@@ -61,7 +61,7 @@ std::optional<double> single_cell_limit(const CheckResult& r);
 void mark_residual_plots(CheckResult& r, const std::string& rule);
 
 /// What chi2::refine_by_pilot did to a check's cubature, as the figures
-/// pilot_partitioned_cells, pilot_corrected_cells and pilot_corrected_mass
+/// pilot_partitioned_cells, pilot_corrected_cells, pilot_corrected_mass and pilot_sharpened_cells
 /// (chi2, bsdf_chi2, bsdf_albedo).
 void add_pilot_refinement_figures(std::vector<Figure>& figures, const chi2::PilotRefinement& p);
 
