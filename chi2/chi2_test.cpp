@@ -246,6 +246,39 @@ void replace_cell(CellIntegrals& q, std::size_t c, const GuidedIntegral& g) {
     }
 }
 
+/// Settles cell c of q against its pilot-guided integral g (refine_by_pilot).
+void apply_guided(CellIntegrals& q, std::size_t c, const GuidedIntegral& g, const QuadratureOptions& qo,
+                  PilotRefinement& out) {
+    const double noise = q.float_noise.empty() ? 0.0 : q.float_noise[c];
+    const double slack = noise + g.float_noise + 0x1p-20 * std::abs(g.value);
+    // Within both bounds the cell's first value stands (the pieces saw
+    // what its nodes saw); beyond them, the pieces, placed where the
+    // pilot's mass is, saw what the nodes stepped over. The slack is
+    // what verify_cell grants two node sets of one float density (a float
+    // pdf's values differ between two sets of points by its float noise,
+    // and each sum rounds by 2^-20 of the value), with both sets' noise,
+    // since both were measured.
+    if (!std::isfinite(g.value)) return;
+    if (std::abs(g.value - q.probability[c]) <= g.error + q.error[c] + slack) {
+        // Two estimates of one integral that agree within their bounds:
+        // where the first missed the accuracy rule (its nodes straddled a
+        // jump or sliver they could not resolve in their budget, such as
+        // the edge of an environment map's bright pixel a 1/1000 of the
+        // cell inside it) and the pieces' bound is tighter, the pieces'
+        // is kept, since a bound the agreement test did not contradict and
+        // a smaller one give the smaller band (and the power that comes
+        // with it); a first integral that met the rule stands.
+        if (q.error[c] > cell_tolerance(q.probability[c], qo) && g.error < q.error[c]) {
+            replace_cell(q, c, g);
+            ++out.cells_sharpened;
+        }
+        return;
+    }
+    out.missed_mass += g.value - q.probability[c];
+    replace_cell(q, c, g);
+    ++out.cells_changed;
+}
+
 }  // namespace
 
 std::size_t reintegrate_missed_support(const Binning& binning, const Histogram& hist, const BatchPdf& pdf,
@@ -354,37 +387,8 @@ PilotRefinement refine_by_pilot(const Binning& binning, std::span<const SamplePo
     });
     out.cells_cut = cuts.size();
     for (std::size_t k = 0; k < cuts.size(); ++k) {
-        const std::size_t c = cuts[k].cell;
-        const GuidedIntegral& g = redone[k];
-        q.evaluations += g.evaluations;
-        const double noise = q.float_noise.empty() ? 0.0 : q.float_noise[c];
-        const double slack = noise + g.float_noise + 0x1p-20 * std::abs(g.value);
-        // Within both bounds the cell's first value stands (the pieces saw
-        // what its nodes saw); beyond them, the pieces, placed where the
-        // pilot's mass is, saw what the nodes stepped over. The slack is
-        // what verify_cell grants two node sets of one float density (a float
-        // pdf's values differ between two sets of points by its float noise,
-        // and each sum rounds by 2^-20 of the value), with both sets' noise,
-        // since both were measured.
-        if (!std::isfinite(g.value)) continue;
-        if (std::abs(g.value - q.probability[c]) <= g.error + q.error[c] + slack) {
-            // Two estimates of one integral that agree within their bounds:
-            // where the first missed the accuracy rule (its nodes straddled a
-            // jump or sliver they could not resolve in their budget, such as
-            // the edge of an environment map's bright pixel a 1/1000 of the
-            // cell inside it) and the pieces' bound is tighter, the pieces'
-            // is kept, since a bound the agreement test did not contradict and
-            // a smaller one give the smaller band (and the power that comes
-            // with it); a first integral that met the rule stands.
-            if (q.error[c] > cell_tolerance(q.probability[c], qo) && g.error < q.error[c]) {
-                replace_cell(q, c, g);
-                ++out.cells_sharpened;
-            }
-            continue;
-        }
-        out.missed_mass += g.value - q.probability[c];
-        replace_cell(q, c, g);
-        ++out.cells_changed;
+        q.evaluations += redone[k].evaluations;
+        apply_guided(q, cuts[k].cell, redone[k], qo, out);
     }
     return out;
 }
