@@ -80,20 +80,6 @@ public:
     /// Whether the set was built with kOverlappingLights.
     bool overlapping() const { return overlapping_; }
 
-private:
-    void check_pmf() const {
-        float sum = 0.0f;
-        for (float p : pmf_) {
-            if (!(p >= 0.0f) || !std::isfinite(p))
-                throw std::invalid_argument("light_set: pmf entries must be finite and >= 0, got " + std::to_string(p));
-            sum += p;
-        }
-        // Float sums of a few entries round by a few 2^-24: 2^-20 leaves room for that, not for a missing light.
-        if (!(std::abs(sum - 1.0f) <= 0x1p-20f))
-            throw std::invalid_argument("light_set: the pmf sums to " + std::to_string(sum) + ", not 1");
-    }
-
-public:
     float pdf(Vector3f ref, Vector3f wi) const {
         return std::apply(
             [&](const auto&... light) {
@@ -113,6 +99,18 @@ public:
     float pmf(std::size_t i) const { return pmf_[i]; }
 
 private:
+    void check_pmf() const {
+        float sum = 0.0f;
+        for (float p : pmf_) {
+            if (!(p >= 0.0f) || !std::isfinite(p))
+                throw std::invalid_argument("light_set: pmf entries must be finite and >= 0, got " + std::to_string(p));
+            sum += p;
+        }
+        // Float sums of a few entries round by a few 2^-24: 2^-20 leaves room for that, not for a missing light.
+        if (!(std::abs(sum - 1.0f) <= 0x1p-20f))
+            throw std::invalid_argument("light_set: the pmf sums to " + std::to_string(sum) + ", not 1");
+    }
+
     LightSample sample_light(std::size_t chosen, Vector3f ref, Point2f u) const {
         return sample_light(chosen, ref, u, std::index_sequence_for<Lights...>{});
     }

@@ -369,19 +369,24 @@ double spotted_cell(double a, double b) {
     };
     return cdf(b) - cdf(a);
 }
-std::vector<SamplePoint> spotted_pilot(std::size_t n, uint64_t seed, bool with_spot) {
-    Pcg32 rng(seed, 3);
+/// n pilot points x = draw(u, v) of two uniforms from stream `stream` of `seed`.
+template <typename Draw>
+std::vector<SamplePoint> drawn_pilot(std::size_t n, uint64_t seed, uint64_t stream, Draw draw) {
+    Pcg32 rng(seed, stream);
     std::vector<SamplePoint> out;
     for (std::size_t i = 0; i < n; ++i) {
         const double u = rng.next_double(), v = rng.next_double();
-        double x;
-        if (!with_spot) x = u;  // a sampler that misses the spot (and the shape)
-        else if (u < 0.9) x = 0.5 * v;
-        else if (u < 0.91) x = 0.5 + 0.5 * v;
-        else x = 0.5 - 3e-7 * std::log1p(-v);
-        out.push_back({static_cast<float>(x), 0.0f, 0.0f});
+        out.push_back({static_cast<float>(draw(u, v)), 0.0f, 0.0f});
     }
     return out;
+}
+std::vector<SamplePoint> spotted_pilot(std::size_t n, uint64_t seed, bool with_spot) {
+    return drawn_pilot(n, seed, 3, [with_spot](double u, double v) {
+        if (!with_spot) return u;  // a sampler that misses the spot (and the shape)
+        if (u < 0.9) return 0.5 * v;
+        if (u < 0.91) return 0.5 + 0.5 * v;
+        return 0.5 - 3e-7 * std::log1p(-v);
+    });
 }
 
 TEST(PilotRefinement, ASpotBetweenTheNodesIsIntegratedWhereThePilotShowsItOnSeveralSeeds) {
@@ -427,14 +432,9 @@ double sliver_cell(double a, double b) {
 }
 std::vector<SamplePoint> sliver_pilot(std::size_t n, uint64_t seed) {
     const double bright = 499.0 * (kSliverEnd - 0.5), total = 1.0 + bright;
-    Pcg32 rng(seed, 5);
-    std::vector<SamplePoint> out;
-    for (std::size_t i = 0; i < n; ++i) {
-        const double u = rng.next_double(), v = rng.next_double();
-        const double x = u < bright / total ? 0.5 + v * (kSliverEnd - 0.5) : v;
-        out.push_back({static_cast<float>(x), 0.0f, 0.0f});
-    }
-    return out;
+    return drawn_pilot(n, seed, 5, [bright, total](double u, double v) {
+        return u < bright / total ? 0.5 + v * (kSliverEnd - 0.5) : v;
+    });
 }
 
 TEST(PilotRefinement, AnUnconvergedCellTakesTheTighterAgreeingBoundOnSeveralSeeds) {

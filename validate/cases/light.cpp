@@ -243,9 +243,9 @@ void register_environment_lights(Registry& registry) {
 }  // namespace
 }  // namespace builtin_lights
 
-EnvironmentLight sky_light() {
-    return EnvironmentLight(32, 16, builtin_lights::image(32, 16, [](int i, int j) {
-                                if (i == 9 && j == 3) return 500.0;
+EnvironmentLight sky_light(double sun) {
+    return EnvironmentLight(32, 16, builtin_lights::image(32, 16, [sun](int i, int j) {
+                                if (i == 9 && j == 3) return sun;
                                 return j < 8 ? 1.0 + 0.5 * std::cos(2.0 * std::numbers::pi * i / 32.0) : 0.05;
                             }));
 }

@@ -23,7 +23,7 @@ ThreeLights three_lights();
 std::array<float, 3> power_pmf(const ThreeLights& lights);
 
 /// The environment_sky map (32 x 16): a gradient above the horizon, 0.05
-/// below it, and a sun 500 times the sky at pixel (9, 3).
-EnvironmentLight sky_light();
+/// below it, and a sun `sun` times the sky (500 in the built-ins) at pixel (9, 3).
+EnvironmentLight sky_light(double sun = 500.0);
 
 }  // namespace warpcheck

@@ -395,16 +395,6 @@ TEST(LightCaseDeclaration, ANormalThatIsNotUnitIsRefused) {
     EXPECT_NO_THROW((void)make_light_case({.family = "medium"}, {.ref = {}, .normal = {}}, sphere));
 }
 
-/// The environment_sky map with its sun `sun` times the sky (500 in it).
-EnvironmentLight sky_with_sun(double sun) {
-    std::vector<float> pixels;
-    for (int j = 0; j < 16; ++j)
-        for (int i = 0; i < 32; ++i)
-            pixels.push_back(static_cast<float>(
-                i == 9 && j == 3 ? sun : j < 8 ? 1.0 + 0.5 * std::cos(2.0 * std::numbers::pi * i / 32.0) : 0.05));
-    return EnvironmentLight(32, 16, std::move(pixels));
-}
-
 using SkySet = LightSet<SphereLight, DiskLight, EnvironmentLight>;
 
 /// light_set_sky drawn from a set whose sun is `brighter` times the claimed
@@ -427,7 +417,7 @@ CheckResult sky_set_chi2(double brighter, uint64_t seed) {
     register_builtin_checks(registry);
     const ThreeLights l = three_lights();
     const auto set = [&](double sun) {
-        return SkySet(kOverlappingLights, {0.25f, 0.25f, 0.5f}, l.sphere, l.disk, sky_with_sun(sun));
+        return SkySet(kOverlappingLights, {0.25f, 0.25f, 0.5f}, l.sphere, l.disk, sky_light(sun));
     };
     registry.add_case(make_light_case({.family = "sky_set", .params = {{"brighter", brighter}}},
                                       {.ref = {}, .normal = {0.0f, 0.0f, 1.0f}},
