@@ -739,7 +739,7 @@ public:
         if (!finite(wi)) return 0.0f;
         const float sin_theta = std::hypot(wi.x, wi.y);
         if (!(sin_theta > 0.0f)) return 0.0f;
-        const float density = dist_.pdf(uv_of(wi)) / (2.0f * kPi * kPi * sin_theta);
+        const float density = dist_.pdf(uv_of(wi, sin_theta)) / (2.0f * kPi * kPi * sin_theta);
         return std::isfinite(density) ? density : 0.0f;
     }
 
@@ -798,8 +798,10 @@ private:
 
     /// (u, v) of a unit direction: phi / 2 pi in [0, 1), theta / pi in [0, 1], theta
     /// from atan2(sin, cos), accurate at the poles where acos(z) is not.
-    static Point2f uv_of(Vector3f wi) {
-        const float theta = std::atan2(std::hypot(wi.x, wi.y), wi.z);
+    /// sin_theta: hypot(x, y), where the caller has it already.
+    static Point2f uv_of(Vector3f wi) { return uv_of(wi, std::hypot(wi.x, wi.y)); }
+    static Point2f uv_of(Vector3f wi, float sin_theta) {
+        const float theta = std::atan2(sin_theta, wi.z);
         return {azimuth_to_unit(wi.x, wi.y), std::clamp(theta * kInvPi, 0.0f, 1.0f)};
     }
 
